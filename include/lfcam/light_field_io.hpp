@@ -1,0 +1,56 @@
+// Light-field files and folders, each read and written:
+//   Hdf5            native `.lf.h5` (layout in docs/formats.md): float32 samples, weight, metadata
+//   HciFolder       `input_CamNNN.png`, row-major views, plus `parameters.cfg` (HCI benchmark)
+//   RowColumnFolder `*_RR_CC.png`, RR the view's row and CC its column, 1-based
+//   LensletImage    one image of (ns * nu) x (nt * nv) pixels: pixel (s * nu + u, t * nv + v) holds
+//                   L(u, v, s, t), the "macro-pixel" image of microscopes and other toolboxes
+// Reading recognises the kind by content (HDF5 signature, folder listing, image signature), not
+// by name. Writing picks it from the name: `.h5` -> Hdf5; an image extension -> LensletImage;
+// otherwise a folder (HCI layout unless options say RowColumn).
+// Folder and lenslet outputs hold what their image type holds (8-bit sRGB PNG by default) and
+// no weight; only Hdf5 keeps everything.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "lfcam/light_field.hpp"
+#include "lfcam/progress.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam {
+
+enum class LightFieldFormat { Hdf5, HciFolder, RowColumnFolder, LensletImage };
+const char* formatName(LightFieldFormat format);
+
+struct LightFieldReadOptions {
+  // Views across (and down) a lenslet image that carries no lfcam description. When absent
+  // too, the reader estimates the period of the macro-pixels from the image itself.
+  std::optional<int> lensletViews;
+};
+
+struct LightFieldWriteOptions {
+  std::optional<LightFieldFormat> format;  // overrides the choice by name
+  bool sixteenBit = false;                 // folders and lenslet PNGs: 16-bit linear PNGs
+};
+
+// What a light-field input is, without reading its samples where the format allows.
+struct LightFieldInfo {
+  LightFieldFormat format = LightFieldFormat::Hdf5;
+  LightFieldShape shape;
+  bool hasWeight = false;
+  LightFieldMetadata metadata;
+};
+
+Result<LightFieldFormat> detectLightFieldFormat(const std::filesystem::path& path);
+Result<LightFieldInfo> probeLightField(const std::filesystem::path& path,
+                                       const LightFieldReadOptions& options = {});
+Result<LightField> readLightField(const std::filesystem::path& path,
+                                  const LightFieldReadOptions& options = {},
+                                  const ProgressCallback& progress = {});
+Status writeLightField(const std::filesystem::path& path, const LightField& lightField,
+                       const LightFieldWriteOptions& options = {},
+                       const ProgressCallback& progress = {});
+
+}  // namespace lfcam

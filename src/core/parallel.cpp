@@ -1,0 +1,34 @@
+#include "lfcam/parallel.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <memory>
+
+namespace lfcam {
+
+namespace {
+std::unique_ptr<tbb::global_control>& threadLimit() {
+  static std::unique_ptr<tbb::global_control> limit;
+  return limit;
+}
+}  // namespace
+
+void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
+                 const std::function<void(std::size_t, std::size_t)>& body) {
+  if (begin >= end) return;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, grain == 0 ? 1 : grain),
+                    [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+}
+
+void setThreadCount(int threads) {
+  if (threads <= 0) {
+    threadLimit().reset();
+    return;
+  }
+  threadLimit() = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                        std::size_t(threads));
+}
+
+}  // namespace lfcam
