@@ -37,8 +37,9 @@ struct LayeredPlanesScene {
   Optics optics;  // plausible plenoptic optics, so that alpha <-> slope is defined
 };
 
-// The built-in default: a background and three cards at different depths, 9x9 views of 256x256.
-LayeredPlanesScene defaultLayeredPlanesScene();
+// The built-in default: a background and three cards at different depths, with views x views
+// views of size x size pixels (the layout scales with the size; disparities do not).
+LayeredPlanesScene defaultLayeredPlanesScene(int views = 9, int size = 256, std::uint64_t seed = 1);
 
 struct LayeredPlanesLightField {
   LightField lightField;

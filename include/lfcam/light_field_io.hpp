@@ -1,7 +1,8 @@
 // Light-field files and folders, each read and written:
 //   Hdf5            native `.lf.h5` (layout in docs/formats.md): float32 samples, weight, metadata
 //   HciFolder       `input_CamNNN.png`, row-major views, plus `parameters.cfg` (HCI benchmark)
-//   RowColumnFolder `*_RR_CC.png`, RR the view's row and CC its column, 1-based
+//   RowColumnFolder `*_RR_CC.png`, RR the view's row and CC its column, 1-based (some exporters
+//                   put the column first: see ViewNumberOrder)
 //   LensletImage    one image of (ns * nu) x (nt * nv) pixels: pixel (s * nu + u, t * nv + v) holds
 //                   L(u, v, s, t), the "macro-pixel" image of microscopes and other toolboxes
 // Reading recognises the kind by content (HDF5 signature, folder listing, image signature), not
@@ -24,10 +25,18 @@ namespace lfcam {
 enum class LightFieldFormat { Hdf5, HciFolder, RowColumnFolder, LensletImage };
 const char* formatName(LightFieldFormat format);
 
+// How the two numbers in the names of a row/column folder, NAME_AA_BB.png, are read.
+enum class ViewNumberOrder {
+  RowFirst,     // AA = row (v + 1), BB = column (u + 1): the usual order, and what lfcam writes
+  ColumnFirst,  // AA = column (u + 1), BB = row (v + 1): e.g. the LF Toolbox export of the Lytro
+                // set lytro-f01-flower (IMG_0001_NNN_SS_TT.png, SS the horizontal position)
+};
+
 struct LightFieldReadOptions {
   // Views across (and down) a lenslet image that carries no lfcam description. When absent
   // too, the reader estimates the period of the macro-pixels from the image itself.
   std::optional<int> lensletViews;
+  ViewNumberOrder viewNumberOrder = ViewNumberOrder::RowFirst;  // row/column folders only
 };
 
 struct LightFieldWriteOptions {

@@ -1,1 +1,52 @@
-int main() { return 0; }
+// lfcam: light-field photography from the command line. Exit status: 0 on success, 1 when the
+// work failed (unreadable input, failed write), 2 on a usage error (unknown flag, bad value).
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include "commands.hpp"
+#include "lfcam/parallel.hpp"
+
+int main(int argc, char** argv) {
+  using namespace lfcam;
+  CLI::App app{"lfcam: light-field photography after Ng et al. 2005, \"Light Field Photography with a "
+               "Hand-held Plenoptic Camera\"",
+               "lfcam"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "lfcam 0.1.0");
+  int threads = 0;
+  app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+
+  cli::Job job;
+  cli::addInfoCommand(app, job);
+  cli::addConvertCommand(app, job);
+  cli::addViewsCommand(app, job);
+  cli::addRefocusCommand(app, job);
+  cli::addSynthCommand(app, job);
+  cli::addDemoCommand(app, job);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help, --version
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "lfcam: %s (see lfcam --help)\n", e.what());
+    return 2;
+  }
+
+  try {
+    setThreadCount(threads);
+    const Status status = job();
+    if (!status) {
+      std::fprintf(stderr, "lfcam: %s\n", status.error().message.c_str());
+      return status.error().code == ErrorCode::Usage ? 2 : 1;
+    }
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "lfcam: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lfcam: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,29 @@
+// The native light-field file, `.lf.h5`, through the HDF5 C API. Layout (docs/formats.md):
+//   /lightfield  float32 [nv, nu, channels, nt, ns], one chunk per view, shuffle + deflate
+//   /weight      float32 [nv, nu, nt, ns], when the light field has a weight
+//   root attributes: lfcam_format = "lfcam-lightfield", lfcam_version = 1, axes = "v,u,c,t,s",
+//   lens_step_mm, spatial_step_mm, lens_to_microlens_mm, focal_length_mm (optics, when known),
+//   disparity_min, disparity_max (when known), source.
+// The dataset's dimensions are the memory layout of LightField, so each view is one read.
+// HDF5 (serial build) is not thread-safe: every call here holds one process-wide lock.
+#pragma once
+
+#include <filesystem>
+
+#include "lfcam/light_field.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/progress.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam::io {
+
+// The HDF5 signature at offset 0 or at a user-block offset (512, 1024, 2048, ...).
+bool startsLikeHdf5(const std::filesystem::path& path);
+
+Result<LightFieldInfo> probeHdf5(const std::filesystem::path& path);
+Result<LightField> readHdf5(const std::filesystem::path& path, const ProgressCallback& progress);
+// Writes `file` directly (callers make it atomic); errors name `reportAs`.
+Status writeHdf5(const std::filesystem::path& file, const LightField& lightField,
+                 const ProgressCallback& progress, const std::filesystem::path& reportAs);
+
+}  // namespace lfcam::io

@@ -1,0 +1,314 @@
+// Image files through OpenImageIO, and PFM through io/pfm. Which reader runs is decided by the
+// file's first bytes; which writer runs, by the name's extension.
+#include "lfcam/image_io.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <fstream>
+#include <span>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "io/io_support.hpp"
+#include "io/pfm.hpp"
+#include "io/png_check.hpp"
+#include "io/srgb.hpp"
+#include "lfcam/atomic_file.hpp"
+
+namespace lfcam {
+
+namespace fs = std::filesystem;
+using io::fileError;
+
+namespace {
+
+enum class Kind { Png, Jpeg, Tiff, Exr, Pfm, Other };
+
+std::array<unsigned char, 8> readHead(const fs::path& path, std::size_t& length) {
+  std::array<unsigned char, 8> head{};
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(head.data()), head.size());
+  length = std::size_t(in.gcount());
+  return head;
+}
+
+// The kind of image by its signature.
+Kind kindFromContent(const fs::path& path) {
+  std::size_t length = 0;
+  const auto h = readHead(path, length);
+  const auto starts = [&](std::initializer_list<unsigned char> magic) {
+    return length >= magic.size() && std::equal(magic.begin(), magic.end(), h.begin());
+  };
+  if (starts({0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'})) return Kind::Png;
+  if (starts({0xff, 0xd8, 0xff})) return Kind::Jpeg;
+  if (starts({'I', 'I', 42, 0}) || starts({'M', 'M', 0, 42}) || starts({'I', 'I', 43, 0}) ||
+      starts({'M', 'M', 0, 43}))
+    return Kind::Tiff;
+  if (starts({0x76, 0x2f, 0x31, 0x01})) return Kind::Exr;
+  if (io::startsLikePfm(std::span(h.data(), length))) return Kind::Pfm;
+  return Kind::Other;
+}
+
+Kind kindFromName(const fs::path& path) {
+  const std::string extension = io::lowerExtension(path);
+  if (extension == ".png") return Kind::Png;
+  if (extension == ".jpg" || extension == ".jpeg") return Kind::Jpeg;
+  if (extension == ".tif" || extension == ".tiff") return Kind::Tiff;
+  if (extension == ".exr") return Kind::Exr;
+  if (extension == ".pfm") return Kind::Pfm;
+  return Kind::Other;
+}
+
+const char* sampleTypeName(SampleType type) {
+  switch (type) {
+    case SampleType::UInt8: return "8-bit";
+    case SampleType::UInt16: return "16-bit";
+    case SampleType::Float32: return "float";
+  }
+  return "?";
+}
+
+// The type lfcam reads a file's samples as: 8 and 16-bit codes as they are, anything else
+// converted to float by OpenImageIO (other integer types scaled to [0, 1]).
+SampleType sampleTypeOf(const OIIO::ImageSpec& spec) {
+  if (spec.format == OIIO::TypeDesc::UINT8) return SampleType::UInt8;
+  if (spec.format == OIIO::TypeDesc::UINT16) return SampleType::UInt16;
+  return SampleType::Float32;
+}
+
+OIIO::TypeDesc typeDescOf(SampleType type) {
+  switch (type) {
+    case SampleType::UInt8: return OIIO::TypeDesc::UINT8;
+    case SampleType::UInt16: return OIIO::TypeDesc::UINT16;
+    case SampleType::Float32: return OIIO::TypeDesc::FLOAT;
+  }
+  return OIIO::TypeDesc::FLOAT;
+}
+
+// Opens an image with OpenImageIO, keeping alpha unassociated (as PNG stores it) so that no
+// channel is silently multiplied or divided.
+Result<std::unique_ptr<OIIO::ImageInput>> openInput(const fs::path& path, Kind kind) {
+  LFCAM_TRY(io::checkReadableFile(path));
+  if (kind == Kind::Png) LFCAM_TRY(io::checkPngStructure(path));
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto input = OIIO::ImageInput::open(path.string(), &config);
+  if (!input) {
+    std::string reason = OIIO::geterror();
+    if (reason.empty()) reason = "unknown format";
+    return fileError(ErrorCode::Format, path, "not a readable image: " + reason);
+  }
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    return fileError(ErrorCode::Format, path, "not a readable image: no pixels");
+  if (spec.depth > 1 || spec.deep)
+    return fileError(ErrorCode::Unsupported, path, "volume and deep images are not supported");
+  return input;
+}
+
+// A header that promises far more pixels than the file could hold is refused before allocating.
+// Deflate cannot compress better than about 1032:1, so a PNG's pixels fit in ~1100 x its size.
+Status checkAgainstFileLength(const fs::path& path, Kind kind, const OIIO::ImageSpec& spec) {
+  if (kind == Kind::Png) {
+    std::error_code ec;
+    const std::uint64_t fileSize = fs::file_size(path, ec);
+    const auto bytes = io::checkedProduct({std::uint64_t(spec.width), std::uint64_t(spec.height),
+                                           std::uint64_t(spec.nchannels), spec.format.size()});
+    if (!ec && (!bytes || *bytes / 1100 > fileSize + 1024))
+      return fileError(ErrorCode::Format, path,
+                       "truncated or corrupt: the header claims " + std::to_string(spec.width) + "x" +
+                           std::to_string(spec.height) + " pixels but the file has only " +
+                           std::to_string(fileSize) + " bytes");
+  }
+  return io::checkSampleCount(path, {std::uint64_t(spec.width), std::uint64_t(spec.height),
+                                     std::uint64_t(spec.nchannels)});
+}
+
+Result<Image> readWithOiio(const fs::path& path, Kind kind) {
+  auto opened = openInput(path, kind);
+  if (!opened) return opened.error();
+  OIIO::ImageInput& input = **opened;
+  const OIIO::ImageSpec spec = input.spec();
+  LFCAM_TRY(checkAgainstFileLength(path, kind, spec));
+
+  const SampleType type = sampleTypeOf(spec);
+  const OIIO::TypeDesc readType = typeDescOf(type);
+  const int channels = spec.nchannels;
+  const std::size_t pixels = std::size_t(spec.width) * spec.height;
+  std::vector<unsigned char> buffer(pixels * channels * readType.size());
+  // Some readers (TIFF, JPEG) report damage as an error but still return true.
+  if (!input.read_image(0, 0, 0, channels, readType, buffer.data()) || input.has_error()) {
+    std::string reason = input.geterror();
+    return fileError(ErrorCode::Format, path, "cannot read pixels: " + (reason.empty() ? "unknown error" : reason));
+  }
+  input.close();
+
+  // Interleaved codes to planar linear floats. 8-bit colour is sRGB; alpha is linear everywhere.
+  Image image(spec.width, spec.height, channels);
+  for (int c = 0; c < channels; ++c) {
+    float* plane = image.plane(c);
+    const bool alpha = c == spec.alpha_channel;
+    if (type == SampleType::UInt8) {
+      const auto* codes = buffer.data();
+      for (std::size_t i = 0; i < pixels; ++i) {
+        const std::uint8_t code = codes[i * channels + c];
+        plane[i] = alpha ? code / 255.0f : io::linearFromSrgb8(code);
+      }
+    } else if (type == SampleType::UInt16) {
+      const auto* codes = reinterpret_cast<const std::uint16_t*>(buffer.data());
+      for (std::size_t i = 0; i < pixels; ++i) plane[i] = float(codes[i * channels + c] / 65535.0);
+    } else {
+      const auto* values = reinterpret_cast<const float*>(buffer.data());
+      for (std::size_t i = 0; i < pixels; ++i) plane[i] = values[i * channels + c];
+    }
+  }
+  return image;
+}
+
+// What each writable format can hold: its natural sample type and channel counts.
+struct FormatRules {
+  const char* name;
+  SampleType natural;
+  std::vector<SampleType> types;
+  int maxChannels;
+  bool twoOrFourChannels;  // false: only 1 or 3 (JPEG, PFM)
+};
+
+FormatRules rulesFor(Kind kind) {
+  switch (kind) {
+    case Kind::Png: return {"PNG", SampleType::UInt8, {SampleType::UInt8, SampleType::UInt16}, 4, true};
+    case Kind::Jpeg: return {"JPEG", SampleType::UInt8, {SampleType::UInt8}, 3, false};
+    case Kind::Tiff:
+      return {"TIFF", SampleType::UInt16, {SampleType::UInt8, SampleType::UInt16, SampleType::Float32}, 1024, true};
+    case Kind::Exr: return {"OpenEXR", SampleType::Float32, {SampleType::Float32}, 1024, true};
+    case Kind::Pfm: return {"PFM", SampleType::Float32, {SampleType::Float32}, 3, false};
+    case Kind::Other: break;
+  }
+  return {"?", SampleType::Float32, {}, 0, false};
+}
+
+std::vector<std::string> channelNames(int channels) {
+  switch (channels) {
+    case 1: return {"Y"};
+    case 2: return {"Y", "A"};
+    case 3: return {"R", "G", "B"};
+    case 4: return {"R", "G", "B", "A"};
+  }
+  std::vector<std::string> names;
+  for (int c = 0; c < channels; ++c) names.push_back("channel" + std::to_string(c));
+  return names;
+}
+
+// Planar linear floats to interleaved codes of `type`.
+std::vector<unsigned char> encodePixels(const Image& image, SampleType type, int alphaChannel) {
+  const int channels = image.channels();
+  const std::size_t pixels = image.planeSize();
+  std::vector<unsigned char> buffer(pixels * channels * typeDescOf(type).size());
+  for (int c = 0; c < channels; ++c) {
+    const float* plane = image.plane(c);
+    if (type == SampleType::UInt8) {
+      const bool alpha = c == alphaChannel;
+      for (std::size_t i = 0; i < pixels; ++i)
+        buffer[i * channels + c] = alpha ? io::unorm8FromLinear(plane[i]) : io::srgb8FromLinear(plane[i]);
+    } else if (type == SampleType::UInt16) {
+      auto* codes = reinterpret_cast<std::uint16_t*>(buffer.data());
+      for (std::size_t i = 0; i < pixels; ++i) codes[i * channels + c] = io::unorm16FromLinear(plane[i]);
+    } else {
+      auto* values = reinterpret_cast<float*>(buffer.data());
+      for (std::size_t i = 0; i < pixels; ++i) values[i * channels + c] = plane[i];
+    }
+  }
+  return buffer;
+}
+
+Status writeWithOiio(const fs::path& temporary, const fs::path& path, const Image& image, SampleType type,
+                     const ImageWriteOptions& options, Kind kind) {
+  auto output = OIIO::ImageOutput::create(temporary.string());
+  if (!output) return fileError(ErrorCode::Unsupported, path, "cannot write this format: " + OIIO::geterror());
+  OIIO::ImageSpec spec(image.width(), image.height(), image.channels(), typeDescOf(type));
+  spec.channelnames = channelNames(image.channels());
+  spec.alpha_channel = image.channels() == 2 || image.channels() == 4 ? image.channels() - 1 : -1;
+  if (spec.alpha_channel >= 0) spec.attribute("oiio:UnassociatedAlpha", 1);
+  spec.attribute("oiio:ColorSpace", type == SampleType::UInt8 ? "sRGB" : "Linear");
+  if (!options.description.empty()) spec.attribute("ImageDescription", options.description);
+  if (kind == Kind::Jpeg) spec.attribute("Compression", "jpeg:" + std::to_string(options.jpegQuality));
+  if (kind == Kind::Tiff || kind == Kind::Exr) spec.attribute("compression", "zip");
+  // zlib level 1: a third of the time of OpenImageIO's default (6) for files ~13% larger.
+  if (kind == Kind::Png) spec.attribute("png:compressionLevel", 1);
+
+  const std::vector<unsigned char> pixels = encodePixels(image, type, spec.alpha_channel);
+  if (!output->open(temporary.string(), spec) || !output->write_image(typeDescOf(type), pixels.data()) ||
+      !output->close()) {
+    std::string reason = output->geterror();
+    return fileError(ErrorCode::Io, path, "cannot write: " + (reason.empty() ? "unknown error" : reason));
+  }
+  return {};
+}
+
+}  // namespace
+
+Result<Image> readImage(const fs::path& path) {
+  LFCAM_TRY(io::checkReadableFile(path));
+  const Kind kind = kindFromContent(path);
+  if (kind == Kind::Pfm) return io::readPfm(path);
+  return readWithOiio(path, kind);
+}
+
+Result<ImageHeader> readImageHeader(const fs::path& path) {
+  LFCAM_TRY(io::checkReadableFile(path));
+  const Kind kind = kindFromContent(path);
+  if (kind == Kind::Pfm) return io::readPfmHeader(path);
+  auto input = openInput(path, kind);
+  if (!input) return input.error();
+  const OIIO::ImageSpec& spec = (*input)->spec();
+  return ImageHeader{spec.width, spec.height, spec.nchannels, sampleTypeOf(spec)};
+}
+
+Result<std::string> readImageDescription(const fs::path& path) {
+  LFCAM_TRY(io::checkReadableFile(path));
+  const Kind kind = kindFromContent(path);
+  if (kind == Kind::Pfm) {
+    auto header = io::readPfmHeader(path);  // PFM has no place for one; still check the file
+    if (!header) return header.error();
+    return std::string();
+  }
+  auto input = openInput(path, kind);
+  if (!input) return input.error();
+  return std::string((*input)->spec().get_string_attribute("ImageDescription"));
+}
+
+bool looksLikeImageFile(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec) && kindFromContent(path) != Kind::Other;
+}
+
+Status writeImage(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
+  const Kind kind = kindFromName(path);
+  if (kind == Kind::Other)
+    return fileError(ErrorCode::Usage, path,
+                     "unknown image extension '" + path.extension().string() +
+                         "' (use .png, .tif, .tiff, .exr, .jpg, .jpeg or .pfm)");
+  if (image.empty()) return fileError(ErrorCode::Usage, path, "nothing to write: the image is empty");
+  const FormatRules rules = rulesFor(kind);
+  const SampleType type = options.sampleType.value_or(rules.natural);
+  if (std::find(rules.types.begin(), rules.types.end(), type) == rules.types.end())
+    return fileError(ErrorCode::Usage, path,
+                     std::string(rules.name) + " cannot hold " + sampleTypeName(type) + " samples");
+  const int channels = image.channels();
+  if (channels > rules.maxChannels || (!rules.twoOrFourChannels && channels != 1 && channels != 3))
+    return fileError(ErrorCode::Usage, path,
+                     std::string(rules.name) + " cannot hold " + std::to_string(channels) + " channels");
+  if (kind == Kind::Jpeg && (options.jpegQuality < 1 || options.jpegQuality > 100))
+    return fileError(ErrorCode::Usage, path, "JPEG quality must be in 1..100, not " + std::to_string(options.jpegQuality));
+
+  return writeFileAtomically(path, [&](const fs::path& temporary) -> Status {
+    if (kind == Kind::Pfm) return io::writePfm(temporary, image, path);
+    return writeWithOiio(temporary, path, image, type, options, kind);
+  });
+}
+
+}  // namespace lfcam

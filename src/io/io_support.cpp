@@ -1,0 +1,63 @@
+#include "io/io_support.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <system_error>
+
+namespace lfcam::io {
+
+namespace fs = std::filesystem;
+
+std::string oneLine(std::string_view text) {
+  std::string line;
+  line.reserve(text.size());
+  for (char ch : text) {
+    if (ch == '\n' || ch == '\r') {
+      // Libraries report several lines; keep them apart without breaking the one-line rule.
+      if (!line.empty() && line.back() != ' ') line += "; ";
+    } else {
+      line += ch;
+    }
+  }
+  while (!line.empty() && (line.back() == ' ' || line.back() == ';')) line.pop_back();
+  return line;
+}
+
+Error renamedInMessage(Error error, const fs::path& from, const fs::path& to) {
+  const std::string prefix = from.string();
+  if (error.message.compare(0, prefix.size(), prefix) == 0) error.message.replace(0, prefix.size(), to.string());
+  return error;
+}
+
+std::optional<std::uint64_t> checkedProduct(std::initializer_list<std::uint64_t> factors) {
+  std::uint64_t product = 1;
+  for (std::uint64_t factor : factors)
+    if (__builtin_mul_overflow(product, factor, &product)) return std::nullopt;
+  return product;
+}
+
+Status checkSampleCount(const fs::path& path, std::initializer_list<std::uint64_t> dims) {
+  const auto samples = checkedProduct(dims);
+  if (!samples || *samples > kMaxSamples)
+    return fileError(ErrorCode::Resource, path,
+                     "too large: more than " + std::to_string(kMaxSamples) + " samples");
+  return {};
+}
+
+Status checkReadableFile(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) return fileError(ErrorCode::Io, path, "no such file");
+  if (fs::is_directory(status)) return fileError(ErrorCode::Usage, path, "is a folder, expected a file");
+  if (!fs::is_regular_file(status)) return fileError(ErrorCode::Usage, path, "not a regular file");
+  return {};
+}
+
+std::string lowerExtension(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char ch) { return char(std::tolower(ch)); });
+  return extension;
+}
+
+}  // namespace lfcam::io

@@ -1,0 +1,158 @@
+#include "io/lenslet_image.hpp"
+
+#include <climits>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "io/io_support.hpp"
+#include "io/macro_pixel_period.hpp"
+#include "lfcam/image_io.hpp"
+
+namespace lfcam::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kDescriptionTag = "lfcam lenslet";
+
+struct ViewsPerLens {
+  int nu = 0, nv = 0;
+};
+
+std::string describe(int nu, int nv) {
+  return std::string(kDescriptionTag) + " nu=" + std::to_string(nu) + " nv=" + std::to_string(nv);
+}
+
+// "lfcam lenslet nu=9 nv=9" -> (9, 9); anything else -> nothing.
+std::optional<ViewsPerLens> parseDescription(const std::string& description) {
+  if (description.rfind(kDescriptionTag, 0) != 0) return std::nullopt;
+  std::istringstream words(description.substr(std::string(kDescriptionTag).size()));
+  ViewsPerLens views;
+  for (std::string word; words >> word;) {
+    int* target = word.rfind("nu=", 0) == 0 ? &views.nu : word.rfind("nv=", 0) == 0 ? &views.nv : nullptr;
+    if (!target) continue;
+    try {
+      *target = std::stoi(word.substr(3));
+    } catch (...) {
+      return std::nullopt;
+    }
+  }
+  if (views.nu < 1 || views.nv < 1) return std::nullopt;
+  return views;
+}
+
+// The views per lens: from the file's description, else the caller, else the image itself
+// (which needs the pixels: `image` is read on demand and kept for the caller).
+Result<ViewsPerLens> viewsPerLens(const fs::path& path, const LightFieldReadOptions& options,
+                                  std::optional<Image>& image) {
+  auto description = readImageDescription(path);
+  if (!description) return description.error();
+  if (auto views = parseDescription(*description)) return *views;
+  if (options.lensletViews) {
+    if (*options.lensletViews < 1)
+      return fileError(ErrorCode::Usage, path,
+                       "views per lens must be at least 1, not " + std::to_string(*options.lensletViews));
+    return ViewsPerLens{*options.lensletViews, *options.lensletViews};
+  }
+  if (!image) {
+    auto read = readImage(path);
+    if (!read) return read.error();
+    image = std::move(*read);
+  }
+  const auto nu = estimateMacroPixelPeriod(*image, true);
+  const auto nv = estimateMacroPixelPeriod(*image, false);
+  if (!nu || !nv)
+    return fileError(ErrorCode::Usage, path,
+                     "cannot tell the number of views per lens of this lenslet image; pass it "
+                     "(LightFieldReadOptions::lensletViews, --lenslet-views on the command line)");
+  return ViewsPerLens{*nu, *nv};
+}
+
+Result<LightFieldShape> shapeOf(const fs::path& path, int width, int height, int channels, ViewsPerLens views) {
+  if (width % views.nu != 0 || height % views.nv != 0)
+    return fileError(ErrorCode::Format, path,
+                     std::to_string(width) + "x" + std::to_string(height) + " pixels is not a whole number of " +
+                         std::to_string(views.nu) + "x" + std::to_string(views.nv) + " macro-pixels");
+  return LightFieldShape{.nu = views.nu, .nv = views.nv, .ns = width / views.nu, .nt = height / views.nv,
+                         .channels = channels};
+}
+
+}  // namespace
+
+Result<LightFieldInfo> probeLensletImage(const fs::path& path, const LightFieldReadOptions& options) {
+  auto header = readImageHeader(path);
+  if (!header) return header.error();
+  std::optional<Image> image;
+  auto views = viewsPerLens(path, options, image);
+  if (!views) return views.error();
+  auto shape = shapeOf(path, header->width, header->height, header->channels, *views);
+  if (!shape) return shape.error();
+  LightFieldInfo info;
+  info.format = LightFieldFormat::LensletImage;
+  info.shape = *shape;
+  info.metadata.source = path.string();
+  return info;
+}
+
+Result<LightField> readLensletImage(const fs::path& path, const LightFieldReadOptions& options,
+                                    const ProgressCallback& progress) {
+  std::optional<Image> image;
+  auto views = viewsPerLens(path, options, image);
+  if (!views) return views.error();
+  if (!image) {
+    auto read = readImage(path);
+    if (!read) return read.error();
+    image = std::move(*read);
+  }
+  auto shape = shapeOf(path, image->width(), image->height(), image->channels(), *views);
+  if (!shape) return shape.error();
+
+  LightField lightField(*shape);
+  lightField.metadata.source = path.string();
+  const int nu = shape->nu, nv = shape->nv;
+  for (int v = 0; v < nv; ++v)
+    for (int u = 0; u < nu; ++u) {
+      for (int c = 0; c < shape->channels; ++c)
+        for (int t = 0; t < shape->nt; ++t) {
+          const float* row = image->row(t * nv + v, c);
+          float* out = lightField.plane(u, v, c) + std::size_t(t) * shape->ns;
+          for (int s = 0; s < shape->ns; ++s) out[s] = row[s * nu + u];
+        }
+      if (progress) progress(double(v * nu + u + 1) / double(shape->views()));
+    }
+  return lightField;
+}
+
+Status writeLensletImage(const fs::path& path, const LightField& lightField, bool sixteenBit,
+                         const ProgressCallback& progress) {
+  const LightFieldShape& shape = lightField.shape();
+  const auto width = checkedProduct({std::uint64_t(shape.ns), std::uint64_t(shape.nu)});
+  const auto height = checkedProduct({std::uint64_t(shape.nt), std::uint64_t(shape.nv)});
+  if (!width || !height || *width > INT_MAX || *height > INT_MAX)
+    return fileError(ErrorCode::Usage, path, "too large for one image");
+  Image image(int(*width), int(*height), shape.channels);
+  for (int v = 0; v < shape.nv; ++v)
+    for (int u = 0; u < shape.nu; ++u) {
+      for (int c = 0; c < shape.channels; ++c)
+        for (int t = 0; t < shape.nt; ++t) {
+          const float* in = lightField.plane(u, v, c) + std::size_t(t) * shape.ns;
+          float* row = image.row(t * shape.nv + v, c);
+          for (int s = 0; s < shape.ns; ++s) row[s * shape.nu + u] = in[s];
+        }
+      // Arranging is quick; the file write is the slow half.
+      if (progress) progress(0.5 * double(v * shape.nu + u + 1) / double(shape.views()));
+    }
+  ImageWriteOptions options{.description = describe(shape.nu, shape.nv)};
+  const std::string extension = lowerExtension(path);
+  if (sixteenBit && (extension == ".png" || extension == ".tif" || extension == ".tiff"))
+    options.sampleType = SampleType::UInt16;
+  else if (extension == ".png")
+    options.sampleType = SampleType::UInt8;
+  LFCAM_TRY(writeImage(path, image, options));
+  if (progress) progress(1.0);
+  return {};
+}
+
+}  // namespace lfcam::io

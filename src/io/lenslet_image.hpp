@@ -1,0 +1,23 @@
+// A light field stored as one "macro-pixel" image of (ns * nu) x (nt * nv) pixels: the nu x nv
+// pixels behind each microlens hold the views, so pixel (s * nu + u, t * nv + v) = L(u, v, s, t).
+// lfcam writes the image description "lfcam lenslet nu=N nv=M" so that it can read the grid back;
+// other files need the number of views per lens, given or estimated (macro_pixel_period.hpp).
+#pragma once
+
+#include <filesystem>
+
+#include "lfcam/light_field.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/progress.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam::io {
+
+Result<LightFieldInfo> probeLensletImage(const std::filesystem::path& path, const LightFieldReadOptions& options);
+Result<LightField> readLensletImage(const std::filesystem::path& path, const LightFieldReadOptions& options,
+                                    const ProgressCallback& progress);
+// Atomic, through writeImage. 16-bit linear PNG or TIFF when sixteenBit.
+Status writeLensletImage(const std::filesystem::path& path, const LightField& lightField, bool sixteenBit,
+                         const ProgressCallback& progress);
+
+}  // namespace lfcam::io

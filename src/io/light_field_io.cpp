@@ -1,0 +1,138 @@
+// Light-field inputs and outputs: which kind a path is, and the dispatch to each kind's reader
+// and writer (hdf5_light_field, view_folder, lenslet_image).
+#include "lfcam/light_field_io.hpp"
+
+#include <system_error>
+
+#include "io/hdf5_light_field.hpp"
+#include "io/io_support.hpp"
+#include "io/lenslet_image.hpp"
+#include "io/view_folder.hpp"
+#include "lfcam/atomic_file.hpp"
+#include "lfcam/image_io.hpp"
+
+namespace lfcam {
+
+namespace fs = std::filesystem;
+using io::fileError;
+
+namespace {
+
+// What a path holds, with the folder listing when it is a folder (so it is listed once).
+struct Source {
+  LightFieldFormat format = LightFieldFormat::Hdf5;
+  std::optional<io::ViewGrid> grid;
+};
+
+Result<Source> identify(const fs::path& path, const LightFieldReadOptions& options = {}) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) return fileError(ErrorCode::Io, path, "no such file or folder");
+  if (fs::is_directory(status)) {
+    auto grid = io::findViewGrid(path, options.viewNumberOrder);
+    if (!grid) return grid.error();
+    const LightFieldFormat format = grid->format;
+    return Source{format, std::move(*grid)};
+  }
+  if (!fs::is_regular_file(status)) return fileError(ErrorCode::Usage, path, "not a regular file or folder");
+  if (io::startsLikeHdf5(path)) return Source{LightFieldFormat::Hdf5, std::nullopt};
+  if (looksLikeImageFile(path)) return Source{LightFieldFormat::LensletImage, std::nullopt};
+  return fileError(ErrorCode::Format, path,
+                   "not a light field: neither an HDF5 file, an image, nor a folder of views");
+}
+
+bool isImageExtension(const std::string& extension) {
+  for (const char* known : {".png", ".tif", ".tiff", ".exr", ".jpg", ".jpeg", ".pfm"})
+    if (extension == known) return true;
+  return false;
+}
+
+LightFieldFormat formatFromName(const fs::path& path) {
+  const std::string extension = io::lowerExtension(path);
+  if (extension == ".h5" || extension == ".hdf5") return LightFieldFormat::Hdf5;
+  if (isImageExtension(extension)) return LightFieldFormat::LensletImage;
+  return LightFieldFormat::HciFolder;
+}
+
+Status writeFolder(const fs::path& path, const LightField& lightField, LightFieldFormat format,
+                   const LightFieldWriteOptions& options, const ProgressCallback& progress) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec))
+    if (auto other = io::otherLayoutIn(path, format))
+      return fileError(ErrorCode::Usage, path,
+                       "already holds views of the other layout (" + *other +
+                           "); write to a new folder or remove them");
+  std::vector<std::string> written;
+  LFCAM_TRY(writeFolderAtomically(path, [&](const fs::path& temporary) -> Status {
+    auto names = io::writeViewFolder(temporary, lightField, format, options.sixteenBit, progress, path);
+    if (!names) return names.error();
+    written = std::move(*names);
+    return {};
+  }));
+  // Views left from an earlier, larger grid would make the folder read as something else.
+  io::removeStaleViews(path, format, written);
+  return {};
+}
+
+}  // namespace
+
+const char* formatName(LightFieldFormat format) {
+  switch (format) {
+    case LightFieldFormat::Hdf5: return "lf.h5";
+    case LightFieldFormat::HciFolder: return "hci-folder";
+    case LightFieldFormat::RowColumnFolder: return "rowcol-folder";
+    case LightFieldFormat::LensletImage: return "lenslet-image";
+  }
+  return "unknown";
+}
+
+Result<LightFieldFormat> detectLightFieldFormat(const fs::path& path) {
+  auto source = identify(path);
+  if (!source) return source.error();
+  return source->format;
+}
+
+Result<LightFieldInfo> probeLightField(const fs::path& path, const LightFieldReadOptions& options) {
+  auto source = identify(path, options);
+  if (!source) return source.error();
+  switch (source->format) {
+    case LightFieldFormat::Hdf5: return io::probeHdf5(path);
+    case LightFieldFormat::LensletImage: return io::probeLensletImage(path, options);
+    case LightFieldFormat::HciFolder:
+    case LightFieldFormat::RowColumnFolder: return io::probeViewGrid(*source->grid);
+  }
+  return fileError(ErrorCode::Unsupported, path, "unknown light-field format");
+}
+
+Result<LightField> readLightField(const fs::path& path, const LightFieldReadOptions& options,
+                                  const ProgressCallback& progress) {
+  auto source = identify(path, options);
+  if (!source) return source.error();
+  if (progress) progress(0.0);
+  switch (source->format) {
+    case LightFieldFormat::Hdf5: return io::readHdf5(path, progress);
+    case LightFieldFormat::LensletImage: return io::readLensletImage(path, options, progress);
+    case LightFieldFormat::HciFolder:
+    case LightFieldFormat::RowColumnFolder: return io::readViewGrid(*source->grid, progress);
+  }
+  return fileError(ErrorCode::Unsupported, path, "unknown light-field format");
+}
+
+Status writeLightField(const fs::path& path, const LightField& lightField, const LightFieldWriteOptions& options,
+                       const ProgressCallback& progress) {
+  if (lightField.empty()) return fileError(ErrorCode::Usage, path, "nothing to write: the light field is empty");
+  const LightFieldFormat format = options.format.value_or(formatFromName(path));
+  if (progress) progress(0.0);
+  switch (format) {
+    case LightFieldFormat::Hdf5:
+      return writeFileAtomically(path, [&](const fs::path& temporary) {
+        return io::writeHdf5(temporary, lightField, progress, path);
+      });
+    case LightFieldFormat::LensletImage: return io::writeLensletImage(path, lightField, options.sixteenBit, progress);
+    case LightFieldFormat::HciFolder:
+    case LightFieldFormat::RowColumnFolder: return writeFolder(path, lightField, format, options, progress);
+  }
+  return fileError(ErrorCode::Usage, path, "unknown light-field format");
+}
+
+}  // namespace lfcam

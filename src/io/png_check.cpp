@@ -1,0 +1,85 @@
+#include "io/png_check.hpp"
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "io/io_support.hpp"
+
+namespace lfcam::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::array<std::uint32_t, 256>& crcTable() {
+  static const auto table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t n = 0; n < 256; ++n) {
+      std::uint32_t c = n;
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xedb88320u ^ (c >> 1) : c >> 1;
+      t[n] = c;
+    }
+    return t;
+  }();
+  return table;
+}
+
+std::uint32_t updateCrc(std::uint32_t crc, const unsigned char* bytes, std::size_t count) {
+  const auto& table = crcTable();
+  for (std::size_t i = 0; i < count; ++i) crc = table[(crc ^ bytes[i]) & 0xff] ^ (crc >> 8);
+  return crc;
+}
+
+std::uint32_t bigEndian32(const unsigned char* bytes) {
+  return std::uint32_t(bytes[0]) << 24 | std::uint32_t(bytes[1]) << 16 | std::uint32_t(bytes[2]) << 8 | bytes[3];
+}
+
+}  // namespace
+
+Status checkPngStructure(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fileError(ErrorCode::Io, path, "cannot open: " + std::string(std::strerror(errno)));
+  const auto corrupt = [&](const std::string& what) { return fileError(ErrorCode::Format, path, "not a readable image: " + what); };
+
+  unsigned char signature[8];
+  if (!in.read(reinterpret_cast<char*>(signature), 8)) return corrupt("truncated PNG signature");
+  std::vector<unsigned char> data;
+  bool first = true, sawData = false;
+  for (;;) {
+    unsigned char head[8];
+    in.read(reinterpret_cast<char*>(head), 8);
+    if (in.gcount() != 8) return corrupt("truncated PNG: the file ends before the IEND chunk");
+    const std::uint32_t length = bigEndian32(head);
+    const std::string type(reinterpret_cast<const char*>(head + 4), 4);
+    if (length > 0x7fffffffu) return corrupt("corrupt PNG: chunk '" + type + "' has an impossible length");
+    if (first && (type != "IHDR" || length != 13)) return corrupt("corrupt PNG: it does not start with IHDR");
+    first = false;
+
+    // The CRC covers the type and the data; read the data in pieces to bound memory.
+    std::uint32_t crc = updateCrc(0xffffffffu, head + 4, 4);
+    std::uint32_t left = length;
+    data.resize(std::min<std::uint32_t>(length, 1u << 20));
+    while (left > 0) {
+      const std::uint32_t piece = std::min<std::uint32_t>(left, std::uint32_t(data.size()));
+      in.read(reinterpret_cast<char*>(data.data()), piece);
+      if (std::uint32_t(in.gcount()) != piece)
+        return corrupt("truncated PNG: chunk '" + type + "' needs " + std::to_string(length) + " bytes");
+      crc = updateCrc(crc, data.data(), piece);
+      left -= piece;
+    }
+    unsigned char stored[4];
+    in.read(reinterpret_cast<char*>(stored), 4);
+    if (in.gcount() != 4) return corrupt("truncated PNG: chunk '" + type + "' has no CRC");
+    if (bigEndian32(stored) != ~crc) return corrupt("corrupt PNG: chunk '" + type + "' fails its CRC check");
+    if (type == "IDAT") sawData = true;
+    if (type == "IEND") break;
+  }
+  if (!sawData) return corrupt("corrupt PNG: no image data (IDAT)");
+  return {};
+}
+
+}  // namespace lfcam::io

@@ -1,0 +1,67 @@
+#include "io/srgb.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "lfcam/image_io.hpp"
+
+namespace lfcam {
+
+namespace {
+
+double srgbToLinearExact(double encoded) {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+double linearToSrgbExact(double linear) {
+  return linear <= 0.0031308 ? linear * 12.92 : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+}  // namespace
+
+float srgbToLinear(float encoded) { return float(srgbToLinearExact(encoded)); }
+float linearToSrgb(float linear) { return float(linearToSrgbExact(linear)); }
+
+namespace io {
+
+namespace {
+
+struct Tables {
+  std::array<float, 256> linear;      // code -> linear
+  std::array<float, 255> thresholds;  // linear value halfway (in code space) between k and k+1
+  Tables() {
+    // The same float as srgbToLinear(k / 255.0f), so callers computing it themselves agree.
+    for (int k = 0; k < 256; ++k) linear[k] = srgbToLinear(float(k) / 255.0f);
+    for (int k = 0; k < 255; ++k) thresholds[k] = float(srgbToLinearExact((k + 0.5) / 255.0));
+  }
+};
+
+const Tables& tables() {
+  static const Tables instance;
+  return instance;
+}
+
+}  // namespace
+
+float linearFromSrgb8(std::uint8_t code) { return tables().linear[code]; }
+
+std::uint8_t srgb8FromLinear(float linear) {
+  if (!(linear > 0.0f)) return 0;  // also NaN
+  const auto& t = tables().thresholds;
+  // The code is the number of thresholds at or below the value: rounding in code space.
+  return std::uint8_t(std::upper_bound(t.begin(), t.end(), linear) - t.begin());
+}
+
+std::uint8_t unorm8FromLinear(float value) {
+  if (!(value > 0.0f)) return 0;
+  return std::uint8_t(std::lround(std::min(value, 1.0f) * 255.0f));
+}
+
+std::uint16_t unorm16FromLinear(float value) {
+  if (!(value > 0.0f)) return 0;
+  return std::uint16_t(std::lround(double(std::min(value, 1.0f)) * 65535.0));
+}
+
+}  // namespace io
+}  // namespace lfcam

@@ -1,0 +1,18 @@
+// 8-bit sRGB codes to linear values and back, through tables: exact round trips and no pow()
+// per sample.
+#pragma once
+
+#include <cstdint>
+
+namespace lfcam::io {
+
+// Linear value of an 8-bit sRGB code.
+float linearFromSrgb8(std::uint8_t code);
+// The nearest 8-bit sRGB code to a linear value (clamped to [0, 1]; NaN gives 0).
+std::uint8_t srgb8FromLinear(float linear);
+
+// Integer codes of linear files: value = code / max, code = round(clamp(value) * max).
+std::uint8_t unorm8FromLinear(float value);
+std::uint16_t unorm16FromLinear(float value);
+
+}  // namespace lfcam::io

@@ -1,0 +1,37 @@
+// The lfcam subcommands. Each add*Command registers its options on `app` and, when chosen on the
+// command line, stores the work to do in `job`; main runs it and turns its Status into a message
+// and an exit status.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "lfcam/light_field.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam::cli {
+
+using Job = std::function<Status()>;
+
+void addInfoCommand(CLI::App& app, Job& job);
+void addConvertCommand(CLI::App& app, Job& job);
+void addViewsCommand(CLI::App& app, Job& job);
+void addRefocusCommand(CLI::App& app, Job& job);
+void addSynthCommand(CLI::App& app, Job& job);
+void addDemoCommand(CLI::App& app, Job& job);
+
+// A light-field input as every command takes it: a path, recognised by content, and the few
+// options needed for inputs that do not describe themselves.
+struct InputOptions {
+  std::string path;
+  std::optional<int> lensletViews;
+};
+void addInputOptions(CLI::App& command, InputOptions& input);
+Result<LightField> loadInput(const InputOptions& input);
+
+}  // namespace lfcam::cli
