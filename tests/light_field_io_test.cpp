@@ -1,5 +1,7 @@
 #include "lfcam/light_field_io.hpp"
 
+#include "lfcam/layered_planes.hpp"
+
 #include <gtest/gtest.h>
 #include <hdf5.h>  // to write HDF5 files of other layouts
 
@@ -471,7 +473,7 @@ TEST(LightFieldIoRowColumn, ColumnFirstNamesWithASerpentineCounter) {
   ASSERT_TRUE(info) << info.error().message;
   EXPECT_EQ(info->shape, lf.shape());
   // Read row first, the same files make a 2 x 3 grid: the angular axes swapped.
-  auto swapped = readLightField(views);
+  auto swapped = readLightField(views, {.viewNumberOrder = ViewNumberOrder::RowFirst});
   ASSERT_TRUE(swapped) << swapped.error().message;
   EXPECT_EQ(swapped->nu(), 2);
   EXPECT_EQ(swapped->nv(), 3);
@@ -483,6 +485,27 @@ TEST(LightFieldIoRowColumn, ColumnFirstNamesWithASerpentineCounter) {
   ASSERT_TRUE(writeImage(views / "other_02_02.png", lf.subApertureImage(1, 1)));
   ASSERT_TRUE(writeImage(views / "more_02_02.png", lf.subApertureImage(1, 1)));
   expectErrorMentioning(readLightField(views, columnFirst), "_02_02.png");
+}
+
+// With no order given, the parallax decides: views along a row are displaced horizontally.
+TEST(LightFieldIoRowColumn, AutomaticOrderFollowsTheParallax) {
+  test::TempDir dir;
+  LightField lf = renderLayeredPlanes(defaultLayeredPlanesScene(5, 96)).lightField;
+  const fs::path views = lytroStyleFolder(dir, lf);
+  auto read = readLightField(views);
+  ASSERT_TRUE(read) << read.error().message;
+  ASSERT_EQ(read->shape(), lf.shape());
+  // 8-bit quantisation only: the views sit where they belong.
+  float worst = 0;
+  for (std::size_t i = 0; i < lf.samples().size(); ++i)
+    worst = std::max(worst, std::abs(read->samples()[i] - lf.samples()[i]));
+  EXPECT_LT(worst, 0.01f);
+  // lfcam's own row-first folders stay row-first.
+  ASSERT_TRUE(writeLightField(dir / "rowfirst", lf, {.format = LightFieldFormat::RowColumnFolder}));
+  auto own = readLightField(dir / "rowfirst");
+  ASSERT_TRUE(own) << own.error().message;
+  EXPECT_LT(std::abs(own->at(1, 3, 40, 50, 1) - lf.at(1, 3, 40, 50, 1)), 0.01f);
+  EXPECT_LT(std::abs(own->at(3, 1, 40, 50, 1) - lf.at(3, 1, 40, 50, 1)), 0.01f);
 }
 
 TEST(LightFieldIoFolders, EmptyAndUnrelatedFoldersAreErrors) {

@@ -27,6 +27,7 @@ const char* formatName(LightFieldFormat format);
 
 // How the two numbers in the names of a row/column folder, NAME_AA_BB.png, are read.
 enum class ViewNumberOrder {
+  Auto,         // decided by the parallax between views (RowFirst when it cannot tell)
   RowFirst,     // AA = row (v + 1), BB = column (u + 1): the usual order, and what lfcam writes
   ColumnFirst,  // AA = column (u + 1), BB = row (v + 1): e.g. the LF Toolbox export of the Lytro
                 // set lytro-f01-flower (IMG_0001_NNN_SS_TT.png, SS the horizontal position)
@@ -36,7 +37,7 @@ struct LightFieldReadOptions {
   // Views across (and down) a lenslet image that carries no lfcam description. When absent
   // too, the reader estimates the period of the macro-pixels from the image itself.
   std::optional<int> lensletViews;
-  ViewNumberOrder viewNumberOrder = ViewNumberOrder::RowFirst;  // row/column folders only
+  ViewNumberOrder viewNumberOrder = ViewNumberOrder::Auto;  // row/column folders only
 };
 
 struct LightFieldWriteOptions {

@@ -66,9 +66,13 @@ using Status = Result<void>;
 
 }  // namespace lfcam
 
-// Propagates an error from an expression returning Result<...> / Status.
-#define LFCAM_TRY(expr)                           \
-  do {                                            \
-    auto&& lfcam_try_result_ = (expr);            \
-    if (!lfcam_try_result_) return lfcam_try_result_.error(); \
+// Propagates an error from an expression returning Result<...> / Status. Each use gets its own
+// variable name, so uses nested in lambdas inside another use do not shadow it.
+#define LFCAM_TRY(expr) LFCAM_TRY_NAMED(expr, LFCAM_CONCAT(lfcam_try_result_, __COUNTER__))
+#define LFCAM_CONCAT(a, b) LFCAM_CONCAT_INNER(a, b)
+#define LFCAM_CONCAT_INNER(a, b) a##b
+#define LFCAM_TRY_NAMED(expr, name)            \
+  do {                                         \
+    auto&& name = (expr);                      \
+    if (!name) return name.error();            \
   } while (0)

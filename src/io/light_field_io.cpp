@@ -8,6 +8,7 @@
 #include "io/io_support.hpp"
 #include "io/lenslet_image.hpp"
 #include "io/view_folder.hpp"
+#include "io/view_order.hpp"
 #include "lfcam/atomic_file.hpp"
 #include "lfcam/image_io.hpp"
 
@@ -29,8 +30,17 @@ Result<Source> identify(const fs::path& path, const LightFieldReadOptions& optio
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status)) return fileError(ErrorCode::Io, path, "no such file or folder");
   if (fs::is_directory(status)) {
-    auto grid = io::findViewGrid(path, options.viewNumberOrder);
+    const bool decide = options.viewNumberOrder == ViewNumberOrder::Auto;
+    auto grid = io::findViewGrid(path, decide ? ViewNumberOrder::RowFirst : options.viewNumberOrder);
     if (!grid) return grid.error();
+    if (decide && grid->format == LightFieldFormat::RowColumnFolder) {
+      auto order = io::detectViewNumberOrder(*grid);
+      if (!order) return order.error();
+      if (*order == ViewNumberOrder::ColumnFirst) {
+        grid = io::findViewGrid(path, ViewNumberOrder::ColumnFirst);
+        if (!grid) return grid.error();
+      }
+    }
     const LightFieldFormat format = grid->format;
     return Source{format, std::move(*grid)};
   }

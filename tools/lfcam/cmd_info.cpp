@@ -60,8 +60,7 @@ void addInfoCommand(CLI::App& app, Job& job) {
   command->add_flag("--json", options->json, "print a JSON object (angular, spatial, channels, ...)");
   command->callback([options, &job] {
     job = [options]() -> Status {
-      auto info = probeLightField(options->input.path,
-                                  LightFieldReadOptions{.lensletViews = options->input.lensletViews});
+      auto info = probeLightField(options->input.path, options->input.readOptions());
       if (!info) return info.error();
       if (options->json)
         std::printf("%s\n", infoJson(options->input.path, *info).dump(2).c_str());

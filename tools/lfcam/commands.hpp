@@ -30,6 +30,8 @@ void addDemoCommand(CLI::App& app, Job& job);
 struct InputOptions {
   std::string path;
   std::optional<int> lensletViews;
+  ViewNumberOrder viewOrder = ViewNumberOrder::Auto;
+  LightFieldReadOptions readOptions() const { return {.lensletViews = lensletViews, .viewNumberOrder = viewOrder}; }
 };
 void addInputOptions(CLI::App& command, InputOptions& input);
 Result<LightField> loadInput(const InputOptions& input);

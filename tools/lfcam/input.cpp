@@ -10,11 +10,18 @@ void addInputOptions(CLI::App& command, InputOptions& input) {
   command.add_option("--lenslet-views", input.lensletViews,
                      "views across each microlens of a lenslet image that does not say so itself")
       ->check(CLI::Range(1, 1024));
+  command
+      .add_option("--view-order", input.viewOrder,
+                  "in NAME_AA_BB.png view folders, which number is the row (default: auto, from the parallax)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, ViewNumberOrder>{
+          {"auto", ViewNumberOrder::Auto},
+          {"row-first", ViewNumberOrder::RowFirst},
+          {"column-first", ViewNumberOrder::ColumnFirst}}));
 }
 
 Result<LightField> loadInput(const InputOptions& input) {
   ProgressBar bar("reading " + input.path);
-  return readLightField(input.path, LightFieldReadOptions{.lensletViews = input.lensletViews},
+  return readLightField(input.path, input.readOptions(),
                         [&](double fraction) { bar(fraction); });
 }
 
