@@ -32,6 +32,22 @@ Image disparityPicture(const Image& disparity, double lo, double hi) {
   return picture;
 }
 
+// Photographs next to each other, `gap` pixels apart on a dark background.
+Image sideBySide(const std::vector<const Image*>& images, int gap) {
+  int width = gap * int(images.size() - 1), height = 0;
+  for (const Image* image : images) width += image->width(), height = std::max(height, image->height());
+  Image row(width, height, images.front()->channels());
+  std::fill(row.pixels().begin(), row.pixels().end(), 0.01f);
+  int x0 = 0;
+  for (const Image* image : images) {
+    for (int c = 0; c < row.channels(); ++c)
+      for (int y = 0; y < image->height(); ++y)
+        std::copy_n(image->row(y, c), image->width(), row.row(y, c) + x0);
+    x0 += image->width() + gap;
+  }
+  return row;
+}
+
 std::string slopeName(double slope) {
   char name[64];
   std::snprintf(name, sizeof name, "refocus-slope%+.2f.png", slope);
@@ -62,6 +78,7 @@ figure{display:inline-block;margin:6px}img{max-width:340px;image-rendering:auto}
 Below, photographs computed from it after the fact by shift-and-add refocusing (Ng et al. 2005, Equation 6),
 one focused on each plane, then the ground-truth disparity and every sub-aperture view.</p>
 <h2>Refocused photographs</h2>
+<figure><img src="near-and-far.png" style="max-width:100%"><figcaption>the same light field focused on the nearest and on the farthest plane</figcaption></figure><br>
 )";
   for (double slope : slopes)
     html << "<figure><img src=\"" << slopeName(slope) << "\"><figcaption>focused at slope " << slope
@@ -96,10 +113,14 @@ Status runDemo(const fs::path& dir) {
     }
     LFCAM_TRY(writeImage(out / "contact-sheet.png", contactSheet(lf)));
     LFCAM_TRY(writeImage(out / "centre-view.png", lf.subApertureImage(lf.nu() / 2, lf.nv() / 2)));
+    std::vector<Image> photos;
     for (double slope : slopes) {
-      LFCAM_TRY(writeImage(out / slopeName(slope), refocus(lf, slope)));
+      photos.push_back(refocus(lf, slope));
+      LFCAM_TRY(writeImage(out / slopeName(slope), photos.back()));
       std::printf("  refocused at slope %+.2f px/view -> %s\n", slope, slopeName(slope).c_str());
     }
+    // The nearest and the farthest focus side by side: the picture of the README.
+    LFCAM_TRY(writeImage(out / "near-and-far.png", sideBySide({&photos.front(), &photos.back()}, 8)));
     LFCAM_TRY(writeImage(out / "disparity.pfm", made.disparity));
     LFCAM_TRY(writeImage(out / "disparity.png",
                          disparityPicture(made.disparity, slopes.back(), slopes.front())));
