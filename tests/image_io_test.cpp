@@ -39,15 +39,7 @@ void quantiseTo8Bit(Image& image) {
   }
 }
 
-void writeBytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), std::streamsize(bytes.size()));
-}
 
-std::string readBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 std::size_t entriesIn(const fs::path& folder) {
   return std::size_t(std::distance(fs::directory_iterator(folder), fs::directory_iterator()));
@@ -219,7 +211,7 @@ TEST(ImageIoPfm, RoundTripsOneAndThreeChannels) {
     Image image = randomImage(7, 5, channels, 40 + channels);
     image.at(0, 0, 0) = -3.25f;
     ASSERT_TRUE(writeImage(dir / "a.pfm", image));
-    const std::string bytes = readBytes(dir / "a.pfm");
+    const std::string bytes = test::readBytes(dir / "a.pfm");
     EXPECT_EQ(bytes.substr(0, 3), channels == 3 ? "PF\n" : "Pf\n");
     auto read = readImage(dir / "a.pfm");
     ASSERT_TRUE(read) << read.error().message;
@@ -248,7 +240,7 @@ TEST(ImageIoPfm, ReadsBothByteOrdersBottomRowFirst) {
   test::TempDir dir;
   // File order: bottom row (1, 2), then top row (3, 4).
   for (bool bigEndian : {false, true}) {
-    writeBytes(dir / "h.pfm", handMadePfm(bigEndian, {1, 2, 3, 4}, 2, 2));
+    test::writeBytes(dir / "h.pfm", handMadePfm(bigEndian, {1, 2, 3, 4}, 2, 2));
     auto read = readImage(dir / "h.pfm");
     ASSERT_TRUE(read) << read.error().message;
     EXPECT_EQ(read->at(0, 0, 0), 3.0f);
@@ -262,21 +254,21 @@ TEST(ImageIoPfm, TruncatedAndAbsurdHeadersAreErrors) {
   test::TempDir dir;
   const fs::path truncated = dir / "short.pfm";
   std::string bytes = handMadePfm(false, {1, 2, 3, 4}, 2, 2);
-  writeBytes(truncated, bytes.substr(0, bytes.size() - 3));
+  test::writeBytes(truncated, bytes.substr(0, bytes.size() - 3));
   auto read = readImage(truncated);
   expectErrorNaming(read, truncated);
   EXPECT_NE(read.error().message.find("truncated: expected 16 bytes of pixels, found 13"), std::string::npos)
       << read.error().message;
 
   const fs::path absurd = dir / "absurd.pfm";
-  writeBytes(absurd, "PF\n2147483647 2147483647\n-1\n" + std::string(1000, '\0'));
+  test::writeBytes(absurd, "PF\n2147483647 2147483647\n-1\n" + std::string(1000, '\0'));
   read = readImage(absurd);
   expectErrorNaming(read, absurd);
   EXPECT_NE(read.error().message.find("truncated"), std::string::npos);
   EXPECT_FALSE(readImageHeader(absurd));
 
   for (const char* header : {"PF\n-3 4\n-1\n", "PF\n3 4\n0\n", "PF\n3 x\n-1\n", "PF\n3 4\n-1"}) {
-    writeBytes(dir / "bad.pfm", std::string(header) + std::string(200, '\0'));
+    test::writeBytes(dir / "bad.pfm", std::string(header) + std::string(200, '\0'));
     expectErrorNaming(readImage(dir / "bad.pfm"), dir / "bad.pfm");
   }
 }
@@ -294,7 +286,7 @@ TEST(ImageIoDetection, ByContentNotByName) {
   auto pfm = readImage(dir / "b.png");
   ASSERT_TRUE(pfm) << pfm.error().message;
   EXPECT_EQ(maxDifference(*pfm, image), 0.0f);
-  writeBytes(dir / "text.png", "hello, not an image");
+  test::writeBytes(dir / "text.png", "hello, not an image");
   EXPECT_FALSE(looksLikeImageFile(dir / "text.png"));
   EXPECT_FALSE(looksLikeImageFile(dir / "missing.png"));
   EXPECT_FALSE(looksLikeImageFile(dir.path()));
@@ -315,7 +307,7 @@ TEST(ImageIoErrors, MissingFileFolderAndNonImage) {
   EXPECT_FALSE(readImageHeader(dir / "folder.png"));
   EXPECT_FALSE(readImageDescription(dir / "folder.png"));
 
-  writeBytes(dir / "text.png", "hello, not an image");
+  test::writeBytes(dir / "text.png", "hello, not an image");
   auto text = readImage(dir / "text.png");
   expectErrorNaming(text, dir / "text.png");
   EXPECT_EQ(text.error().code, ErrorCode::Format);
@@ -325,17 +317,17 @@ TEST(ImageIoErrors, CorruptAndTruncatedPng) {
   test::TempDir dir;
   const Image image = randomImage(64, 64, 3, 7);  // noise: it does not compress
   ASSERT_TRUE(writeImage(dir / "full.png", image));
-  const std::string bytes = readBytes(dir / "full.png");
+  const std::string bytes = test::readBytes(dir / "full.png");
 
-  writeBytes(dir / "half.png", bytes.substr(0, bytes.size() / 2));
+  test::writeBytes(dir / "half.png", bytes.substr(0, bytes.size() / 2));
   expectErrorNaming(readImage(dir / "half.png"), dir / "half.png");
 
   std::string garbled = bytes;
   for (std::size_t i = 100; i < garbled.size() - 20; i += 7) garbled[i] = char(garbled[i] ^ 0x5a);
-  writeBytes(dir / "garbled.png", garbled);
+  test::writeBytes(dir / "garbled.png", garbled);
   expectErrorNaming(readImage(dir / "garbled.png"), dir / "garbled.png");
 
-  writeBytes(dir / "signature.png", bytes.substr(0, 8));
+  test::writeBytes(dir / "signature.png", bytes.substr(0, 8));
   expectErrorNaming(readImage(dir / "signature.png"), dir / "signature.png");
 }
 
@@ -375,7 +367,7 @@ std::string handMadeGreyPng(std::uint32_t width, std::uint32_t height, const std
 
 TEST(ImageIoPng, EightBitFilesHoldSrgbCodes) {
   test::TempDir dir;
-  writeBytes(dir / "grey.png", handMadeGreyPng(2, 1, std::string("\x80\xff", 2)));
+  test::writeBytes(dir / "grey.png", handMadeGreyPng(2, 1, std::string("\x80\xff", 2)));
   auto read = readImage(dir / "grey.png");
   ASSERT_TRUE(read) << read.error().message;
   EXPECT_FLOAT_EQ(read->at(0, 0, 0), srgbToLinear(128 / 255.0f));
@@ -386,7 +378,7 @@ TEST(ImageIoPng, EightBitFilesHoldSrgbCodes) {
 TEST(ImageIoErrors, PngWithAbsurdDimensionsIsRefusedBeforeAllocating) {
   test::TempDir dir;
   // Valid chunks claiming 900000 x 900000 pixels, with one byte of data.
-  writeBytes(dir / "huge.png", handMadeGreyPng(900000, 900000, "a"));
+  test::writeBytes(dir / "huge.png", handMadeGreyPng(900000, 900000, "a"));
   auto read = readImage(dir / "huge.png");
   expectErrorNaming(read, dir / "huge.png");
   EXPECT_NE(read.error().message.find("900000x900000"), std::string::npos) << read.error().message;

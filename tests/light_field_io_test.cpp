@@ -46,15 +46,7 @@ float maxDifference(const LightField& a, const LightField& b) {
   return worst;
 }
 
-void writeBytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), std::streamsize(bytes.size()));
-}
 
-std::string readBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 std::set<std::string> namesIn(const fs::path& folder) {
   std::set<std::string> names;
@@ -154,7 +146,7 @@ TEST(LightFieldIoHdf5, FileLayoutIsTheDocumentedOne) {
   lf.enableWeight();
   const fs::path path = dir / "layout.lf.h5";
   ASSERT_TRUE(writeLightField(path, lf));
-  EXPECT_EQ(readBytes(path).substr(0, 8), "\x89HDF\r\n\x1a\n");
+  EXPECT_EQ(test::readBytes(path).substr(0, 8), "\x89HDF\r\n\x1a\n");
 
   hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(file, 0);
@@ -261,15 +253,15 @@ TEST(LightFieldIoHdf5, AcceptsAnUntaggedFileOfTheRightLayout) {
 
 TEST(LightFieldIoHdf5, GarbageAndTruncatedFilesAreErrors) {
   test::TempDir dir;
-  writeBytes(dir / "garbage.lf.h5", "this is not a light field\n");
+  test::writeBytes(dir / "garbage.lf.h5", "this is not a light field\n");
   expectErrorMentioning(readLightField(dir / "garbage.lf.h5"), "garbage.lf.h5");
 
   const LightField lf = randomLightField(kSmall, 4);
   ASSERT_TRUE(writeLightField(dir / "full.lf.h5", lf));
-  const std::string bytes = readBytes(dir / "full.lf.h5");
-  writeBytes(dir / "cut.lf.h5", bytes.substr(0, bytes.size() / 2));
+  const std::string bytes = test::readBytes(dir / "full.lf.h5");
+  test::writeBytes(dir / "cut.lf.h5", bytes.substr(0, bytes.size() / 2));
   expectErrorMentioning(readLightField(dir / "cut.lf.h5"), "cut.lf.h5");
-  writeBytes(dir / "head.lf.h5", bytes.substr(0, 600));
+  test::writeBytes(dir / "head.lf.h5", bytes.substr(0, 600));
   expectErrorMentioning(readLightField(dir / "head.lf.h5"), "head.lf.h5");
 }
 
@@ -307,7 +299,7 @@ TEST(LightFieldIoHci, EightBitRoundTripIsExactWithParameters) {
   EXPECT_EQ(namesIn(folder), (std::set<std::string>{"input_Cam000.png", "input_Cam001.png", "input_Cam002.png",
                                                     "input_Cam003.png", "input_Cam004.png", "input_Cam005.png",
                                                     "parameters.cfg"}));
-  const std::string config = readBytes(folder / "parameters.cfg");
+  const std::string config = test::readBytes(folder / "parameters.cfg");
   for (const char* line : {"num_cams_x = 3", "num_cams_y = 2", "image_resolution_x_px = 7",
                            "image_resolution_y_px = 5", "disp_min = -3.3", "disp_max = 2.8"})
     EXPECT_NE(config.find(line), std::string::npos) << line << " in\n" << config;
@@ -388,8 +380,8 @@ TEST(LightFieldIoHci, BadFoldersAreErrorsNamingTheFile) {
   {
     test::TempDir dir;
     const fs::path folder = goodHciFolder(dir);
-    const std::string bytes = readBytes(folder / "input_Cam007.png");
-    writeBytes(folder / "input_Cam007.png", bytes.substr(0, bytes.size() / 2));
+    const std::string bytes = test::readBytes(folder / "input_Cam007.png");
+    test::writeBytes(folder / "input_Cam007.png", bytes.substr(0, bytes.size() / 2));
     expectErrorMentioning(readLightField(folder), "input_Cam007.png");
     expectErrorMentioning(probeLightField(folder), "input_Cam007.png");
   }
@@ -409,7 +401,7 @@ TEST(LightFieldIoHci, BadFoldersAreErrorsNamingTheFile) {
   {
     test::TempDir dir;
     const fs::path folder = goodHciFolder(dir);
-    writeBytes(folder / "parameters.cfg", "[extrinsics]\nnum_cams_x = three\nnum_cams_y = 3\n");
+    test::writeBytes(folder / "parameters.cfg", "[extrinsics]\nnum_cams_x = three\nnum_cams_y = 3\n");
     expectErrorMentioning(readLightField(folder), "parameters.cfg");
   }
   {
@@ -495,11 +487,7 @@ TEST(LightFieldIoRowColumn, AutomaticOrderFollowsTheParallax) {
   auto read = readLightField(views);
   ASSERT_TRUE(read) << read.error().message;
   ASSERT_EQ(read->shape(), lf.shape());
-  // 8-bit quantisation only: the views sit where they belong.
-  float worst = 0;
-  for (std::size_t i = 0; i < lf.samples().size(); ++i)
-    worst = std::max(worst, std::abs(read->samples()[i] - lf.samples()[i]));
-  EXPECT_LT(worst, 0.01f);
+  EXPECT_LT(maxDifference(*read, lf), 0.01f);  // 8-bit quantisation only: every view where it belongs
   // lfcam's own row-first folders stay row-first.
   ASSERT_TRUE(writeLightField(dir / "rowfirst", lf, {.format = LightFieldFormat::RowColumnFolder}));
   auto own = readLightField(dir / "rowfirst");
@@ -518,7 +506,7 @@ TEST(LightFieldIoFolders, EmptyAndUnrelatedFoldersAreErrors) {
   expectErrorMentioning(detectLightFieldFormat(dir / "empty"), "empty");
 
   fs::create_directories(dir / "unrelated");
-  writeBytes(dir / "unrelated" / "notes.txt", "hello");
+  test::writeBytes(dir / "unrelated" / "notes.txt", "hello");
   ASSERT_TRUE(writeImage(dir / "unrelated" / "photo.png", Image(4, 4, 3)));
   expectErrorMentioning(readLightField(dir / "unrelated"), "unrelated");
 
@@ -544,7 +532,7 @@ TEST(LightFieldIoFolders, RewritingWithFewerViewsRemovesTheStaleOnes) {
   test::TempDir dir;
   const fs::path folder = dir / "out";
   ASSERT_TRUE(writeLightField(folder, randomLightField({.nu = 3, .nv = 3, .ns = 4, .nt = 4, .channels = 1}, 14)));
-  writeBytes(folder / "notes.txt", "kept");
+  test::writeBytes(folder / "notes.txt", "kept");
   const LightField smaller = randomLightField({.nu = 2, .nv = 2, .ns = 4, .nt = 4, .channels = 1}, 15,
                                               Quantise::Srgb8);
   ASSERT_TRUE(writeLightField(folder, smaller));

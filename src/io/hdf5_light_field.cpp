@@ -265,6 +265,22 @@ bool readsViewByView(hid_t dataset) {
 
 // Reads `dataset` (views outermost, `viewValues` floats each) into `out`, view by view when the
 // chunks allow, so that progress can be reported.
+
+// The extent of one view, (1, 1, rest of dims), and its selection in a [nv, nu, ...] dataset.
+std::vector<hsize_t> oneViewCount(const std::vector<hsize_t>& dims) {
+  std::vector<hsize_t> count = dims;
+  count[0] = count[1] = 1;
+  return count;
+}
+
+void selectView(hid_t fileSpace, const std::vector<hsize_t>& dims, std::size_t view) {
+  std::vector<hsize_t> start(dims.size(), 0);
+  start[0] = view / dims[1];
+  start[1] = view % dims[1];
+  const std::vector<hsize_t> count = oneViewCount(dims);
+  H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+}
+
 Status readViews(const fs::path& path, hid_t dataset, int rank, std::size_t views, std::size_t viewValues,
                  float* out, const std::function<void()>& viewDone) {
   if (!readsViewByView(dataset)) {
@@ -276,14 +292,11 @@ Status readViews(const fs::path& path, hid_t dataset, int rank, std::size_t view
   Handle fileSpace(H5Dget_space(dataset), H5Sclose);
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank), 0);
   H5Sget_simple_extent_dims(fileSpace.get(), dims.data(), nullptr);
-  std::vector<hsize_t> start(std::size_t(rank), 0), count = dims;
-  count[0] = count[1] = 1;
   // The memory space has the selection's shape: with a flat one, HDF5 copies element by element.
+  const std::vector<hsize_t> count = oneViewCount(dims);
   Handle memorySpace(H5Screate_simple(rank, count.data(), nullptr), H5Sclose);
   for (std::size_t view = 0; view < views; ++view) {
-    start[0] = view / dims[1];
-    start[1] = view % dims[1];
-    H5Sselect_hyperslab(fileSpace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+    selectView(fileSpace.get(), dims, view);
     if (H5Dread(dataset, H5T_NATIVE_FLOAT, memorySpace.get(), fileSpace.get(), H5P_DEFAULT,
                 out + view * viewValues) < 0)
       return hdf5Error(ErrorCode::Format, path, "cannot read samples");
@@ -321,13 +334,10 @@ Status writeViews(const fs::path& path, hid_t file, const char* name, const std:
                  H5Dclose);
   if (!dataset.valid()) return hdf5Error(ErrorCode::Io, path, std::string("cannot create dataset ") + name);
 
-  std::vector<hsize_t> start(std::size_t(rank), 0), count = dims;
-  count[0] = count[1] = 1;
+  const std::vector<hsize_t> count = oneViewCount(dims);
   Handle memorySpace(H5Screate_simple(rank, count.data(), nullptr), H5Sclose);
   for (std::size_t view = 0; view < views; ++view) {
-    start[0] = view / dims[1];
-    start[1] = view % dims[1];
-    H5Sselect_hyperslab(fileSpace.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+    selectView(fileSpace.get(), dims, view);
     if (H5Dwrite(dataset.get(), H5T_NATIVE_FLOAT, memorySpace.get(), fileSpace.get(), H5P_DEFAULT,
                  values + view * viewValues) < 0)
       return hdf5Error(ErrorCode::Io, path, "cannot write samples");

@@ -25,9 +25,6 @@ fs::path goodHciFolder(const test::TempDir& dir) {
   return folder;
 }
 
-void writeBytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
 
 std::vector<BadInput> badInputs() {
   return {
@@ -53,14 +50,14 @@ std::vector<BadInput> badInputs() {
       {"corrupt png",
        [](const test::TempDir& d) {
          fs::path folder = goodHciFolder(d);
-         std::string bytes = test::readWholeFile(folder / "input_Cam007.png");
-         writeBytes(folder / "input_Cam007.png", bytes.substr(0, bytes.size() / 2));
+         std::string bytes = test::readBytes(folder / "input_Cam007.png");
+         test::writeBytes(folder / "input_Cam007.png", bytes.substr(0, bytes.size() / 2));
          return folder;
        },
        "input_Cam007"},
       {"garbage named like a light field",
        [](const test::TempDir& d) {
-         writeBytes(d / "garbage.lf.h5", "this is not a light field\n");
+         test::writeBytes(d / "garbage.lf.h5", "this is not a light field\n");
          return d / "garbage.lf.h5";
        },
        "garbage.lf.h5"},

@@ -28,11 +28,6 @@ struct CommandResult {
   }
 };
 
-inline std::string readWholeFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 // Runs `lfcam args...` with stdout and stderr captured through files in `scratch`.
 inline CommandResult runLfcam(const std::vector<std::string>& args, const std::filesystem::path& scratch) {
   const auto outPath = scratch / ".stdout", errPath = scratch / ".stderr";
@@ -54,8 +49,8 @@ inline CommandResult runLfcam(const std::vector<std::string>& args, const std::f
     if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
   }
   posix_spawn_file_actions_destroy(&actions);
-  result.out = readWholeFile(outPath);
-  result.err = readWholeFile(errPath);
+  result.out = readBytes(outPath);
+  result.err = readBytes(errPath);
   std::filesystem::remove(outPath);
   std::filesystem::remove(errPath);
   return result;

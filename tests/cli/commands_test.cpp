@@ -136,7 +136,7 @@ TEST(Cli, DemoWritesAPageAndItsPictures) {
   test::TempDir dir;
   const auto result = runLfcam({"demo", "-o", (dir / "demo").string()}, dir.path());
   ASSERT_EQ(result.exitStatus, 0) << result.err;
-  const std::string page = test::readWholeFile(dir / "demo" / "index.html");
+  const std::string page = test::readBytes(dir / "demo" / "index.html");
   ASSERT_FALSE(page.empty());
   // Every picture the page shows exists.
   std::size_t at = 0;
