@@ -65,8 +65,8 @@ Result<ViewsPerLens> viewsPerLens(const fs::path& path, const LightFieldReadOpti
   const auto nv = estimateMacroPixelPeriod(*image, false);
   if (!nu || !nv)
     return fileError(ErrorCode::Usage, path,
-                     "cannot tell the number of views per lens of this lenslet image; pass it "
-                     "(LightFieldReadOptions::lensletViews, --lenslet-views on the command line)");
+                     "no whole number of pixels repeats under each microlens; if it is a rectified lenslet "
+                     "image, give the views per lens (--lenslet-views N)");
   return ViewsPerLens{*nu, *nv};
 }
 
