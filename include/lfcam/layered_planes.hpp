@@ -13,6 +13,7 @@
 
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
+#include "lfcam/progress.hpp"
 
 namespace lfcam {
 
@@ -46,6 +47,6 @@ struct LayeredPlanesLightField {
   Image disparity;  // ns x nt, one channel: the disparity seen at the aperture centre
 };
 
-LayeredPlanesLightField renderLayeredPlanes(const LayeredPlanesScene& scene);
+LayeredPlanesLightField renderLayeredPlanes(const LayeredPlanesScene& scene, const ProgressCallback& progress = {});
 
 }  // namespace lfcam

@@ -5,12 +5,20 @@
 #include <cstddef>
 #include <functional>
 
+#include "lfcam/progress.hpp"
+
 namespace lfcam {
 
 // Calls body(begin_i, end_i) on disjoint sub-ranges covering [begin, end), possibly in parallel.
 // grain: the smallest sub-range worth a task.
 void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
                  const std::function<void(std::size_t, std::size_t)>& body);
+
+// The same in `slices` successive parts, calling progress(fraction done) from the calling thread
+// after each: for long loops whose caller shows a progress bar. Without a callback, one part.
+void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
+                 const std::function<void(std::size_t, std::size_t)>& body, const ProgressCallback& progress,
+                 std::size_t slices = 50);
 
 // Limits every later parallelFor to `threads` threads (0: all cores). Lives for the process.
 void setThreadCount(int threads);

@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <memory>
 
 namespace lfcam {
@@ -20,6 +21,18 @@ void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
   if (begin >= end) return;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, grain == 0 ? 1 : grain),
                     [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+}
+
+void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
+                 const std::function<void(std::size_t, std::size_t)>& body, const ProgressCallback& progress,
+                 std::size_t slices) {
+  if (!progress || begin >= end) return parallelFor(begin, end, grain, body);
+  const std::size_t total = end - begin;
+  slices = std::max<std::size_t>(1, std::min(slices, total));
+  for (std::size_t slice = 0; slice < slices; ++slice) {
+    parallelFor(begin + total * slice / slices, begin + total * (slice + 1) / slices, grain, body);
+    progress(double(slice + 1) / double(slices));
+  }
 }
 
 void setThreadCount(int threads) {

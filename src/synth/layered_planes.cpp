@@ -140,7 +140,7 @@ LayeredPlanesScene defaultLayeredPlanesScene(int views, int size, std::uint64_t 
   return scene;
 }
 
-LayeredPlanesLightField renderLayeredPlanes(const LayeredPlanesScene& scene) {
+LayeredPlanesLightField renderLayeredPlanes(const LayeredPlanesScene& scene, const ProgressCallback& progress) {
   const int nu = std::max(scene.nu, 0), nv = std::max(scene.nv, 0);
   const int ns = std::max(scene.ns, 0), nt = std::max(scene.nt, 0);
   const int samples = std::max(scene.supersampling, 1);
@@ -201,12 +201,15 @@ LayeredPlanesLightField renderLayeredPlanes(const LayeredPlanesScene& scene) {
 
   // Schedule: every (view, row) is a task; 32 rows make a task worth its overhead.
   const std::size_t rowsTotal = std::size_t(nu) * nv * nt;
-  parallelFor(0, rowsTotal, 32, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t index = begin; index < end; ++index) {
-      const int t = int(index % nt), view = int(index / nt);
-      renderRow(view % nu, view / nu, t);
-    }
-  });
+  parallelFor(
+      0, rowsTotal, 32,
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t index = begin; index < end; ++index) {
+          const int t = int(index % nt), view = int(index / nt);
+          renderRow(view % nu, view / nu, t);
+        }
+      },
+      progress);
 
   // Ground truth: the plane seen through the aperture's centre at each pixel's centre; NaN
   // where no plane covers it.

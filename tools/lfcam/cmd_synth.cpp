@@ -26,7 +26,10 @@ void addSynthCommand(CLI::App& app, Job& job) {
   command->callback([options, &job] {
     job = [options]() -> Status {
       const LayeredPlanesScene scene = defaultLayeredPlanesScene(options->views, options->size, options->seed);
-      LayeredPlanesLightField result = renderLayeredPlanes(scene);
+      LayeredPlanesLightField result = [&] {
+        ProgressBar bar("making the light field");
+        return renderLayeredPlanes(scene, [&](double f) { bar(f); });
+      }();
       ProgressBar bar("writing " + options->output);
       LFCAM_TRY(writeLightField(options->output, result.lightField, {}, [&](double f) { bar(f); }));
       if (!options->disparity.empty()) LFCAM_TRY(writeImage(options->disparity, result.disparity));
