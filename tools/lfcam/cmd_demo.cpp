@@ -97,7 +97,10 @@ Try <code>lfcam refocus lightfield.lf.h5 --slope 0.5 -o mine.png</code>.</p>
 
 Status runDemo(const fs::path& dir) {
   std::printf("lfcam demo: writing to %s\n", dir.c_str());
-  LayeredPlanesLightField made = renderLayeredPlanes(defaultLayeredPlanesScene());
+  LayeredPlanesLightField made = [] {
+    ProgressBar bar("making the light field");
+    return renderLayeredPlanes(defaultLayeredPlanesScene(), [&](double f) { bar(f); });
+  }();
   const LightField& lf = made.lightField;
 
   // One photo per plane depth, nearest first.
