@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   cli::addRefocusCommand(app, job);
   cli::addSynthCommand(app, job);
   cli::addDemoCommand(app, job);
+  cli::addSimulateCommand(app, job);
 
   try {
     app.parse(argc, argv);

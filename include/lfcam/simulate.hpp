@@ -1,0 +1,83 @@
+// simulate: a physically based plenoptic (or conventional) camera, traced ray by ray.
+//
+// Each pixel integrates the irradiance over its area (the box filter of section 3.3). In
+// light-field mode, rays run from a point in the pixel through a point on a microlens (a thin
+// lens of the array; the opaque rest of its cell blocks them) and then through the main lens
+// (a thin lens; rays outside its aperture are blocked) into the scene. The samples are stratified
+// jointly over the pixel and over the microlens (light-field mode) or the main-lens aperture
+// (conventional mode); every microlens whose image can reach the pixel is traced, so microlens
+// images overlap when the main lens is faster than the microlenses (Figure 2). Irradiance
+// includes the cos^4 fall-off of the ray between the main lens and the image plane.
+//
+// Determinism: every pixel draws its samples from a generator seeded by (seed, pixel), and the
+// noise of each row from one seeded by (seed, row): the result does not depend on the number of
+// threads. Threads: lfcam::parallelFor over rows.
+//
+// Cost: samples x (microlenses reaching the pixel, 1 or 2 with matched f-numbers) rays per pixel.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+
+#include "lfcam/camera_model.hpp"
+#include "lfcam/image.hpp"
+#include "lfcam/light_field.hpp"
+#include "lfcam/progress.hpp"
+#include "lfcam/result.hpp"
+#include "lfcam/scene.hpp"
+
+namespace lfcam {
+
+struct SimulationOptions {
+  int samplesPerPixel = 16;  // rounded up to a square number n x n (stratified), at most 32 x 32
+};
+
+struct SensorCapture {
+  // Irradiance per unit scene radiance (steradians) of each pixel's own colour filter; 1 channel,
+  // sensor width x height. No noise.
+  Image irradiance;
+  // The raw mosaic in digital numbers (DN, black level included, with noise when enabled), one
+  // channel, stored as DN (not scaled to [0, 1]): raw.at(x, y, 0) is an integer in
+  // [0, 2^bitDepth - 1].
+  Image raw;
+  std::uint64_t rays = 0;  // rays traced (for benchmarks)
+};
+
+// Traces the scene through the camera onto the sensor, then applies the sensor model.
+SensorCapture simulateCapture(const Scene& scene, const CameraModel& camera,
+                              const SimulationOptions& options = {}, const ProgressCallback& progress = {});
+
+// The sensor model alone: irradiance (as in SensorCapture) -> DN with shot noise, read noise,
+// full-well clipping, quantisation and hot pixels.
+Image applySensor(const Image& irradiance, const Sensor& sensor);
+
+// Colour (0 red, 1 green, 2 blue, -1 none: monochrome) of sensor pixel (x, y).
+int colorFilterChannel(ColorFilter filter, int x, int y);
+
+// The ideal light field: the scene's radiance along the ray from lens point (u, v) through each
+// microlens centre, with no sensor in the way. (s, t) index the microlens lattice (i, j) turned
+// the right way up: s = columns - 1 - i, t = rows - 1 - j (the sensor image is upside down).
+// (u, v): views spaced du = F * pixelPitch / separation on the lens (one sensor pixel under a
+// microlens), as many as the microlens image is pixels across (rounded), centred on the axis, u
+// to the right and v down as seen from behind the camera. Weight 1 for lens points inside the
+// aperture, 0 outside. Hexagonal lattices: odd rows j are offset by half a pitch. Channels: 3
+// (RGB), or 1 (luminance) for a monochrome sensor. metadata.optics is set.
+// Requires a microlens array (Usage error otherwise).
+Result<LightField> idealLightField(const Scene& scene, const CameraModel& camera);
+// Depth (mm along z to the first surface hit; +infinity when nothing is hit) of the central ray
+// through each microlens centre, in the (s, t) layout of idealLightField.
+Result<Image> idealDepth(const Scene& scene, const CameraModel& camera);
+
+struct CaptureOutputs {
+  bool white = true;        // white.png
+  bool groundTruth = true;  // depth.pfm and ideal.lf.h5 (light-field mode only)
+  std::string rawExtension = ".png";  // or ".tiff"
+};
+
+// Writes the outputs of `lfcam simulate` into `folder`, atomically (docs/formats.md):
+// raw.png, white.png, camera.json, depth.pfm, ideal.lf.h5.
+Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, const CameraModel& camera,
+                       const SimulationOptions& options, const CaptureOutputs& outputs = {},
+                       const ProgressCallback& progress = {});
+
+}  // namespace lfcam

@@ -1,0 +1,161 @@
+// Ground truth (ideal light field, depth) and the output folder of `lfcam simulate`.
+#include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "lfcam/atomic_file.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/parallel.hpp"
+#include "lfcam/simulate.hpp"
+#include "simulate/tracing.hpp"
+
+namespace lfcam {
+
+using simulate_detail::Hit;
+using simulate_detail::PreparedScene;
+
+namespace {
+
+struct ViewGrid {
+  int views = 1;
+  double stepMm = 0;  // du on the lens
+};
+
+ViewGrid viewGrid(const CameraModel& camera) {
+  ViewGrid grid;
+  grid.stepMm = camera.mainLens.imageDistanceMm() * camera.sensor.pixelPitchMm / camera.microlenses->separationMm();
+  grid.views = std::max(1, int(std::lround(camera.microlensImageDiameterPx())));
+  return grid;
+}
+
+}  // namespace
+
+Result<LightField> idealLightField(const Scene& scene, const CameraModel& camera) {
+  if (!camera.microlenses) return makeError(ErrorCode::Usage, "ideal light field: the camera has no microlens array");
+  const auto [columns, rows] = camera.microlensCounts();
+  const ViewGrid grid = viewGrid(camera);
+  const int channels = camera.sensor.colorFilter == ColorFilter::Mono ? 1 : 3;
+  const double samples = double(grid.views) * grid.views * columns * rows * channels;
+  if (samples > double(1u << 31)) return makeError(ErrorCode::Resource, "ideal light field: too large (" + std::to_string(samples) + " samples)");
+  LightField lf(LightFieldShape{grid.views, grid.views, columns, rows, channels});
+  lf.enableWeight(0);
+  const PreparedScene prepared(scene, camera);
+  const double radius = 0.5 * camera.mainLens.apertureDiameterMm();
+  parallelFor(0, std::size_t(grid.views) * grid.views, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t view = begin; view < end; ++view) {
+      const int u = int(view % grid.views), v = int(view / grid.views);
+      const double lensX = lf.uFromCentre(u) * grid.stepMm, lensY = lf.vFromCentre(v) * grid.stepMm;
+      const float inside = lensX * lensX + lensY * lensY <= radius * radius ? 1.0f : 0.0f;
+      float* weight = lf.weightPlane(u, v);
+      for (int j = 0; j < rows; ++j) {
+        for (int i = 0; i < columns; ++i) {
+          const auto centre = camera.microlensCentreMm(i, j);
+          const Hit hit = prepared.traceThroughLens(lensX, lensY, centre[0], centre[1]);
+          const int s = columns - 1 - i, t = rows - 1 - j;  // turned the right way up
+          if (channels == 1)
+            lf.at(u, v, s, t, 0) = 0.2126f * hit.radiance[0] + 0.7152f * hit.radiance[1] + 0.0722f * hit.radiance[2];
+          else
+            for (int c = 0; c < 3; ++c) lf.at(u, v, s, t, c) = hit.radiance[c];
+          weight[std::size_t(t) * columns + s] = inside;
+        }
+      }
+    }
+  });
+  Optics optics;
+  optics.lensStepMm = grid.stepMm;
+  optics.spatialStepMm = camera.microlenses->pitchMm;
+  optics.lensToMicrolensMm = camera.mainLens.imageDistanceMm();
+  optics.focalLengthMm = camera.mainLens.focalLengthMm;
+  lf.metadata.optics = optics;
+  lf.metadata.source = "lfcam simulate: ideal light field of scene \"" + scene.name + "\"";
+  return lf;
+}
+
+Result<Image> idealDepth(const Scene& scene, const CameraModel& camera) {
+  if (!camera.microlenses) return makeError(ErrorCode::Usage, "ideal depth: the camera has no microlens array");
+  const auto [columns, rows] = camera.microlensCounts();
+  Image depth(columns, rows, 1);
+  const PreparedScene prepared(scene, camera);
+  parallelFor(0, std::size_t(rows), 4, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j)
+      for (int i = 0; i < columns; ++i) {
+        const auto centre = camera.microlensCentreMm(i, int(j));
+        depth.at(columns - 1 - i, rows - 1 - int(j), 0) = float(prepared.traceThroughLens(0, 0, centre[0], centre[1]).depth);
+      }
+  });
+  return depth;
+}
+
+namespace {
+
+Status writeRaw(const std::filesystem::path& path, const Image& raw, const std::string& what) {
+  Image codes(raw.width(), raw.height(), 1);
+  for (std::size_t k = 0; k < raw.pixels().size(); ++k) codes.pixels()[k] = raw.pixels()[k] / 65535.0f;
+  ImageWriteOptions options;
+  options.sampleType = SampleType::UInt16;
+  options.description = "lfcam simulate: " + what + "; 16-bit codes are the sensor's digital numbers (see camera.json)";
+  return writeImage(path, codes, options);
+}
+
+Status writeText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) return makeError(ErrorCode::Io, path.string() + ": cannot write");
+  return {};
+}
+
+}  // namespace
+
+Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, const CameraModel& camera,
+                       const SimulationOptions& options, const CaptureOutputs& outputs,
+                       const ProgressCallback& progress) {
+  LFCAM_TRY(camera.validate(folder.string()));
+  if (outputs.rawExtension != ".png" && outputs.rawExtension != ".tiff" && outputs.rawExtension != ".tif")
+    return makeError(ErrorCode::Usage, "raw extension must be .png or .tiff, not " + outputs.rawExtension);
+  const double shares = outputs.white ? 0.45 : 0.9;
+  auto report = [&](double from, double span) {
+    return [&progress, from, span](double f) {
+      if (progress) progress(from + span * f);
+    };
+  };
+  return writeFolderAtomically(folder, [&](const std::filesystem::path& temporary) -> Status {
+    const SensorCapture capture = simulateCapture(scene, camera, options, report(0, shares));
+    LFCAM_TRY(writeRaw(temporary / ("raw" + outputs.rawExtension), capture.raw, "raw sensor image of scene \"" + scene.name + "\""));
+    if (outputs.white) {
+      auto white = builtinScene("white", camera);
+      if (!white) return white.error();
+      const SensorCapture whiteCapture = simulateCapture(*white, camera, options, report(shares, shares));
+      LFCAM_TRY(writeRaw(temporary / ("white" + outputs.rawExtension), whiteCapture.raw, "white image"));
+    }
+    nlohmann::json json = cameraToJson(camera);
+    json["scene"] = scene.name;
+    json["samples_per_pixel"] = options.samplesPerPixel;
+    json["rays_traced"] = capture.rays;
+    if (camera.microlenses) {
+      const ViewGrid grid = viewGrid(camera);
+      json["light_field"] = {
+          {"file", "ideal.lf.h5"},
+          {"views", grid.views},
+          {"lens_step_mm", grid.stepMm},
+          {"spatial_step_mm", camera.microlenses->pitchMm},
+          {"orientation", "(s, t) = (columns - 1 - i, rows - 1 - j): the sensor image turned 180 degrees"},
+          {"depth", "depth.pfm: mm along z to the surface seen by the central ray through each microlens; inf: none"}};
+    }
+    LFCAM_TRY(writeText(temporary / "camera.json", json.dump(2) + "\n"));
+    if (outputs.groundTruth && camera.microlenses) {
+      auto depth = idealDepth(scene, camera);
+      if (!depth) return depth.error();
+      LFCAM_TRY(writeImage(temporary / "depth.pfm", *depth));
+      auto lf = idealLightField(scene, camera);
+      if (!lf) return lf.error();
+      LFCAM_TRY(writeLightField(temporary / "ideal.lf.h5", *lf));
+    }
+    if (progress) progress(1.0);
+    return {};
+  });
+}
+
+}  // namespace lfcam
