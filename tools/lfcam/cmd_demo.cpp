@@ -15,6 +15,8 @@
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/refocus.hpp"
+#include "lfcam/scene.hpp"
+#include "lfcam/simulate.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {
@@ -64,6 +66,43 @@ Status writeText(const fs::path& path, const std::string& text) {
   });
 }
 
+// The camera: slopes at which the simulated capture is refocused.
+const std::vector<double> kCameraSlopes = {0.3, 0.0, -0.3};
+
+std::string cameraSlopeName(double slope) { return "camera/" + slopeName(slope); }
+
+// The middle of the raw sensor image, brightened for people: the microlens images (Figure 13).
+Image rawCloseUp(const Image& raw, int size) {
+  const int x0 = std::max(0, (raw.width() - size) / 2), y0 = std::max(0, (raw.height() - size) / 2);
+  const int w = std::min(size, raw.width()), h = std::min(size, raw.height());
+  Image crop(w, h, 1);
+  float brightest = 1e-6f;
+  for (float value : raw.pixels()) brightest = std::max(brightest, value);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) crop.at(x, y, 0) = raw.at(x0 + x, y0 + y, 0) / brightest;
+  return crop;
+}
+
+// A built-in scene captured by the simulated plenoptic camera (the paper's prototype at reduced
+// resolution), and its ideal light field refocused.
+Status captureWithTheCamera(const fs::path& out) {
+  const CameraModel camera = CameraModel::paperPrototype(1400, 1400);
+  auto scene = builtinScene("people", camera);
+  if (!scene) return scene.error();
+  {
+    ProgressBar bar("simulating the camera");
+    LFCAM_TRY(writeSimulation(out / "camera", *scene, camera, {}, {}, [&](double f) { bar(f); }));
+  }
+  auto raw = readImage(out / "camera" / "raw.png");
+  if (!raw) return raw.error();
+  LFCAM_TRY(writeImage(out / "camera" / "raw-closeup.png", rawCloseUp(*raw, 160)));
+  auto ideal = readLightField(out / "camera" / "ideal.lf.h5");
+  if (!ideal) return ideal.error();
+  for (double slope : kCameraSlopes) LFCAM_TRY(writeImage(out / cameraSlopeName(slope), refocus(*ideal, slope)));
+  std::printf("  simulated the plenoptic camera -> camera/ (raw.png, white.png, camera.json, ideal.lf.h5)\n");
+  return {};
+}
+
 std::string indexPage(const LightField& lf, const std::vector<double>& slopes) {
   std::ostringstream html;
   html << R"(<!doctype html>
@@ -86,7 +125,16 @@ one focused on each plane, then the ground-truth disparity and every sub-apertur
   html << R"(<h2>The scene</h2>
 <figure><img src="centre-view.png"><figcaption>centre sub-aperture view (pinhole, everything sharp, noisier in a real camera)</figcaption></figure>
 <figure><img src="disparity.png"><figcaption>ground-truth disparity (bright = near); values in disparity.pfm</figcaption></figure>
-<h2>All sub-aperture views</h2>
+<h2>The plenoptic camera, simulated</h2>
+<p>The scene <code>people</code> traced ray by ray through the paper's prototype (140 mm main lens at image-side f/4,
+125 &micro;m microlenses of f/4, 9 &micro;m pixels) at 1400&times;1400 pixels: under each microlens, an image of the
+main lens. The outputs in <code>camera/</code> are what <code>lfcam simulate people</code> writes.</p>
+<figure><img src="camera/raw-closeup.png" style="width:320px;image-rendering:pixelated"><figcaption>middle of the raw sensor image</figcaption></figure>
+)";
+  for (double slope : kCameraSlopes)
+    html << "<figure><img src=\"" << cameraSlopeName(slope)
+         << "\" style=\"width:300px\"><figcaption>its light field refocused at slope " << slope << "</figcaption></figure>\n";
+  html << R"(<h2>All sub-aperture views</h2>
 <div class="sheet"><img src="contact-sheet.png"></div>
 <p>The light field itself: <code>lightfield.lf.h5</code> (HDF5), its views in <code>views/</code>.
 Try <code>lfcam refocus lightfield.lf.h5 --slope 0.5 -o mine.png</code>.</p>
@@ -127,6 +175,7 @@ Status runDemo(const fs::path& dir) {
     LFCAM_TRY(writeImage(out / "disparity.pfm", made.disparity));
     LFCAM_TRY(writeImage(out / "disparity.png",
                          disparityPicture(made.disparity, slopes.back(), slopes.front())));
+    LFCAM_TRY(captureWithTheCamera(out));
     LFCAM_TRY(writeText(out / "index.html", indexPage(lf, slopes)));
     return {};
   });
