@@ -10,33 +10,13 @@
 #include <random>
 #include <string>
 
+#include "random_light_field.hpp"
+
 namespace lfcam {
 namespace {
 
-LightField randomLightField(const LightFieldShape& shape, std::mt19937& random, bool weighted) {
-  LightField lightField(shape);
-  std::uniform_real_distribution<float> value(0.05f, 1.0f);
-  for (float& sample : lightField.samples()) sample = value(random);
-  if (weighted) {
-    lightField.enableWeight();
-    std::uniform_real_distribution<float> weight(0.0f, 1.0f);
-    // About a fifth of the samples carry no light at all, as between microlenses.
-    for (float& w : lightField.weights()) w = weight(random) < 0.2f ? 0.0f : weight(random);
-  }
-  return lightField;
-}
-
-// Largest |fast - reference| relative to max(|reference|, 1e-3); and the pixels where exactly
-// one of the two is zero (no ray in one, some ray in the other) count as a failure.
-double worstRelativeError(const Image& fast, const Image& reference) {
-  double worst = 0;
-  for (std::size_t i = 0; i < fast.pixels().size(); ++i) {
-    const double f = fast.pixels()[i], r = reference.pixels()[i];
-    if ((f == 0) != (r == 0)) return INFINITY;
-    worst = std::max(worst, std::abs(f - r) / std::max(std::abs(r), 1e-3));
-  }
-  return worst;
-}
+using test::randomLightField;
+using test::worstRelativeError;
 
 TEST(Refocus, FastMatchesReferenceOnRandomLightFields) {
   std::mt19937 random(20050401);

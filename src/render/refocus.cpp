@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lfcam/parallel.hpp"
+#include "render/shift_and_add.hpp"
 
 namespace lfcam {
 
@@ -24,14 +25,15 @@ struct AxisShift {
   double fraction = 0;  // shift - floor(shift), in [0, 1)
 };
 
-AxisShift axisShift(double fromCentre, double slope, int size) {
-  double shift = -fromCentre * slope;
+AxisShift shiftOf(double shift, int size) {
   // Beyond size + 1 pixels no tap lands in the view; clamping keeps floor() inside int range.
   const double limit = size + 2.0;
   shift = std::clamp(shift, -limit, limit);
   const double whole = std::floor(shift);
   return {int(whole), shift - whole};
 }
+
+AxisShift axisShift(double fromCentre, double slope, int size) { return shiftOf(-fromCentre * slope, size); }
 
 bool inside(int index, int size) { return index >= 0 && index < size; }
 
@@ -81,6 +83,9 @@ Image refocusReference(const LightField& lightField, double slope) {
 // ------------------------------------------------------------------------------------------------
 // Fast kernel.
 //
+// It sums a list of terms (shift_and_add.hpp): for refocus, every view once with weight 1; for
+// the synthetic camera's apertures and quadrature (synthetic_camera.cpp), views weighted by the
+// aperture, or blends of neighbouring views at the shifts of aperture samples between them.
 // For one view the shift is the same at every pixel, so its bilinear coefficients are constants:
 // a view's contribution to an output row is a blend of two source rows (vertical taps) followed by
 // a blend of two neighbouring columns (horizontal taps), both straight loops over a row. Taps
@@ -105,9 +110,12 @@ namespace {
 
 struct RefocusPlan {
   const LightField* lightField = nullptr;
-  std::vector<AxisShift> columnShift;  // per view column u
-  std::vector<AxisShift> rowShift;     // per view row v
-  // Without a weight plane: the separable weight sums per output column and per output row.
+  // The terms of the sum, each a view resampled at one constant shift, times a weight.
+  std::vector<ShiftAndAddTerm> terms;
+  std::vector<AxisShift> termColumnShift, termRowShift;  // per term
+  // The plain refocus (every view once, weight 1) without a weight plane: the weight sums are
+  // separable, per output column and per output row.
+  bool separable = false;
   std::vector<float> columnWeight, rowWeight;
 };
 
@@ -153,7 +161,9 @@ void normalise(float* __restrict out, const float* __restrict sum, const float* 
 LFCAM_REFOCUS_CLONES void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
   const LightField& lightField = *plan.lightField;
   const int ns = lightField.ns(), nt = lightField.nt(), channels = lightField.channels();
-  const bool weighted = lightField.hasWeight();
+  const bool lightFieldWeighted = lightField.hasWeight();
+  // Accumulate the weight sum as one more plane unless it is separable.
+  const bool weighted = !plan.separable;
   const int rows = y1 - y0;
   // Accumulators: one (rows x ns) plane per channel, then (weighted) one for the weight sum.
   const int planes = channels + (weighted ? 1 : 0);
@@ -162,12 +172,15 @@ LFCAM_REFOCUS_CLONES void refocusRows(const RefocusPlan& plan, int y0, int y1, I
   // A blended source row with one zero on either side: padded[1 + i] holds column i.
   std::vector<float> padded(std::size_t(ns) + 2, 0.0f);
   float* blended = padded.data() + 1;
-  std::vector<float> tapWeight0(weighted ? ns : 0), tapWeight1(weighted ? ns : 0);
+  std::vector<float> tapWeight0(lightFieldWeighted ? ns : 0), tapWeight1(lightFieldWeighted ? ns : 0);
 
-  for (int v = 0; v < lightField.nv(); ++v) {
-    const AxisShift sy = plan.rowShift[v];
-    for (int u = 0; u < lightField.nu(); ++u) {
-      const AxisShift sx = plan.columnShift[u];
+  for (std::size_t term = 0; term < plan.terms.size(); ++term) {
+    const int u = plan.terms[term].u, v = plan.terms[term].v;
+    const float termWeight = plan.terms[term].weight;
+    if (termWeight == 0.0f) continue;
+    const AxisShift sy = plan.termRowShift[term];
+    {
+      const AxisShift sx = plan.termColumnShift[term];
       // Output columns with at least one tap in the view: -1 <= x + whole <= ns - 1.
       const int xBegin = std::max(0, -1 - sx.whole), xEnd = std::min(ns, ns - sx.whole);
       if (xBegin >= xEnd) continue;
@@ -178,15 +191,16 @@ LFCAM_REFOCUS_CLONES void refocusRows(const RefocusPlan& plan, int y0, int y1, I
       for (int y = y0; y < y1; ++y) {
         // Vertical taps: rows y + whole and y + whole + 1, each kept only if inside the view.
         const int row0 = y + sy.whole, row1 = row0 + 1;
-        const float ay0 = inside(row0, nt) ? float(1 - sy.fraction) : 0.0f;
-        const float ay1 = inside(row1, nt) ? float(sy.fraction) : 0.0f;
+        // The term's weight rides on the vertical coefficients (exactly 1 for plain refocus).
+        const float ay0 = inside(row0, nt) ? float(1 - sy.fraction) * termWeight : 0.0f;
+        const float ay1 = inside(row1, nt) ? float(sy.fraction) * termWeight : 0.0f;
         if (ay0 == 0.0f && ay1 == 0.0f) continue;
         // A tap with coefficient 0 still reads a row: point it at a valid one.
         const std::size_t offset0 = std::size_t(std::clamp(row0, 0, nt - 1)) * ns;
         const std::size_t offset1 = std::size_t(std::clamp(row1, 0, nt - 1)) * ns;
         const int count = sEnd - sBegin;
 
-        if (weighted) {
+        if (lightFieldWeighted) {
           // Each tap's weight is the bilinear coefficient times the light field's weight
           // (refocus.hpp): the weight rows scaled by the vertical coefficients, kept for the
           // channels below, and blended and accumulated as one more channel.
@@ -197,10 +211,14 @@ LFCAM_REFOCUS_CLONES void refocusRows(const RefocusPlan& plan, int y0, int y1, I
           }
           blendRows(blended + sBegin, weightPlane + offset0 + sBegin, weightPlane + offset1 + sBegin, ay0, ay1, count);
           accumulateTaps(accumulatorRow(channels, y) + xBegin, blended + xBegin + sx.whole, ax0, ax1, xEnd - xBegin);
+        } else if (weighted) {
+          // No weight plane: each tap weighs its coefficients alone.
+          std::fill(blended + sBegin, blended + sEnd, ay0 + ay1);
+          accumulateTaps(accumulatorRow(channels, y) + xBegin, blended + xBegin + sx.whole, ax0, ax1, xEnd - xBegin);
         }
         for (int c = 0; c < channels; ++c) {
           const float* plane = lightField.plane(u, v, c);
-          if (weighted)
+          if (lightFieldWeighted)
             blendWeightedRows(blended + sBegin, tapWeight0.data() + sBegin, plane + offset0 + sBegin,
                               tapWeight1.data() + sBegin, plane + offset1 + sBegin, count);
           else
@@ -226,24 +244,21 @@ LFCAM_REFOCUS_CLONES void refocusRows(const RefocusPlan& plan, int y0, int y1, I
 
 }  // namespace
 
-Image refocus(const LightField& lightField, double slope) {
+namespace {
+
+Image runPlan(RefocusPlan& plan) {
+  const LightField& lightField = *plan.lightField;
   const LightFieldShape& shape = lightField.shape();
   Image out(shape.ns, shape.nt, shape.channels);
-  if (lightField.empty() || !std::isfinite(slope)) return out;
-
-  RefocusPlan plan;
-  plan.lightField = &lightField;
-  for (int u = 0; u < shape.nu; ++u) plan.columnShift.push_back(axisShift(lightField.uFromCentre(u), slope, shape.ns));
-  for (int v = 0; v < shape.nv; ++v) plan.rowShift.push_back(axisShift(lightField.vFromCentre(v), slope, shape.nt));
-  if (!lightField.hasWeight()) {
-    plan.columnWeight = separableWeight(plan.columnShift, shape.ns);
-    plan.rowWeight = separableWeight(plan.rowShift, shape.nt);
+  for (const ShiftAndAddTerm& term : plan.terms) {
+    plan.termColumnShift.push_back(shiftOf(term.shiftX, shape.ns));
+    plan.termRowShift.push_back(shiftOf(term.shiftY, shape.nt));
   }
 
   // Schedule: blocks of output rows whose accumulators (about 128 KiB) stay in L2 while every
   // view streams through them; each block re-reads one source row per view from memory, so
   // taller blocks waste less bandwidth. At least 8 blocks, so both cores stay busy to the end.
-  const int planes = shape.channels + (lightField.hasWeight() ? 1 : 0);
+  const int planes = shape.channels + (plan.separable ? 0 : 1);
   int blockRows = std::max(1, 32768 / std::max(1, planes * shape.ns));
   blockRows = std::clamp(blockRows, 1, std::max(1, (shape.nt + 7) / 8));
   const std::size_t blocks = (std::size_t(shape.nt) + blockRows - 1) / blockRows;
@@ -254,6 +269,40 @@ Image refocus(const LightField& lightField, double slope) {
     }
   });
   return out;
+}
+
+}  // namespace
+
+Image refocus(const LightField& lightField, double slope) {
+  const LightFieldShape& shape = lightField.shape();
+  if (lightField.empty() || !std::isfinite(slope)) return Image(shape.ns, shape.nt, shape.channels);
+
+  RefocusPlan plan;
+  plan.lightField = &lightField;
+  for (int v = 0; v < shape.nv; ++v)
+    for (int u = 0; u < shape.nu; ++u)
+      plan.terms.push_back({u, v, -lightField.uFromCentre(u) * slope, -lightField.vFromCentre(v) * slope, 1.0f});
+  if (!lightField.hasWeight()) {
+    std::vector<AxisShift> columnShift, rowShift;
+    for (int u = 0; u < shape.nu; ++u) columnShift.push_back(axisShift(lightField.uFromCentre(u), slope, shape.ns));
+    for (int v = 0; v < shape.nv; ++v) rowShift.push_back(axisShift(lightField.vFromCentre(v), slope, shape.nt));
+    plan.separable = true;
+    plan.columnWeight = separableWeight(columnShift, shape.ns);
+    plan.rowWeight = separableWeight(rowShift, shape.nt);
+  }
+  return runPlan(plan);
+}
+
+Image shiftAndAdd(const LightField& lightField, std::vector<ShiftAndAddTerm> terms) {
+  const LightFieldShape& shape = lightField.shape();
+  if (lightField.empty()) return Image(shape.ns, shape.nt, shape.channels);
+  RefocusPlan plan;
+  plan.lightField = &lightField;
+  std::erase_if(terms, [](const ShiftAndAddTerm& term) {
+    return !(term.weight > 0) || !std::isfinite(term.shiftX) || !std::isfinite(term.shiftY);
+  });
+  plan.terms = std::move(terms);
+  return runPlan(plan);
 }
 
 }  // namespace lfcam

@@ -56,4 +56,15 @@ inline CommandResult runLfcam(const std::vector<std::string>& args, const std::f
   return result;
 }
 
+// A small layered-planes light field made through the CLI itself: `views` x `views` views of
+// `size` x `size` pixels, in `dir`.
+inline std::filesystem::path makeSynthLightField(const TempDir& dir, int views = 5, int size = 48) {
+  const std::filesystem::path path = dir / "small.lf.h5";
+  const auto result =
+      runLfcam({"synth", "--views", std::to_string(views), "--size", std::to_string(size), "-o", path.string()},
+               dir.path());
+  EXPECT_EQ(result.exitStatus, 0) << result.err;
+  return path;
+}
+
 }  // namespace lfcam::test

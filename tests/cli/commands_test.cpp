@@ -13,17 +13,11 @@ namespace {
 namespace fs = std::filesystem;
 using test::runLfcam;
 
-// A small synthetic light field, made once per test through the CLI itself.
-fs::path makeSmallLightField(const test::TempDir& dir) {
-  const fs::path path = dir / "small.lf.h5";
-  const auto result = runLfcam({"synth", "--views", "5", "--size", "48", "-o", path.string()}, dir.path());
-  EXPECT_EQ(result.exitStatus, 0) << result.err;
-  return path;
-}
 
 TEST(Cli, HelpForEverySubcommand) {
   test::TempDir dir;
-  for (const char* sub : {"info", "convert", "views", "refocus", "synth", "demo"}) {
+  for (const char* sub : {"info", "convert", "views", "refocus", "stack", "observer", "animate", "bench",
+                          "synth", "simulate", "demo"}) {
     const auto result = runLfcam({sub, "--help"}, dir.path());
     EXPECT_EQ(result.exitStatus, 0) << sub;
     EXPECT_NE(result.out.find("Usage"), std::string::npos) << sub;
@@ -33,7 +27,7 @@ TEST(Cli, HelpForEverySubcommand) {
 
 TEST(Cli, UsageErrorsExitTwoWithOneLine) {
   test::TempDir dir;
-  const fs::path input = makeSmallLightField(dir);
+  const fs::path input = test::makeSynthLightField(dir);
   const std::vector<std::vector<std::string>> cases = {
       {},
       {"frobnicate"},
@@ -54,7 +48,7 @@ TEST(Cli, UsageErrorsExitTwoWithOneLine) {
 
 TEST(Cli, InfoJsonDescribesTheLightField) {
   test::TempDir dir;
-  const fs::path input = makeSmallLightField(dir);
+  const fs::path input = test::makeSynthLightField(dir);
   const auto result = runLfcam({"info", input.string(), "--json"}, dir.path());
   ASSERT_EQ(result.exitStatus, 0) << result.err;
   const auto json = nlohmann::json::parse(result.out);
@@ -69,7 +63,7 @@ TEST(Cli, InfoJsonDescribesTheLightField) {
 
 TEST(Cli, ConvertThroughEveryFormatKeepsTheShape) {
   test::TempDir dir;
-  const fs::path input = makeSmallLightField(dir);
+  const fs::path input = test::makeSynthLightField(dir);
   const std::vector<std::vector<std::string>> targets = {
       {(dir / "hci").string()},
       {(dir / "rowcol").string(), "--layout", "rowcol"},
@@ -97,7 +91,7 @@ TEST(Cli, ConvertThroughEveryFormatKeepsTheShape) {
 
 TEST(Cli, ViewsWritesEveryViewAndAContactSheet) {
   test::TempDir dir;
-  const fs::path input = makeSmallLightField(dir);
+  const fs::path input = test::makeSynthLightField(dir);
   const auto result =
       runLfcam({"views", input.string(), "-o", (dir / "views").string(), "--mosaic", (dir / "sheet.png").string()},
                dir.path());
@@ -113,7 +107,7 @@ TEST(Cli, ViewsWritesEveryViewAndAContactSheet) {
 
 TEST(Cli, RefocusBySlopeAndByAlpha) {
   test::TempDir dir;
-  const fs::path input = makeSmallLightField(dir);
+  const fs::path input = test::makeSynthLightField(dir);
   auto bySlope = runLfcam({"refocus", input.string(), "--slope", "0.8", "-o", (dir / "s.png").string()}, dir.path());
   ASSERT_EQ(bySlope.exitStatus, 0) << bySlope.err;
   auto image = readImage(dir / "s.png");

@@ -22,6 +22,10 @@ int main(int argc, char** argv) {
   cli::addConvertCommand(app, job);
   cli::addViewsCommand(app, job);
   cli::addRefocusCommand(app, job);
+  cli::addStackCommand(app, job);
+  cli::addObserverCommand(app, job);
+  cli::addBenchCommand(app, job);
+  cli::addAnimateCommand(app, job);
   cli::addSynthCommand(app, job);
   cli::addDemoCommand(app, job);
   cli::addSimulateCommand(app, job);

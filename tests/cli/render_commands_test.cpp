@@ -1,0 +1,172 @@
+// The rendering commands run as a user runs them: refocus with apertures, methods and
+// --focus-at; stack; observer; their usage errors (exit 2, one line). (--help of every
+// subcommand: commands_test.cpp.)
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "cli_support.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/light_field_io.hpp"
+
+namespace lfcam {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runLfcam;
+
+
+
+
+TEST(CliRender, RefocusWithApertureMethodAndFocusAt) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  const std::vector<std::vector<std::string>> cases = {
+      {"--slope", "0.5", "--aperture", "1", "--aperture-center", "0.5,-0.5"},
+      {"--slope", "1.5", "--aperture", "0.5", "--aperture-shape", "square", "--method", "quadrature"},
+      {"--alpha", "1.05", "--beta", "1.1"},
+      {"--focus-at", "10,12"},
+  };
+  for (const auto& extra : cases) {
+    std::vector<std::string> args{"refocus", input, "-o", (dir / "out.png").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto result = runLfcam(args, dir.path());
+    ASSERT_EQ(result.exitStatus, 0) << testing::PrintToString(extra) << ": " << result.err;
+    auto photo = readImage(dir / "out.png");
+    ASSERT_TRUE(photo) << photo.error().message;
+    EXPECT_EQ(photo->width(), 40);
+    fs::remove(dir / "out.png");
+  }
+  // --focus-at prints the slope it chose.
+  const auto result = runLfcam({"refocus", input, "--focus-at", "10,12", "-o", (dir / "f.png").string()}, dir.path());
+  EXPECT_EQ(result.out.rfind("slope ", 0), 0u) << result.out;
+}
+
+TEST(CliRender, ApertureMaskOfOneViewGivesThatView) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  Image mask(5, 5, 1);
+  mask.at(4, 2, 0) = 1;  // the view right of the centre
+  ASSERT_TRUE(writeImage(dir / "mask.png", mask));
+  const auto result = runLfcam({"refocus", input, "--slope", "0", "--aperture-mask", (dir / "mask.png").string(), "-o",
+                                (dir / "out.exr").string()},
+                               dir.path());
+  ASSERT_EQ(result.exitStatus, 0) << result.err;
+  auto photo = readImage(dir / "out.exr");
+  auto lightField = readLightField(input);
+  ASSERT_TRUE(photo && lightField);
+  const Image view = lightField->subApertureImage(4, 2);
+  for (std::size_t i = 0; i < view.pixels().size(); ++i) ASSERT_NEAR(photo->pixels()[i], view.pixels()[i], 1e-6);
+}
+
+TEST(CliRender, StackWritesOneSlicePerDepthAndAnIndex) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  const auto result = runLfcam({"stack", input, "--slopes", "-1:1:3", "-o", (dir / "stack").string()}, dir.path());
+  ASSERT_EQ(result.exitStatus, 0) << result.err;
+  for (const char* name : {"slice_000.png", "slice_001.png", "slice_002.png", "stack.json"})
+    EXPECT_TRUE(fs::exists(dir / "stack" / name)) << name;
+  const auto index = nlohmann::json::parse(test::readBytes(dir / "stack" / "stack.json"));
+  ASSERT_EQ(index["slices"].size(), 3u);
+  EXPECT_DOUBLE_EQ(double(index["slices"][2]["slope"]), 1.0);
+  EXPECT_TRUE(index["slices"][0].contains("alpha"));  // synth light fields carry optics
+}
+
+TEST(CliRender, ObserverAtAViewIsThatView) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  auto lightField = readLightField(input);
+  ASSERT_TRUE(lightField);
+  const auto result = runLfcam({"observer", input, "--u", "-2", "--v", "1", "-o", (dir / "o.exr").string()}, dir.path());
+  ASSERT_EQ(result.exitStatus, 0) << result.err;
+  auto photo = readImage(dir / "o.exr");
+  ASSERT_TRUE(photo);
+  const Image view = lightField->subApertureImage(0, 3);
+  for (std::size_t i = 0; i < view.pixels().size(); ++i) ASSERT_NEAR(photo->pixels()[i], view.pixels()[i], 1e-6);
+  EXPECT_EQ(runLfcam({"observer", input, "--u", "9", "--v", "0", "--clamp", "--beta", "1.2", "-o",
+                      (dir / "c.png").string()},
+                     dir.path())
+                .exitStatus,
+            0);
+}
+
+TEST(CliRender, FourierMethodAndBenchJson) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  const auto fourier =
+      runLfcam({"stack", input, "--slopes", "-1:1:2", "--method", "fourier", "-o", (dir / "f").string()}, dir.path());
+  ASSERT_EQ(fourier.exitStatus, 0) << fourier.err;
+  EXPECT_TRUE(fs::exists(dir / "f" / "slice_001.png"));
+  const auto bench = runLfcam({"bench", input, "--repeat", "1", "--json"}, dir.path());
+  ASSERT_EQ(bench.exitStatus, 0) << bench.err;
+  const auto json = nlohmann::json::parse(bench.out);
+  ASSERT_TRUE(json.is_array());
+  std::vector<std::string> methods;
+  for (const auto& entry : json) {
+    methods.push_back(entry["method"]);
+    for (const char* key : {"seconds_per_photo", "floor_seconds", "ratio_to_floor"})
+      EXPECT_GT(double(entry[key]), 0.0) << entry.dump();
+  }
+  EXPECT_EQ(methods, (std::vector<std::string>{"fast", "fast-aperture", "quadrature", "observer", "fourier"}));
+}
+
+// Frames in a GIF: one graphic control extension (21 F9 04) precedes each.
+int gifFrames(const std::string& bytes) {
+  int frames = 0;
+  for (std::size_t at = bytes.find("\x21\xF9\x04"); at != std::string::npos; at = bytes.find("\x21\xF9\x04", at + 1))
+    ++frames;
+  return frames;
+}
+
+TEST(CliRender, AnimateWritesLoopingGifs) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  const auto pull = runLfcam({"animate", input, "--focus-pull", "--frames", "6", "-o", (dir / "p.gif").string()}, dir.path());
+  ASSERT_EQ(pull.exitStatus, 0) << pull.err;
+  const std::string pullBytes = test::readBytes(dir / "p.gif");
+  EXPECT_EQ(pullBytes.rfind("GIF89a", 0), 0u);
+  EXPECT_EQ(gifFrames(pullBytes), 6);
+  const auto orbit = runLfcam({"animate", input, "--orbit", "--frames", "5", "-o", (dir / "o.gif").string()}, dir.path());
+  ASSERT_EQ(orbit.exitStatus, 0) << orbit.err;
+  EXPECT_EQ(gifFrames(test::readBytes(dir / "o.gif")), 5);
+}
+
+TEST(CliRender, UsageErrorsExitTwoWithOneLine) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  const std::string out = (dir / "x.png").string();
+  const std::vector<std::vector<std::string>> cases = {
+      {"refocus", input, "--focus-at", "3", "-o", out},
+      {"refocus", input, "--focus-at", "500,500", "-o", out},
+      {"refocus", input, "--slope", "1", "--focus-at", "3,3", "-o", out},
+      {"refocus", input, "--slope", "1", "--method", "magic", "-o", out},
+      {"refocus", input, "--slope", "1", "--aperture-center", "1,1", "-o", out},
+      {"refocus", input, "--slope", "1", "--aperture", "0.2", "--aperture-center", "9,9", "-o", out},
+      {"stack", input, "-o", (dir / "s").string()},
+      {"stack", input, "--slopes", "1:2", "-o", (dir / "s").string()},
+      {"stack", input, "--slopes", "0:1:2", "--alphas", "1:2:2", "-o", (dir / "s").string()},
+      {"observer", input, "--u", "1", "-o", out},
+      {"refocus", input, "--slope", "1", "--method", "fourier", "--aperture", "1", "-o", out},
+      {"bench", input, "--repeat", "0"},
+      {"animate", input, "-o", (dir / "a.gif").string()},
+      {"animate", input, "--orbit", "-o", (dir / "a.mp4").string()},
+      {"animate", input, "--orbit", "--focus-pull", "-o", (dir / "a.gif").string()},
+  };
+  for (const auto& args : cases) {
+    const auto result = runLfcam(args, dir.path());
+    EXPECT_EQ(result.exitStatus, 2) << testing::PrintToString(args) << ": " << result.err;
+    EXPECT_EQ(result.errLines(), 1) << testing::PrintToString(args) << ": " << result.err;
+  }
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir / "s"));
+  // A missing mask is failed work, not usage.
+  const auto missing =
+      runLfcam({"refocus", input, "--slope", "0", "--aperture-mask", (dir / "none.png").string(), "-o", out}, dir.path());
+  EXPECT_EQ(missing.exitStatus, 1) << missing.err;
+  EXPECT_EQ(missing.errLines(), 1);
+}
+
+}  // namespace
+}  // namespace lfcam

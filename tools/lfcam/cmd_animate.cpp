@@ -1,0 +1,83 @@
+// lfcam animate INPUT (--focus-pull | --orbit) -o OUT.gif: a looping animation, either the focus
+// swept through the scene's depth and back, or the observer (Equation 7) moved round a circle on
+// the lens.
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "commands.hpp"
+#include "lfcam/animation.hpp"
+#include "lfcam/focal_stack.hpp"
+#include "lfcam/synthetic_camera.hpp"
+#include "progress_bar.hpp"
+#include "render_cli.hpp"
+
+namespace lfcam::cli {
+
+void addAnimateCommand(CLI::App& app, Job& job) {
+  struct Options {
+    InputOptions input;
+    bool focusPull = false, orbit = false;
+    std::string slopes;
+    std::optional<double> radius;
+    int frames = 24, fps = 12;
+    std::string output;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand("animate", "a looping GIF: a focus pull or an orbit of the observer");
+  addInputOptions(*command, options->input);
+  auto* pull = command->add_flag("--focus-pull", options->focusPull, "sweep the focus through the scene and back");
+  auto* orbit = command->add_flag("--orbit", options->orbit, "move the observer round a circle on the lens");
+  pull->excludes(orbit);
+  command->add_option("--slopes", options->slopes,
+                      "focus pull: FIRST:LAST slopes (default: the light field's disparity range, else -2:2)");
+  command->add_option("--radius", options->radius, "orbit: radius in view steps (default: 80% of the lens)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--frames", options->frames, "frames (a focus pull goes there and back)")->check(CLI::Range(2, 1000));
+  command->add_option("--fps", options->fps, "frames per second")->check(CLI::Range(1, 100));
+  command->add_option("-o,--output", options->output, "output .gif")->required();
+  command->callback([options, &job] {
+    job = [options]() -> Status {
+      if (!options->focusPull && !options->orbit)
+        return makeError(ErrorCode::Usage, "animate: choose --focus-pull or --orbit");
+      std::optional<std::pair<double, double>> range;
+      if (!options->slopes.empty()) {
+        double a = 0, b = 0;
+        char end = 0;
+        if (std::sscanf(options->slopes.c_str(), "%lf:%lf%c", &a, &b, &end) != 2 || !std::isfinite(a) || !std::isfinite(b))
+          return makeError(ErrorCode::Usage, "--slopes: expected FIRST:LAST, got '" + options->slopes + "'");
+        range = std::pair{a, b};
+      }
+      auto lightField = loadInput(options->input);
+      if (!lightField) return lightField.error();
+      std::vector<Image> frames;
+      ProgressBar bar("animating");
+      if (options->focusPull) {
+        const double first = range ? range->first : lightField->metadata.disparityMin.value_or(-2.0);
+        const double last = range ? range->second : lightField->metadata.disparityMax.value_or(2.0);
+        // There and back: the sweep, then its inner frames reversed, so the loop has no jump.
+        std::vector<double> slopes = evenlySpaced(first, last, options->frames / 2 + 1);
+        for (int i = int(slopes.size()) - 2; i > 0; --i) slopes.push_back(slopes[i]);
+        LFCAM_TRY(renderFocalStack(*lightField, slopes, {}, {}, [&](int index, double, Image&& photo) -> Status {
+          frames.push_back(std::move(photo));
+          bar(double(index + 1) / double(slopes.size()));
+          return {};
+        }));
+      } else {
+        const double radius =
+            options->radius.value_or(0.8 * 0.5 * (std::min(lightField->nu(), lightField->nv()) - 1));
+        for (int i = 0; i < options->frames; ++i) {
+          const double angle = 2 * std::numbers::pi * i / options->frames;
+          auto photo = observe(*lightField, {.u = radius * std::cos(angle), .v = radius * std::sin(angle),
+                                             .clampToLens = true});
+          if (!photo) return photo.error();
+          frames.push_back(std::move(*photo));
+          bar(double(i + 1) / options->frames);
+        }
+      }
+      return writeAnimatedGif(options->output, frames, options->fps);
+    };
+  });
+}
+
+}  // namespace lfcam::cli

@@ -1,0 +1,47 @@
+// lfcam observer INPUT --u U --v V [--beta B] [--clamp] -o OUT: the photograph of a pinhole moved
+// within the lens plane (parallax) and along the axis (beta, perspective): Equation 7.
+#include <memory>
+
+#include "commands.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/synthetic_camera.hpp"
+
+namespace lfcam::cli {
+
+void addObserverCommand(CLI::App& app, Job& job) {
+  struct Options {
+    InputOptions input;
+    double u = 0, v = 0, beta = 1;
+    bool clamp = false;
+    std::string output;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand("observer", "move the observer: a pinhole view from anywhere (Equation 7)");
+  addInputOptions(*command, options->input);
+  command->add_option("--u", options->u, "pinhole position across, view steps from the centre view")->required();
+  command->add_option("--v", options->v, "pinhole position down, view steps from the centre view")->required();
+  command->add_option("--beta", options->beta, "relative position of the pinhole's plane (needs optics)")
+      ->check(CLI::PositiveNumber);
+  command->add_flag("--clamp", options->clamp,
+                    "rays outside the lens take the closest available ray (Figure 7) instead of going black");
+  command->add_option("-o,--output", options->output, "output image")->required();
+  command->callback([options, &job] {
+    job = [options]() -> Status {
+      auto lightField = loadInput(options->input);
+      if (!lightField) return lightField.error();
+      Observer observer{.u = options->u, .v = options->v, .beta = options->beta, .clampToLens = options->clamp};
+      if (options->beta != 1) {
+        const auto& optics = lightField->metadata.optics;
+        if (!optics)
+          return makeError(ErrorCode::Usage,
+                           options->input.path + ": no optics metadata, so the observer cannot move along the axis (--beta)");
+        observer.parallax = optics->lensStepMm / optics->spatialStepMm;
+      }
+      auto photo = observe(*lightField, observer);
+      if (!photo) return photo.error();
+      return writeImage(options->output, *photo);
+    };
+  });
+}
+
+}  // namespace lfcam::cli

@@ -1,0 +1,82 @@
+// lfcam stack INPUT (--slopes A:B:N | --alphas A:B:N) -o DIR: a focal stack, one photograph per
+// focus depth (slice_000.png, ...), and stack.json naming the slope (and alpha) of each.
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "lfcam/atomic_file.hpp"
+#include "lfcam/focal_stack.hpp"
+#include "lfcam/image_io.hpp"
+#include "progress_bar.hpp"
+#include "render_cli.hpp"
+
+namespace lfcam::cli {
+
+void addStackCommand(CLI::App& app, Job& job) {
+  struct Options {
+    InputOptions input;
+    std::string slopes, alphas;
+    CameraOptions camera;
+    std::string extension = "png";
+    std::string output;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand("stack", "a focal stack: one refocused photograph per depth");
+  addInputOptions(*command, options->input);
+  auto* slopes = command->add_option("--slopes", options->slopes, "FIRST:LAST:COUNT slopes, pixels per view step");
+  auto* alphas = command->add_option("--alphas", options->alphas, "FIRST:LAST:COUNT film depths (needs optics)");
+  slopes->excludes(alphas);
+  addCameraOptions(*command, options->camera);
+  command->add_option("--format", options->extension, "image format of the slices")
+      ->check(CLI::IsMember({"png", "tif", "exr", "jpg", "pfm"}));
+  command->add_option("-o,--output", options->output, "output folder")->required();
+  command->callback([options, &job] {
+    job = [options]() -> Status {
+      if (options->slopes.empty() == options->alphas.empty())
+        return makeError(ErrorCode::Usage, "stack: give the depths with --slopes or --alphas");
+      auto values = parseRange(options->slopes.empty() ? options->alphas : options->slopes,
+                               options->slopes.empty() ? "--alphas" : "--slopes");
+      if (!values) return values.error();
+      auto lightField = loadInput(options->input);
+      if (!lightField) return lightField.error();
+      auto camera = cameraFrom(options->camera, *lightField, options->input.path);
+      if (!camera) return camera.error();
+      std::vector<double> slopeValues = *values;
+      const auto& optics = lightField->metadata.optics;
+      if (!options->alphas.empty()) {
+        if (!optics)
+          return makeError(ErrorCode::Usage, options->input.path +
+                                                 ": no optics metadata, so --alphas cannot be converted to "
+                                                 "slopes; use --slopes");
+        for (double& value : slopeValues) {
+          if (!(value > 0)) return makeError(ErrorCode::Usage, "--alphas: every alpha must be positive");
+          value = optics->slopeFromAlpha(value);
+        }
+      }
+      ProgressBar bar("focal stack");
+      return writeFolderAtomically(options->output, [&](const std::filesystem::path& folder) -> Status {
+        nlohmann::json slices = nlohmann::json::array();
+        LFCAM_TRY(renderSlopes(*lightField, options->camera, camera->first, camera->second, slopeValues,
+                                     [&](int index, double slope, Image&& photo) -> Status {
+                                     char name[64];
+                                     std::snprintf(name, sizeof name, "slice_%03d.%s", index,
+                                                   options->extension.c_str());
+                                     nlohmann::json slice{{"file", name}, {"slope", slope}};
+                                     if (optics) slice["alpha"] = optics->alphaFromSlope(slope);
+                                     slices.push_back(slice);
+                                     bar(double(index + 1) / double(slopeValues.size()));
+                                     return writeImage(folder / name, photo);
+                                   }));
+        std::ofstream out(folder / "stack.json");
+        out << nlohmann::json{{"slices", slices}}.dump(2) << "\n";
+        if (!out) return makeError(ErrorCode::Io, (folder / "stack.json").string() + ": cannot write");
+        return {};
+      });
+    };
+  });
+}
+
+}  // namespace lfcam::cli

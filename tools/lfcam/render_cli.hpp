@@ -1,0 +1,126 @@
+// Options shared by the rendering subcommands (refocus, stack): the synthetic aperture, the lens
+// plane and the method, and the small value parsers they need. Values on the command line are in
+// view steps from the centre view (u, v, R) and pixels per view step (slopes).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lfcam/focal_stack.hpp"
+#include "lfcam/fourier_slice.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/light_field.hpp"
+#include "lfcam/result.hpp"
+#include "lfcam/synthetic_camera.hpp"
+
+namespace lfcam::cli {
+
+// "X,Y" -> two finite numbers.
+inline Result<std::pair<double, double>> parsePair(const std::string& text, const std::string& option) {
+  double a = 0, b = 0;
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf%c", &a, &b, &end) != 2 || !std::isfinite(a) || !std::isfinite(b))
+    return makeError(ErrorCode::Usage, option + ": expected two numbers as X,Y, got '" + text + "'");
+  return std::pair{a, b};
+}
+
+// "A:B:N" -> N values evenly spaced from A to B inclusive.
+inline Result<std::vector<double>> parseRange(const std::string& text, const std::string& option) {
+  double a = 0, b = 0;
+  int n = 0;
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%lf:%lf:%d%c", &a, &b, &n, &end) != 3 || !std::isfinite(a) || !std::isfinite(b) ||
+      n < 1 || n > 100000)
+    return makeError(ErrorCode::Usage, option + ": expected FIRST:LAST:COUNT (count 1 to 100000), got '" + text + "'");
+  return evenlySpaced(a, b, n);
+}
+
+struct CameraOptions {
+  std::optional<double> radius;
+  std::string shape = "circle";
+  std::string centre;
+  std::string mask;
+  std::string method = "fast";
+  int supersampling = 0;
+  std::optional<double> beta;
+};
+
+inline void addCameraOptions(CLI::App& command, CameraOptions& options) {
+  command.add_option("--aperture", options.radius,
+                     "synthetic aperture radius in view steps (0: one view; default: the whole lens)")
+      ->check(CLI::NonNegativeNumber);
+  command.add_option("--aperture-shape", options.shape, "circle or square (half side = R)")
+      ->check(CLI::IsMember({"circle", "square"}));
+  command.add_option("--aperture-center", options.centre, "aperture centre U,V in view steps from the centre view");
+  command.add_option("--aperture-mask", options.mask,
+                     "image laid over the whole lens whose brightness weights each view (white: full weight)");
+  command.add_option("--method", options.method,
+                     "fast (shift-and-add of the views), quadrature (aperture supersampled, for large "
+                     "refocus distances) or fourier (Fourier slice: one 4D FFT, then fast per photo; full "
+                     "aperture only)")
+      ->check(CLI::IsMember({"fast", "quadrature", "fourier"}));
+  command.add_option("--supersampling", options.supersampling,
+                     "quadrature: aperture samples per view step (default: about |slope|)")
+      ->check(CLI::Range(1, 32));
+  command.add_option("--beta", options.beta, "relative position of the synthetic lens plane (needs optics)")
+      ->check(CLI::PositiveNumber);
+}
+
+// The camera and render options the flags describe, for this light field (slope left at 0).
+inline Result<std::pair<SyntheticCamera, RenderOptions>> cameraFrom(const CameraOptions& options,
+                                                                    const LightField& lightField,
+                                                                    const std::string& inputName) {
+  SyntheticCamera camera;
+  double u = 0, v = 0;
+  if (!options.centre.empty()) {
+    auto centre = parsePair(options.centre, "--aperture-center");
+    if (!centre) return centre.error();
+    u = centre->first, v = centre->second;
+  }
+  if (!options.mask.empty()) {
+    if (options.radius)
+      return makeError(ErrorCode::Usage, "--aperture and --aperture-mask exclude each other");
+    auto mask = readImage(options.mask);
+    if (!mask) return mask.error();
+    camera.aperture = Aperture::fromMask(std::move(*mask), u, v);
+  } else if (options.radius) {
+    camera.aperture = options.shape == "square" ? Aperture::square(*options.radius, u, v)
+                                                : Aperture::circle(*options.radius, u, v);
+  } else if (!options.centre.empty()) {
+    return makeError(ErrorCode::Usage, "--aperture-center needs --aperture R or --aperture-mask FILE");
+  }
+  if (options.beta && *options.beta != 1) {
+    const auto& optics = lightField.metadata.optics;
+    if (!optics)
+      return makeError(ErrorCode::Usage,
+                       inputName + ": no optics metadata, so the lens plane cannot be moved (--beta)");
+    camera.beta = *options.beta;
+    camera.parallax = optics->lensStepMm / optics->spatialStepMm;
+  }
+  if (options.method == "fourier" && (camera.aperture.shape != Aperture::Shape::Full || camera.beta != 1))
+    return makeError(ErrorCode::Usage, "--method fourier renders the full aperture at beta 1 only");
+  RenderOptions render;
+  render.method = options.method == "quadrature" ? RenderMethod::Quadrature : RenderMethod::Fast;
+  render.supersampling = options.supersampling;
+  return std::pair{std::move(camera), render};
+}
+
+// Renders one photograph per slope, by the Fourier slice method when asked (its spectrum made
+// once), else by renderSyntheticPhoto.
+inline Status renderSlopes(const LightField& lightField, const CameraOptions& options, SyntheticCamera camera,
+                           const RenderOptions& render, const std::vector<double>& slopes,
+                           const std::function<Status(int, double, Image&&)>& sink) {
+  if (options.method != "fourier") return renderFocalStack(lightField, slopes, camera, render, sink);
+  auto refocuser = FourierRefocuser::create(lightField);
+  if (!refocuser) return refocuser.error();
+  for (std::size_t i = 0; i < slopes.size(); ++i) LFCAM_TRY(sink(int(i), slopes[i], refocuser->refocus(slopes[i])));
+  return {};
+}
+
+}  // namespace lfcam::cli
