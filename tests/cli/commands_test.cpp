@@ -16,8 +16,8 @@ using test::runLfcam;
 
 TEST(Cli, HelpForEverySubcommand) {
   test::TempDir dir;
-  for (const char* sub : {"info", "convert", "views", "refocus", "stack", "observer", "animate", "bench",
-                          "synth", "simulate", "demo"}) {
+  for (const char* sub : {"info", "convert", "views", "refocus", "stack", "observer", "animate", "bench", "depth",
+                          "edof", "synth", "simulate", "demo"}) {
     const auto result = runLfcam({sub, "--help"}, dir.path());
     EXPECT_EQ(result.exitStatus, 0) << sub;
     EXPECT_NE(result.out.find("Usage"), std::string::npos) << sub;

@@ -29,6 +29,8 @@ void addAnimateCommand(CLI::App& app, Job& job);
 void addSynthCommand(CLI::App& app, Job& job);
 void addDemoCommand(CLI::App& app, Job& job);
 void addSimulateCommand(CLI::App& app, Job& job);
+void addDepthCommand(CLI::App& app, Job& job);
+void addEdofCommand(CLI::App& app, Job& job);
 
 // A light-field input as every command takes it: a path, recognised by content, and the few
 // options needed for inputs that do not describe themselves.

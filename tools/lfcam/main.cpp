@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   cli::addSynthCommand(app, job);
   cli::addDemoCommand(app, job);
   cli::addSimulateCommand(app, job);
+  cli::addDepthCommand(app, job);
+  cli::addEdofCommand(app, job);
 
   try {
     app.parse(argc, argv);

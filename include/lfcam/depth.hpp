@@ -1,0 +1,95 @@
+// Depth from a light field: the disparity seen through the centre of the aperture, estimated from
+// the two cues a plenoptic camera offers (Adelson and Wang 1992; Ng et al. 2005, section 5.2),
+// and the HCI benchmark's scores for a disparity map.
+//
+// Units and conventions are those of light_field.hpp: disparity ("slope") in pixels of (s, t) per
+// view step, positive nearer than the plane in focus at capture; the map is ns x nt, one channel,
+// in the pixel grid of the aperture centre.
+//
+// How estimateDepth works (src/edof/depth.cpp):
+//  1. Candidate disparities ("labels"): evenly spaced over [disparityMin, disparityMax] from the
+//     options, else from the light field's metadata, else [-2, 2].
+//  2. Correspondence cue, per label d: each view of a star of views (the centre row, column and
+//     both diagonals) is sampled at (s - u d, t - v d), bilinearly, and compared with the
+//     reference (centre) view: squared difference of luminance, sRGB-encoded so that texture in
+//     the shadows counts. At occlusion boundaries only part of the aperture sees the point, so
+//     the squared differences are averaged over four overlapping half-apertures (u <= 0, u >= 0,
+//     v <= 0, v >= 0), and over the centre row and the centre column alone (for surfaces slanted
+//     steeply along one axis, like a floor), and the best subset is kept. (The light field's
+//     weight is not used here: a vignetted view counts like the others.)
+//  3. Defocus cue, per label d: the photograph refocused at d (lfcam::refocus of the luminance,
+//     every view) is sharpest where d is right; its squared Laplacian is subtracted from the cost,
+//     weighted by `defocusWeight` (both terms are squared luminance).
+//  4. Aggregation: each cost slice is smoothed by a guided filter (He et al. 2010) steered by the
+//     centre view, which averages over a window without crossing intensity edges.
+//  5. Regularisation: semi-global optimisation (Hirschmueller 2008) along 8 paths, with a jump
+//     penalty lowered across intensity edges of the centre view.
+//  6. The optimiser's label per pixel, then a parabola through the aggregated cost (step 4) at
+//     that label and its neighbours places the disparity between labels.
+//  7. Confidence in [0, 1]: 1 - exp(-(mean cost - chosen cost) / m), the aggregated costs of the
+//     pixel, m the mean of (mean cost - lowest cost) over the image: 0 where every label is as
+//     good (no texture), near 1 at a clear minimum.
+//
+// Metric distance: with Optics including focalLengthMm, a disparity d is the slope brought into
+// focus by film depth alpha F with alpha = optics.alphaFromSlope(d) (Equation 6); the thin-lens
+// equation 1/z + 1/(alpha F) = 1/f gives the distance z from the main lens to the plane in focus,
+// in millimetres. Disparities at or beyond infinity give +infinity.
+//
+// Measured (tests/depth_layered_planes_test.cpp, tests/realdata/hci_depth_test.cpp): BadPix(0.07)
+// 9.4 % and MSE x100 13.4 on the layered-planes default scene (9x9 views of 128x128); 21.9 % and
+// 35.1 on HCI antinous (the goal of 7 % is not reached: errors of 0.05-0.1 px in blotches on
+// smooth slanted surfaces such as the wall, and occlusion edges fattened by a pixel or two).
+// Cost: labels x (33 views + one luminance refocus) bilinear passes over ns x nt, plus 8 passes of
+// labels x ns x nt for the optimisation; memory 2 x labels x ns x nt floats. About 60 refocus
+// times for 9x9 views of 512x512 with 62 labels (bench/depth_bench.cpp).
+#pragma once
+
+#include <optional>
+
+#include "lfcam/image.hpp"
+#include "lfcam/light_field.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam {
+
+struct DepthOptions {
+  std::optional<double> disparityMin, disparityMax;  // default: metadata, else [-2, 2]
+  int labels = 0;                 // candidate disparities; 0: one per 0.1 px, within [16, 96]
+  double defocusWeight = 1.0;     // weight of the defocus cue against the correspondence cue
+  int filterRadius = 1;           // guided filter window: (2 r + 1)^2 pixels
+  double filterEpsilon = 1e-4;    // guided filter regulariser, squared linear luminance
+  double smoothness = 1.0;        // scales both jump penalties of the optimisation; 0 disables it
+};
+
+struct DepthMap {
+  Image disparity;   // ns x nt, 1 channel, pixels per view step
+  Image confidence;  // ns x nt, 1 channel, in [0, 1]
+  double disparityMin = 0, disparityMax = 0;  // the range searched
+  int labels = 0;
+};
+
+// Usage error for an empty light field or an empty/invalid disparity range.
+Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options = {});
+
+// Distance (mm) from the main lens to the plane that a disparity brings into focus; +infinity at
+// or beyond infinity; nullopt without a focal length.
+std::optional<double> distanceFromDisparity(const Optics& optics, double disparity);
+// The map of distances for a disparity map (mm; +infinity beyond infinity). Usage error without
+// optics or focal length.
+Result<Image> distanceMap(const LightFieldMetadata& metadata, const Image& disparity);
+
+// The HCI 4D light field benchmark's scores (Honauer et al. 2016, toolkit `evaluate`): over the
+// pixels at least `border` pixels inside the image (15 in the benchmark) whose ground truth is
+// finite,
+//   badPix = 100 * fraction with |estimate - truth| > threshold   (BadPix(0.07) for 0.07)
+//   mse100 = 100 * mean (estimate - truth)^2                      (MSE x 100)
+// A non-finite estimate is scored as an error of |truth| + 1, so that a hole cannot flatter.
+struct DisparityScores {
+  double badPix = 0;
+  double mse100 = 0;
+  long pixels = 0;
+};
+Result<DisparityScores> scoreDisparity(const Image& estimate, const Image& truth, double threshold = 0.07,
+                                       int border = 15);
+
+}  // namespace lfcam

@@ -1,0 +1,316 @@
+// Depth from a light field (depth.hpp): cost volume from the correspondence and defocus cues,
+// guided-filter aggregation, semi-global optimisation, sub-label read-out; distances; scores.
+#include "lfcam/depth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "edof/edof_internal.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/parallel.hpp"
+#include "lfcam/refocus.hpp"
+
+namespace lfcam {
+
+namespace {
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define LFCAM_DEPTH_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define LFCAM_DEPTH_CLONES
+#endif
+
+// Subsets of views compared separately, as bits (a view may belong to several): four
+// half-apertures for occlusion boundaries, u <= 0, u >= 0, v <= 0, v >= 0; and the centre row
+// and the centre column alone, for surfaces strongly slanted in depth along one axis (a floor
+// seen at a grazing angle is foreshortened differently in every view of a column, not of a row).
+constexpr int kHalves = 6;
+
+struct StarView {
+  int u = 0, v = 0;
+  double uc = 0, vc = 0;  // view steps from the aperture centre
+  int halves = 0;         // bit h set: the view is in half-aperture h
+};
+
+// The views compared with the reference: the star through the reference view (its row, its
+// column, both diagonals). A star sees every edge orientation from both sides with a third of
+// the views of the full aperture.
+std::vector<StarView> starViews(const LightField& lightField, int referenceU, int referenceV) {
+  std::vector<StarView> views;
+  for (int v = 0; v < lightField.nv(); ++v)
+    for (int u = 0; u < lightField.nu(); ++u) {
+      if (u == referenceU && v == referenceV) continue;
+      const int du = u - referenceU, dv = v - referenceV;
+      if (du != 0 && dv != 0 && std::abs(du) != std::abs(dv)) continue;
+      StarView view{u, v, lightField.uFromCentre(u), lightField.vFromCentre(v), 0};
+      if (du <= 0) view.halves |= 1;
+      if (du >= 0) view.halves |= 2;
+      if (dv <= 0) view.halves |= 4;
+      if (dv >= 0) view.halves |= 8;
+      if (dv == 0) view.halves |= 16;
+      if (du == 0) view.halves |= 32;
+      views.push_back(view);
+    }
+  return views;
+}
+
+// Samples row y of `plane` (ns x nt) shifted by (shiftX, shiftY), bilinearly, with coordinates
+// clamped to the view: out[x] = plane(x + shiftX, y + shiftY). `padded` is scratch of ns + 2 pad.
+LFCAM_DEPTH_CLONES void sampleShiftedRow(const float* __restrict plane, int ns, int nt, int y, double shiftX,
+                                         double shiftY, int pad, float* __restrict padded, float* __restrict out) {
+  const double rowPosition = y + shiftY;
+  const double rowFloor = std::floor(rowPosition);
+  const float fy = float(rowPosition - rowFloor);
+  const int r0 = std::clamp(int(rowFloor), 0, nt - 1), r1 = std::clamp(int(rowFloor) + 1, 0, nt - 1);
+  const float* row0 = plane + std::size_t(r0) * ns;
+  const float* row1 = plane + std::size_t(r1) * ns;
+  float* body = padded + pad;
+  for (int x = 0; x < ns; ++x) body[x] = row0[x] + fy * (row1[x] - row0[x]);
+  for (int i = 1; i <= pad; ++i) {
+    body[-i] = body[0];
+    body[ns - 1 + i] = body[ns - 1];
+  }
+  const double limit = pad - 2;
+  const double shift = std::clamp(shiftX, -limit, limit);
+  const double shiftFloor = std::floor(shift);
+  const float fx = float(shift - shiftFloor);
+  const float* source = body + int(shiftFloor);
+  for (int x = 0; x < ns; ++x) out[x] = source[x] + fx * (source[x + 1] - source[x]);
+}
+
+// accumulator += (sample - reference)^2
+LFCAM_DEPTH_CLONES void accumulateSquaredDifference(const float* __restrict sample, const float* __restrict reference,
+                                                    float* __restrict accumulator, int count) {
+  for (int x = 0; x < count; ++x) {
+    const float difference = sample[x] - reference[x];
+    accumulator[x] += difference * difference;
+  }
+}
+
+// The correspondence cue for every label: cost[l * n + p], n = ns * nt.
+std::vector<float> correspondenceCost(const LightField& grey, const std::vector<double>& disparities) {
+  const int ns = grey.ns(), nt = grey.nt(), labels = int(disparities.size());
+  const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
+  const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
+  const double referenceUc = grey.uFromCentre(referenceU), referenceVc = grey.vFromCentre(referenceV);
+  const std::size_t n = grey.shape().viewPixels();
+  std::vector<float> cost(n * labels, 0.0f);
+
+  int viewsIn[kHalves] = {};
+  double largestOffset = 0, largestDisparity = 0;
+  for (const StarView& view : views) {
+    for (int h = 0; h < kHalves; ++h) viewsIn[h] += (view.halves >> h) & 1;
+    largestOffset = std::max({largestOffset, std::abs(view.uc), std::abs(view.vc)});
+  }
+  for (double d : disparities) largestDisparity = std::max(largestDisparity, std::abs(d));
+  const int pad = int(std::ceil(largestOffset * largestDisparity)) + 3;
+
+  // Schedule: blocks of rows, every label and view inside a block, so that the accumulators
+  // (4 x rows x ns floats) stay in cache while the views stream through.
+  const int blockRows = 8;
+  const std::size_t blocks = (std::size_t(nt) + blockRows - 1) / blockRows;
+  parallelFor(0, blocks, 1, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> padded(std::size_t(ns) + 2 * pad), sample(ns);
+    std::vector<float> reference(std::size_t(blockRows) * ns);
+    std::vector<float> accumulator(std::size_t(kHalves) * blockRows * ns);
+    for (std::size_t block = begin; block < end; ++block) {
+      const int y0 = int(block) * blockRows, y1 = std::min(nt, y0 + blockRows);
+      for (int l = 0; l < labels; ++l) {
+        const double d = disparities[l];
+        // The reference view brought to the aperture centre's grid (no shift when it is the centre).
+        for (int y = y0; y < y1; ++y)
+          sampleShiftedRow(grey.plane(referenceU, referenceV, 0), ns, nt, y, -referenceUc * d, -referenceVc * d, pad,
+                           padded.data(), reference.data() + std::size_t(y - y0) * ns);
+        std::fill(accumulator.begin(), accumulator.end(), 0.0f);
+        for (const StarView& view : views) {
+          for (int y = y0; y < y1; ++y) {
+            const float* referenceRow = reference.data() + std::size_t(y - y0) * ns;
+            sampleShiftedRow(grey.plane(view.u, view.v, 0), ns, nt, y, -view.uc * d, -view.vc * d, pad,
+                             padded.data(), sample.data());
+            for (int h = 0; h < kHalves; ++h)
+              if ((view.halves >> h) & 1)
+                accumulateSquaredDifference(sample.data(), referenceRow,
+                                            accumulator.data() + (std::size_t(h) * blockRows + (y - y0)) * ns, ns);
+          }
+        }
+        // The best half-aperture: at an occlusion boundary, the half that sees only the surface.
+        for (int y = y0; y < y1; ++y) {
+          float* target = cost.data() + std::size_t(l) * n + std::size_t(y) * ns;
+          for (int x = 0; x < ns; ++x) {
+            float best = std::numeric_limits<float>::infinity();
+            for (int h = 0; h < kHalves; ++h)
+              if (viewsIn[h] > 0)
+                best = std::min(best, accumulator[(std::size_t(h) * blockRows + (y - y0)) * ns + x] / viewsIn[h]);
+            target[x] = std::isfinite(best) ? best : 0.0f;
+          }
+        }
+      }
+    }
+  });
+  return cost;
+}
+
+
+}  // namespace
+
+Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options) {
+  if (lightField.empty() || lightField.ns() < 2 || lightField.nt() < 2)
+    return makeError(ErrorCode::Usage, "depth: the light field is empty");
+  if (lightField.nu() * lightField.nv() < 2)
+    return makeError(ErrorCode::Usage, "depth: the light field has a single view, so no parallax to measure");
+  const double dmin = options.disparityMin.value_or(lightField.metadata.disparityMin.value_or(-2.0));
+  const double dmax = options.disparityMax.value_or(lightField.metadata.disparityMax.value_or(2.0));
+  if (!(std::isfinite(dmin) && std::isfinite(dmax) && dmin < dmax))
+    return makeError(ErrorCode::Usage, "depth: the disparity range [" + std::to_string(dmin) + ", " +
+                                           std::to_string(dmax) + "] is empty");
+  int labels = options.labels;
+  if (labels <= 0) labels = std::clamp(int(std::ceil((dmax - dmin) / 0.1)) + 1, 16, 96);
+  if (labels < 2) return makeError(ErrorCode::Usage, "depth: at least 2 candidate disparities are needed");
+  std::vector<double> disparities(labels);
+  const double step = (dmax - dmin) / (labels - 1);
+  for (int l = 0; l < labels; ++l) disparities[l] = dmin + l * step;
+
+  const int ns = lightField.ns(), nt = lightField.nt();
+  const std::size_t n = lightField.shape().viewPixels();
+  // Matching on sRGB-encoded luminance: roughly uniform in perceived contrast, so that texture in
+  // the shadows counts as much as in the light (in linear light it nearly vanishes).
+  LightField grey = edof::luminanceLightField(lightField);
+  parallelFor(0, grey.samples().size(), 1 << 16, [&](std::size_t begin, std::size_t end) {
+    float* samples = grey.samples().data();
+    for (std::size_t i = begin; i < end; ++i) samples[i] = linearToSrgb(std::max(samples[i], 0.0f));
+  });
+  const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
+  Image guide = grey.subApertureImage(referenceU, referenceV);
+
+  // 1. Correspondence cue.
+  std::vector<float> cost = correspondenceCost(grey, disparities);
+
+  // 2. Defocus cue: the full-aperture photograph at each label, sharpest where the label is right.
+  if (options.defocusWeight > 0) {
+    std::vector<float> energy(n);
+    for (int l = 0; l < labels; ++l) {
+      const Image photo = refocus(grey, disparities[l]);
+      edof::squaredLaplacian(photo, energy.data());
+      float* slice = cost.data() + std::size_t(l) * n;
+      const float weight = float(options.defocusWeight);
+      for (std::size_t i = 0; i < n; ++i) slice[i] -= weight * energy[i];
+    }
+  }
+
+  // 3. Aggregation: guided filter per slice, steered by the reference view.
+  {
+    const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.filterRadius, 0),
+                                    std::max(options.filterEpsilon, 1e-12));
+    parallelFor(0, std::size_t(labels), 1, [&](std::size_t begin, std::size_t end) {
+      std::vector<float> filtered(n);
+      for (std::size_t l = begin; l < end; ++l) {
+        float* slice = cost.data() + l * n;
+        filter.apply(slice, filtered.data());
+        std::copy(filtered.begin(), filtered.end(), slice);
+      }
+    });
+  }
+
+  // Pixel-major for the optimisation; and the typical depth of a cost minimum (mean over pixels
+  // of mean - min), the scale of the penalties and of the confidence.
+  std::vector<float> volume(n * labels);
+  parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p)
+      for (int l = 0; l < labels; ++l) volume[p * labels + l] = cost[std::size_t(l) * n + p];
+  });
+  cost.clear();
+  cost.shrink_to_fit();
+  double contrastSum = 0;
+  std::vector<float> meanCost(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const float* c = &volume[p * labels];
+    double sum = 0;
+    float lowest = c[0];
+    for (int l = 0; l < labels; ++l) sum += c[l], lowest = std::min(lowest, c[l]);
+    meanCost[p] = float(sum / labels);
+    contrastSum += meanCost[p] - lowest;
+  }
+  const double scale = std::max(contrastSum / double(n), 1e-12);
+
+  // 4. Semi-global optimisation, then the read-out.
+  std::vector<float> label(n);
+  if (options.smoothness > 0) {
+    const float p1 = float(0.03 * scale * options.smoothness), p2 = float(0.6 * scale * options.smoothness);
+    const std::vector<float> summed =
+        edof::semiGlobalMatching(volume, ns, nt, labels, guide.plane(0), p1, p2, /*edgeScale=*/0.01f);
+    edof::winnerTakesAll(summed, ns, nt, labels, label.data());
+    // Between labels: the parabola through the aggregated (not optimised) cost around the
+    // optimiser's label, whose curve is not flattened by the penalties.
+    parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t p = begin; p < end; ++p) {
+        const int best = std::clamp(int(std::lround(label[p])), 0, labels - 1);
+        const float* c = &volume[p * labels];
+        double offset = 0;
+        if (best > 0 && best + 1 < labels) {
+          const double curvature = c[best - 1] - 2.0 * c[best] + c[best + 1];
+          if (curvature > 0) offset = std::clamp(0.5 * (c[best - 1] - c[best + 1]) / curvature, -0.5, 0.5);
+        }
+        label[p] = float(best + offset);
+      }
+    });
+  } else {
+    edof::winnerTakesAll(volume, ns, nt, labels, label.data());
+  }
+
+  DepthMap result{Image(ns, nt, 1), Image(ns, nt, 1), dmin, dmax, labels};
+  for (std::size_t p = 0; p < n; ++p) {
+    result.disparity.plane(0)[p] = float(dmin + label[p] * step);
+    const int chosen = std::clamp(int(std::lround(label[p])), 0, labels - 1);
+    const double depthOfMinimum = meanCost[p] - volume[p * labels + chosen];
+    result.confidence.plane(0)[p] = float(std::clamp(1.0 - std::exp(-std::max(depthOfMinimum, 0.0) / scale), 0.0, 1.0));
+  }
+  return result;
+}
+
+std::optional<double> distanceFromDisparity(const Optics& optics, double disparity) {
+  if (!optics.focalLengthMm || !(*optics.focalLengthMm > 0) || !(optics.lensToMicrolensMm > 0)) return std::nullopt;
+  const double alpha = optics.alphaFromSlope(disparity);
+  const double film = alpha * optics.lensToMicrolensMm;
+  const double inverse = 1.0 / *optics.focalLengthMm - 1.0 / film;  // 1/z = 1/f - 1/(alpha F)
+  if (!(alpha > 0) || !(inverse > 0)) return std::numeric_limits<double>::infinity();
+  return 1.0 / inverse;
+}
+
+Result<Image> distanceMap(const LightFieldMetadata& metadata, const Image& disparity) {
+  if (!metadata.optics || !metadata.optics->focalLengthMm)
+    return makeError(ErrorCode::Usage,
+                     "depth: the light field carries no optics with a focal length, so no metric distance");
+  Image out(disparity.width(), disparity.height(), 1);
+  for (std::size_t i = 0; i < out.planeSize(); ++i)
+    out.plane(0)[i] = float(distanceFromDisparity(*metadata.optics, disparity.plane(0)[i]).value_or(0.0));
+  return out;
+}
+
+Result<DisparityScores> scoreDisparity(const Image& estimate, const Image& truth, double threshold, int border) {
+  if (estimate.width() != truth.width() || estimate.height() != truth.height() || estimate.channels() < 1 ||
+      truth.channels() < 1)
+    return makeError(ErrorCode::Usage, "scores: the estimate is " + std::to_string(estimate.width()) + "x" +
+                                           std::to_string(estimate.height()) + " but the ground truth " +
+                                           std::to_string(truth.width()) + "x" + std::to_string(truth.height()));
+  DisparityScores scores;
+  long bad = 0;
+  double squares = 0;
+  for (int y = border; y < truth.height() - border; ++y)
+    for (int x = border; x < truth.width() - border; ++x) {
+      const double t = truth.at(x, y, 0);
+      if (!std::isfinite(t)) continue;
+      const double e = estimate.at(x, y, 0);
+      const double error = std::isfinite(e) ? std::abs(e - t) : std::abs(t) + 1;
+      bad += error > threshold;
+      squares += error * error;
+      ++scores.pixels;
+    }
+  if (scores.pixels == 0) return makeError(ErrorCode::Usage, "scores: no pixel with ground truth inside the border");
+  scores.badPix = 100.0 * double(bad) / double(scores.pixels);
+  scores.mse100 = 100.0 * squares / double(scores.pixels);
+  return scores;
+}
+
+}  // namespace lfcam

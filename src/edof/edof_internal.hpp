@@ -1,0 +1,66 @@
+// Building blocks shared by depth estimation and the all-in-focus photomontage (src/edof/).
+// Planes are row-major width x height float arrays.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "lfcam/image.hpp"
+#include "lfcam/light_field.hpp"
+
+namespace lfcam::edof {
+
+// Rec. 709 luminance of a linear image (the mean for other channel counts): one channel.
+Image luminance(const Image& image);
+// The light field of luminance: same views, one channel, weight kept.
+LightField luminanceLightField(const LightField& lightField);
+
+// Mean over the (2 r + 1)^2 window clipped to the image, in O(1) per pixel.
+void boxFilter(const float* in, float* out, int width, int height, int radius);
+// Squared 4-neighbour Laplacian of channel 0, borders clamped: a focus energy per pixel.
+void squaredLaplacian(const Image& image, float* out);
+
+// Guided filter (He, Sun and Tang 2010) with a grey guide: an edge-preserving smoothing whose
+// output is locally a linear function of the guide. Prepared once per guide, applied to many
+// inputs (the slices of a cost volume). Thread-safe apply.
+class GuidedFilter {
+ public:
+  GuidedFilter(const float* guide, int width, int height, int radius, double epsilon);
+  void apply(const float* in, float* out) const;
+
+ private:
+  int width_, height_, radius_;
+  std::vector<float> guide_, meanGuide_, inverseVariance_;  // 1 / (var + eps)
+};
+
+// Semi-global optimisation (Hirschmueller 2008) of a cost volume stored pixel-major:
+// cost[(y * width + x) * labels + l]. Sums, over 8 path directions, the path costs
+//   Lr(p, l) = C(p, l) + min(Lr(p-r, l), Lr(p-r, l+-1) + P1, min_k Lr(p-r, k) + P2(p)) - min_k Lr(p-r, k)
+// with P2(p) = max(P1, P2 / (1 + |I(p) - I(p-r)| / edgeScale)) lowered across edges of `guide`.
+// Returns the summed volume, same layout.
+std::vector<float> semiGlobalMatching(const std::vector<float>& cost, int width, int height, int labels,
+                                      const float* guide, float p1, float p2, float edgeScale);
+
+// Per pixel: argmin over labels with a parabola through its neighbours: a continuous label in
+// [0, labels - 1].
+void winnerTakesAll(const std::vector<float>& volume, int width, int height, int labels, float* label);
+
+// Laplacian-pyramid (multi-band) blending of Burt and Adelson 1983, accumulated one source at a
+// time so that no stack needs to be held: add(image, weight) for every source whose weights
+// (summing to 1 over sources at each pixel) are not all zero, then result().
+class PyramidBlender {
+ public:
+  PyramidBlender(int width, int height, int channels, int levels);
+  void add(const Image& image, const float* weight);
+  Image result() const;
+
+ private:
+  struct Level {
+    int width, height;
+    std::vector<float> data;  // channels planes
+  };
+  int channels_;
+  std::vector<Level> accumulator_;
+};
+
+}  // namespace lfcam::edof

@@ -1,0 +1,132 @@
+// Luminance, box filter and guided filter (edof_internal.hpp).
+#include <algorithm>
+#include <cmath>
+
+#include "edof/edof_internal.hpp"
+#include "lfcam/parallel.hpp"
+
+namespace lfcam::edof {
+
+namespace {
+
+void luminanceOfPlanes(const float* const* planes, int channels, std::size_t count, float* out) {
+  if (channels == 3) {
+    for (std::size_t i = 0; i < count; ++i)
+      out[i] = 0.2126f * planes[0][i] + 0.7152f * planes[1][i] + 0.0722f * planes[2][i];
+    return;
+  }
+  const float scale = 1.0f / float(std::max(channels, 1));
+  std::fill(out, out + count, 0.0f);
+  for (int c = 0; c < channels; ++c)
+    for (std::size_t i = 0; i < count; ++i) out[i] += scale * planes[c][i];
+}
+
+}  // namespace
+
+Image luminance(const Image& image) {
+  Image out(image.width(), image.height(), 1);
+  std::vector<const float*> planes;
+  for (int c = 0; c < image.channels(); ++c) planes.push_back(image.plane(c));
+  luminanceOfPlanes(planes.data(), image.channels(), image.planeSize(), out.plane(0));
+  return out;
+}
+
+LightField luminanceLightField(const LightField& lightField) {
+  LightFieldShape shape = lightField.shape();
+  shape.channels = 1;
+  LightField out(shape);
+  out.metadata = lightField.metadata;
+  parallelFor(0, shape.views(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t view = begin; view < end; ++view) {
+      const int u = int(view % shape.nu), v = int(view / shape.nu);
+      std::vector<const float*> planes;
+      for (int c = 0; c < lightField.channels(); ++c) planes.push_back(lightField.plane(u, v, c));
+      luminanceOfPlanes(planes.data(), lightField.channels(), shape.viewPixels(), out.plane(u, v, 0));
+    }
+  });
+  if (lightField.hasWeight()) {
+    out.enableWeight();
+    std::copy(lightField.weights().begin(), lightField.weights().end(), out.weights().begin());
+  }
+  return out;
+}
+
+// Two passes of running sums (rows, then columns), each in double to keep long sums exact
+// enough; the window is clipped at the borders and the mean taken over what remains.
+void boxFilter(const float* in, float* out, int width, int height, int radius) {
+  std::vector<float> horizontal(std::size_t(width) * height);
+  std::vector<double> prefix(std::size_t(std::max(width, height)) + 1);
+  for (int y = 0; y < height; ++y) {
+    const float* row = in + std::size_t(y) * width;
+    prefix[0] = 0;
+    for (int x = 0; x < width; ++x) prefix[x + 1] = prefix[x] + row[x];
+    float* target = horizontal.data() + std::size_t(y) * width;
+    for (int x = 0; x < width; ++x) {
+      const int x0 = std::max(0, x - radius), x1 = std::min(width, x + radius + 1);
+      target[x] = float((prefix[x1] - prefix[x0]) / (x1 - x0));
+    }
+  }
+  // Columns: running sums along y, all columns of a row at once (contiguous).
+  std::vector<double> columnSum(width, 0.0);
+  auto addRow = [&](int y, double sign) {
+    const float* row = horizontal.data() + std::size_t(y) * width;
+    for (int x = 0; x < width; ++x) columnSum[x] += sign * row[x];
+  };
+  for (int y = 0; y < std::min(radius, height); ++y) addRow(y, 1);
+  for (int y = 0; y < height; ++y) {
+    if (y + radius < height) addRow(y + radius, 1);
+    if (y - radius - 1 >= 0) addRow(y - radius - 1, -1);
+    const int count = std::min(height, y + radius + 1) - std::max(0, y - radius);
+    float* target = out + std::size_t(y) * width;
+    for (int x = 0; x < width; ++x) target[x] = float(columnSum[x] / count);
+  }
+}
+
+GuidedFilter::GuidedFilter(const float* guide, int width, int height, int radius, double epsilon)
+    : width_(width), height_(height), radius_(radius) {
+  const std::size_t n = std::size_t(width) * height;
+  guide_.assign(guide, guide + n);
+  meanGuide_.resize(n);
+  inverseVariance_.resize(n);
+  boxFilter(guide, meanGuide_.data(), width, height, radius);
+  std::vector<float> squares(n), meanSquares(n);
+  for (std::size_t i = 0; i < n; ++i) squares[i] = guide[i] * guide[i];
+  boxFilter(squares.data(), meanSquares.data(), width, height, radius);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double variance = std::max(0.0, double(meanSquares[i]) - double(meanGuide_[i]) * meanGuide_[i]);
+    inverseVariance_[i] = float(1.0 / (variance + epsilon));
+  }
+}
+
+// q = mean(a) I + mean(b), a = cov(I, p) / (var(I) + eps), b = mean(p) - a mean(I).
+void GuidedFilter::apply(const float* in, float* out) const {
+  const std::size_t n = std::size_t(width_) * height_;
+  std::vector<float> product(n), meanIn(n), meanProduct(n);
+  for (std::size_t i = 0; i < n; ++i) product[i] = guide_[i] * in[i];
+  boxFilter(in, meanIn.data(), width_, height_, radius_);
+  boxFilter(product.data(), meanProduct.data(), width_, height_, radius_);
+  std::vector<float>& a = product;  // reuse
+  for (std::size_t i = 0; i < n; ++i) {
+    a[i] = (meanProduct[i] - meanGuide_[i] * meanIn[i]) * inverseVariance_[i];
+    meanIn[i] -= a[i] * meanGuide_[i];  // b
+  }
+  boxFilter(a.data(), meanProduct.data(), width_, height_, radius_);
+  boxFilter(meanIn.data(), out, width_, height_, radius_);
+  for (std::size_t i = 0; i < n; ++i) out[i] += meanProduct[i] * guide_[i];
+}
+
+void squaredLaplacian(const Image& image, float* out) {
+  const int w = image.width(), h = image.height();
+  const float* p = image.plane(0);
+  for (int y = 0; y < h; ++y) {
+    const int ya = std::max(y - 1, 0), yb = std::min(y + 1, h - 1);
+    for (int x = 0; x < w; ++x) {
+      const int xa = std::max(x - 1, 0), xb = std::min(x + 1, w - 1);
+      const float lap = p[std::size_t(y) * w + xa] + p[std::size_t(y) * w + xb] + p[std::size_t(ya) * w + x] +
+                        p[std::size_t(yb) * w + x] - 4 * p[std::size_t(y) * w + x];
+      out[std::size_t(y) * w + x] = lap * lap;
+    }
+  }
+}
+
+}  // namespace lfcam::edof

@@ -1,0 +1,104 @@
+// Depth estimation measured on layered-planes light fields (exact ground truth), the HCI
+// benchmark's scores on hand-made maps, distances from disparities, and the colour map.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "lfcam/colour_map.hpp"
+#include "lfcam/depth.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/layered_planes.hpp"
+
+namespace lfcam {
+namespace {
+
+Image constantImage(int size, float value) {
+  Image image(size, size, 1);
+  for (float& v : image.pixels()) v = value;
+  return image;
+}
+
+TEST(DisparityScores, CountTheBorderOutAndScoreAsTheBenchmark) {
+  const int size = 40;  // 10 x 10 pixels inside a 15-pixel border
+  const Image truth = constantImage(size, 1.0f);
+  Image estimate = constantImage(size, 1.0f);
+  // Inside: 10 pixels off by 0.1 (bad), 10 off by 0.05 (good); outside the border: way off.
+  for (int i = 0; i < 10; ++i) estimate.at(15 + i, 15, 0) = 1.1f, estimate.at(15 + i, 16, 0) = 1.05f;
+  estimate.at(0, 0, 0) = 100.0f;
+  estimate.at(14, 20, 0) = 100.0f;
+  auto scores = scoreDisparity(estimate, truth);
+  ASSERT_TRUE(scores) << scores.error().message;
+  EXPECT_EQ(scores->pixels, 100);
+  EXPECT_NEAR(scores->badPix, 10.0, 1e-9);
+  EXPECT_NEAR(scores->mse100, 100.0 * (10 * 0.01 + 10 * 0.0025) / 100, 1e-5);
+}
+
+TEST(DisparityScores, SkipUnknownTruthAndPenaliseHoles) {
+  Image truth = constantImage(32, 0.5f), estimate = constantImage(32, 0.5f);
+  truth.at(16, 16, 0) = std::numeric_limits<float>::quiet_NaN();
+  estimate.at(15, 16, 0) = std::numeric_limits<float>::quiet_NaN();
+  auto scores = scoreDisparity(estimate, truth, 0.07, 15);
+  ASSERT_TRUE(scores);
+  EXPECT_EQ(scores->pixels, 3);  // 2 x 2 inside, one without truth
+  EXPECT_NEAR(scores->badPix, 100.0 / 3, 1e-9);
+  EXPECT_FALSE(scoreDisparity(constantImage(8, 0), constantImage(9, 0)));
+}
+
+// The default scene (four planes at -1, 0, 0.8, 1.6 with occlusions), 9x9 views of 128x128.
+TEST(DepthLayeredPlanes, MeetsTheBenchmarkScoresWithExactTruth) {
+  const LayeredPlanesLightField scene = renderLayeredPlanes(defaultLayeredPlanesScene(9, 128));
+  auto depth = estimateDepth(scene.lightField);
+  ASSERT_TRUE(depth) << depth.error().message;
+  EXPECT_DOUBLE_EQ(depth->disparityMin, -1.0);
+  EXPECT_DOUBLE_EQ(depth->disparityMax, 1.6);
+  auto scores = scoreDisparity(depth->disparity, scene.disparity);
+  ASSERT_TRUE(scores);
+  std::printf("layered planes 9x9x128x128: BadPix(0.07) %.2f %%, MSE x100 %.3f\n", scores->badPix, scores->mse100);
+  EXPECT_LT(scores->badPix, 13.0);  // measured 9.4 %
+  EXPECT_LT(scores->mse100, 18.0);   // measured 13.4
+  // Confidence is a fraction, and higher on the textured planes than nowhere.
+  for (float c : depth->confidence.pixels()) ASSERT_TRUE(c >= 0 && c <= 1);
+}
+
+TEST(DepthLayeredPlanes, RefusesAnEmptyRange) {
+  const LayeredPlanesLightField scene = renderLayeredPlanes(defaultLayeredPlanesScene(3, 16));
+  EXPECT_FALSE(estimateDepth(scene.lightField, {.disparityMin = 1.0, .disparityMax = 1.0}));
+  EXPECT_FALSE(estimateDepth(LightField()));
+}
+
+TEST(Distance, ThinLensThroughTheRefocusDepth) {
+  const Optics optics = defaultLayeredPlanesScene().optics;  // f 90 mm, F 100 mm
+  // Slope 0 is the plane in focus at capture: 1/z = 1/90 - 1/100.
+  EXPECT_NEAR(*distanceFromDisparity(optics, 0.0), 900.0, 1e-6);
+  // Positive disparity is nearer.
+  EXPECT_LT(*distanceFromDisparity(optics, 1.0), 900.0);
+  EXPECT_GT(*distanceFromDisparity(optics, -1.0), 900.0);
+  // Focus beyond infinity.
+  EXPECT_TRUE(std::isinf(*distanceFromDisparity(optics, -100.0)));
+  Optics unknown = optics;
+  unknown.focalLengthMm.reset();
+  EXPECT_FALSE(distanceFromDisparity(unknown, 0.0));
+}
+
+TEST(ColourMap, TurboRunsFromBlueToRed) {
+  float low[3], high[3], middle[3];
+  turbo(0.1, low), turbo(0.95, high), turbo(0.5, middle);
+  EXPECT_GT(low[2], low[0]);     // blue end
+  EXPECT_GT(high[0], high[2]);   // red end
+  EXPECT_GT(middle[1], low[1]);  // bright green-yellow middle
+  Image ramp(4, 1, 1);
+  for (int x = 0; x < 4; ++x) ramp.at(x, 0, 0) = float(x);
+  ramp.at(3, 0, 0) = std::numeric_limits<float>::infinity();
+  const Image picture = colourMap(ramp);
+  EXPECT_EQ(picture.channels(), 3);
+  EXPECT_EQ(picture.at(3, 0, 0), 0.0f);  // non-finite: black
+  float start[3], end[3];
+  turbo(0.0, start), turbo(1.0, end);
+  EXPECT_NEAR(picture.at(0, 0, 2), start[2], 1e-6);  // the finite range [0, 2] spans the map
+  EXPECT_NEAR(picture.at(2, 0, 0), end[0], 1e-6);
+}
+
+}  // namespace
+}  // namespace lfcam

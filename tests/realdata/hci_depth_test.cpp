@@ -1,0 +1,55 @@
+// Depth and all-in-focus on the real HCI benchmark scene "antinous" (9x9 views of 512x512), scored
+// against its ground-truth disparity as the benchmark scores (depth.hpp: BadPix(0.07), MSE x100,
+// 15-pixel border left out).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "lfcam/all_in_focus.hpp"
+#include "lfcam/depth.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/refocus.hpp"
+#include "sharpness.hpp"
+#include "test_support.hpp"
+
+namespace lfcam {
+namespace {
+
+TEST(HciAntinousDepth, ScoresAndAllInFocus) {
+  LFCAM_REQUIRE_SHARED_DATA("hci-antinous", dir);
+  auto lightField = readLightField(dir);
+  ASSERT_TRUE(lightField) << lightField.error().message;
+  auto truth = readImage(dir / "gt_disp_lowres.pfm");
+  ASSERT_TRUE(truth) << truth.error().message;
+
+  auto depth = estimateDepth(*lightField);
+  ASSERT_TRUE(depth) << depth.error().message;
+  auto scores = scoreDisparity(depth->disparity, *truth);
+  ASSERT_TRUE(scores) << scores.error().message;
+  std::printf("hci-antinous: BadPix(0.07) %.2f %%, MSE x100 %.3f\n", scores->badPix, scores->mse100);
+  // Measured 21.9 % and 35.1 (the goal of 7 % is not reached yet).
+  EXPECT_LT(scores->badPix, 25.0);
+  EXPECT_LT(scores->mse100, 45.0);
+
+  // The all-in-focus photograph from that depth: as sharp as the sharpest of the photographs
+  // focused on the nearest (the face) and the farthest (the wall) part, in both.
+  auto photo = allInFocus(*lightField, {.disparity = &depth->disparity});
+  ASSERT_TRUE(photo) << photo.error().message;
+  const Image nearFocus = refocus(*lightField, 2.0), farFocus = refocus(*lightField, -2.6);
+  struct Window {
+    const char* name;
+    int x0, y0, x1, y1;
+  } windows[] = {{"hair (near)", 200, 60, 300, 120}, {"wall (far)", 400, 20, 490, 100}};
+  for (const Window& w : windows) {
+    const double all = test::laplacianVariance(photo->photo, w.x0, w.y0, w.x1, w.y1);
+    const double nearSharpness = test::laplacianVariance(nearFocus, w.x0, w.y0, w.x1, w.y1);
+    const double farSharpness = test::laplacianVariance(farFocus, w.x0, w.y0, w.x1, w.y1);
+    std::printf("%s: all-in-focus %.3g, focused near %.3g, focused far %.3g\n", w.name, all, nearSharpness,
+                farSharpness);
+    EXPECT_GT(all, 0.9 * std::max(nearSharpness, farSharpness)) << w.name;
+  }
+}
+
+}  // namespace
+}  // namespace lfcam

@@ -1,0 +1,61 @@
+// lfcam depth INPUT -o DEPTH.pfm [--confidence FILE] [--png FILE] [--distance FILE]: the
+// disparity seen through the aperture centre (pixels per view step, HCI convention), from the
+// correspondence and defocus cues of the light field (depth.hpp).
+#include <memory>
+#include <optional>
+
+#include "commands.hpp"
+#include "lfcam/colour_map.hpp"
+#include "lfcam/depth.hpp"
+#include "lfcam/image_io.hpp"
+
+namespace lfcam::cli {
+
+void addDepthCommand(CLI::App& app, Job& job) {
+  struct Options {
+    InputOptions input;
+    std::string output, confidence, png, distance;
+    DepthOptions depth;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand(
+      "depth", "disparity map of the aperture centre (pixels per view step), and distance when the optics are known");
+  addInputOptions(*command, options->input);
+  command->add_option("-o,--output", options->output, "disparity map (.pfm as the HCI benchmark, .exr, .tif)")
+      ->required();
+  command->add_option("--confidence", options->confidence, "confidence map in [0, 1] (.pfm, .exr, .tif, .png)");
+  command->add_option("--png", options->png, "the disparity colour-mapped (Turbo: far blue, near red) for people");
+  command->add_option("--distance", options->distance,
+                      "distance from the main lens in mm, float image (needs optics with a focal length)");
+  command->add_option("--min", options->depth.disparityMin, "smallest disparity searched (default: metadata, else -2)");
+  command->add_option("--max", options->depth.disparityMax, "largest disparity searched (default: metadata, else 2)");
+  command->add_option("--labels", options->depth.labels, "candidate disparities (default: one per 0.1 px)")
+      ->check(CLI::Range(2, 1024));
+  command->add_option("--smoothness", options->depth.smoothness, "regularisation strength (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command->callback([options, &job] {
+    job = [options]() -> Status {
+      auto lightField = loadInput(options->input);
+      if (!lightField) return lightField.error();
+      if (!options->distance.empty() && !(lightField->metadata.optics && lightField->metadata.optics->focalLengthMm))
+        return makeError(ErrorCode::Usage, options->input.path +
+                                               ": no optics metadata with a focal length, so --distance cannot be "
+                                               "computed; the disparity map needs none");
+      auto depth = estimateDepth(*lightField, options->depth);
+      if (!depth) return makeError(depth.error().code, options->input.path + ": " + depth.error().message);
+      LFCAM_TRY(writeImage(options->output, depth->disparity));
+      if (!options->confidence.empty()) LFCAM_TRY(writeImage(options->confidence, depth->confidence));
+      if (!options->png.empty())
+        LFCAM_TRY(writeImage(options->png, colourMap(depth->disparity, depth->disparityMin, depth->disparityMax)));
+      if (!options->distance.empty()) {
+        auto distance = distanceMap(lightField->metadata, depth->disparity);
+        if (!distance) return distance.error();
+        LFCAM_TRY(writeImage(options->distance, *distance));
+      }
+      return {};
+    };
+  });
+}
+
+}  // namespace lfcam::cli

@@ -1,0 +1,54 @@
+// lfcam edof INPUT -o OUT [--depth DEPTH.pfm]: a photograph with everything in focus, composed
+// from photographs refocused at many depths (section 5.2, Figure 15; all_in_focus.hpp). With
+// --depth, the slices follow that disparity map (e.g. from `lfcam depth`); without, a focus
+// measure on the focal stack chooses them.
+#include <memory>
+#include <optional>
+
+#include "commands.hpp"
+#include "lfcam/all_in_focus.hpp"
+#include "lfcam/colour_map.hpp"
+#include "lfcam/image_io.hpp"
+
+namespace lfcam::cli {
+
+void addEdofCommand(CLI::App& app, Job& job) {
+  struct Options {
+    InputOptions input;
+    std::string output, depth, labels;
+    AllInFocusOptions edof;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command =
+      app.add_subcommand("edof", "extended depth of field: all-in-focus photomontage of a focal stack (Figure 15)");
+  addInputOptions(*command, options->input);
+  command->add_option("-o,--output", options->output, "output image (.png, .tif, .exr, .jpg, .pfm)")->required();
+  command->add_option("--depth", options->depth, "disparity map of the aperture centre (as `lfcam depth` writes)");
+  command->add_option("--slices-png", options->labels, "the slope chosen per pixel, colour-mapped, for people");
+  command->add_option("--min", options->edof.disparityMin, "smallest slope of the focal stack");
+  command->add_option("--max", options->edof.disparityMax, "largest slope of the focal stack");
+  command->add_option("--step", options->edof.sliceStep, "slope between slices (default: 1 / (views - 1))")
+      ->check(CLI::PositiveNumber);
+  command->callback([options, &job] {
+    job = [options]() -> Status {
+      auto lightField = loadInput(options->input);
+      if (!lightField) return lightField.error();
+      std::optional<Image> disparity;
+      if (!options->depth.empty()) {
+        auto read = readImage(options->depth);
+        if (!read) return read.error();
+        disparity = std::move(*read);
+        options->edof.disparity = &*disparity;
+      }
+      auto result = allInFocus(*lightField, options->edof);
+      if (!result) return makeError(result.error().code, options->input.path + ": " + result.error().message);
+      LFCAM_TRY(writeImage(options->output, result->photo));
+      if (!options->labels.empty())
+        LFCAM_TRY(writeImage(options->labels,
+                             colourMap(result->slope, result->slopes.front(), result->slopes.back())));
+      return {};
+    };
+  });
+}
+
+}  // namespace lfcam::cli
