@@ -10,8 +10,11 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "lfcam/all_in_focus.hpp"
 #include "lfcam/atomic_file.hpp"
+#include "lfcam/colour_map.hpp"
 #include "lfcam/contact_sheet.hpp"
+#include "lfcam/depth.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/refocus.hpp"
@@ -25,14 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Disparity as a grey image for people: near (large disparity) bright, far dark.
-Image disparityPicture(const Image& disparity, double lo, double hi) {
-  Image picture(disparity.width(), disparity.height(), 1);
-  const double range = std::max(hi - lo, 1e-9);
-  for (std::size_t i = 0; i < disparity.pixels().size(); ++i)
-    picture.pixels()[i] = srgbToLinear(float(std::clamp((disparity.pixels()[i] - lo) / range, 0.0, 1.0)));
-  return picture;
-}
 
 // Photographs next to each other, `gap` pixels apart on a dark background.
 Image sideBySide(const std::vector<const Image*>& images, int gap) {
@@ -124,7 +119,10 @@ one focused on each plane, then the ground-truth disparity and every sub-apertur
          << " px/view</figcaption></figure>\n";
   html << R"(<h2>The scene</h2>
 <figure><img src="centre-view.png"><figcaption>centre sub-aperture view (pinhole, everything sharp, noisier in a real camera)</figcaption></figure>
-<figure><img src="disparity.png"><figcaption>ground-truth disparity (bright = near); values in disparity.pfm</figcaption></figure>
+<figure><img src="disparity.png"><figcaption>ground-truth disparity (red = near, blue = far); values in disparity.pfm</figcaption></figure>
+<h2>Depth and extended depth of field, from the light field alone</h2>
+<figure><img src="depth-estimate.png"><figcaption>estimated disparity (lfcam depth), same colours</figcaption></figure>
+<figure><img src="all-in-focus.png"><figcaption>all in focus (lfcam edof): a focal stack composited, full-aperture light</figcaption></figure>
 <h2>The plenoptic camera, simulated</h2>
 <p>The scene <code>people</code> traced ray by ray through the paper's prototype (140 mm main lens at image-side f/4,
 125 &micro;m microlenses of f/4, 9 &micro;m pixels) at 1400&times;1400 pixels: under each microlens, an image of the
@@ -173,8 +171,16 @@ Status runDemo(const fs::path& dir) {
     // The nearest and the farthest focus side by side: the picture of the README.
     LFCAM_TRY(writeImage(out / "near-and-far.png", sideBySide({&photos.front(), &photos.back()}, 8)));
     LFCAM_TRY(writeImage(out / "disparity.pfm", made.disparity));
-    LFCAM_TRY(writeImage(out / "disparity.png",
-                         disparityPicture(made.disparity, slopes.back(), slopes.front())));
+    LFCAM_TRY(writeImage(out / "disparity.png", colourMap(made.disparity, slopes.back(), slopes.front())));
+    // Range finding and extended depth of field from the light field alone.
+    auto depth = estimateDepth(lf);
+    if (!depth) return depth.error();
+    LFCAM_TRY(writeImage(out / "depth-estimate.pfm", depth->disparity));
+    LFCAM_TRY(writeImage(out / "depth-estimate.png", colourMap(depth->disparity, slopes.back(), slopes.front())));
+    auto sharp = allInFocus(lf, {.disparity = &depth->disparity});
+    if (!sharp) return sharp.error();
+    LFCAM_TRY(writeImage(out / "all-in-focus.png", sharp->photo));
+    std::printf("  estimated depth -> depth-estimate.png, extended depth of field -> all-in-focus.png\n");
     LFCAM_TRY(captureWithTheCamera(out));
     LFCAM_TRY(writeText(out / "index.html", indexPage(lf, slopes)));
     return {};
