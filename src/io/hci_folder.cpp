@@ -1,16 +1,18 @@
 // The HCI 4D light field benchmark's layout: input_CamNNN.png numbered row-major from the top-left
-// view (NNN = v * nu + u), and parameters.cfg, an INI file of which lfcam uses num_cams_x,
-// num_cams_y (the grid) and disp_min, disp_max (the scene's disparity range).
+// view (NNN = v * nu + u), and parameters.cfg (hci_parameters.hpp), of which lfcam uses num_cams_x,
+// num_cams_y (the grid), disp_min, disp_max (the scene's disparity range) and the virtual camera
+// (optics, for metric distances).
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <map>
+#include <cstdint>
 #include <sstream>
 #include <system_error>
 
 #include "io/io_support.hpp"
+#include "lfcam/hci_parameters.hpp"
 #include "io/view_folder.hpp"
 
 namespace lfcam::io {
@@ -20,43 +22,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::string_view kPrefix = "input_Cam";
-
-std::string trim(const std::string& text) {
-  const auto begin = text.find_first_not_of(" \t\r");
-  if (begin == std::string::npos) return {};
-  return text.substr(begin, text.find_last_not_of(" \t\r") - begin + 1);
-}
-
-// key -> value of an INI file, keys lower case, sections ignored (HCI keys are unique).
-Result<std::map<std::string, std::string>> readConfig(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) return fileError(ErrorCode::Io, path, "cannot open");
-  std::map<std::string, std::string> values;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    line = trim(line);
-    if (line.empty() || line[0] == '#' || line[0] == ';' || line[0] == '[') continue;
-    const auto separator = line.find_first_of("=:");
-    if (separator == std::string::npos)
-      return fileError(ErrorCode::Format, path, "line " + std::to_string(number) + ": expected 'key = value'");
-    std::string key = trim(line.substr(0, separator));
-    std::transform(key.begin(), key.end(), key.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
-    values[key] = trim(line.substr(separator + 1));
-  }
-  return values;
-}
-
-Result<std::optional<double>> numberFrom(const fs::path& path, const std::map<std::string, std::string>& config,
-                                         const std::string& key) {
-  const auto found = config.find(key);
-  if (found == config.end()) return std::optional<double>();
-  const std::string& text = found->second;
-  double value = 0;
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
-    return fileError(ErrorCode::Format, path, key + " = '" + text + "' is not a number");
-  return std::optional<double>(value);
-}
 
 std::string shortest(double value) {
   char buffer[32];
@@ -98,30 +63,21 @@ Result<ViewGrid> placeHciViews(const fs::path& folder, const fs::path& configFol
   std::error_code ec;
   bool gridFromConfig = false;
   fs::path configPath = folder / "parameters.cfg";
-  if (!fs::is_regular_file(configPath, ec)) configPath = configFolder / "parameters.cfg";
-  if (fs::is_regular_file(configPath, ec)) {
-    auto config = readConfig(configPath);
-    if (!config) return config.error();
-    auto columns = numberFrom(configPath, *config, "num_cams_x");
-    if (!columns) return columns.error();
-    auto rows = numberFrom(configPath, *config, "num_cams_y");
-    if (!rows) return rows.error();
-    const auto validCount = [](const std::optional<double>& n) {
-      return n && *n >= 1 && *n <= 100000 && *n == std::floor(*n);
-    };
-    if (*columns || *rows) {
-      if (!validCount(*columns) || !validCount(*rows))
+  if (!fs::exists(configPath, ec)) configPath = configFolder / "parameters.cfg";
+  if (fs::exists(configPath, ec)) {  // a folder of that name is refused by the reader
+    auto parameters = readHciParameters(configPath);
+    if (!parameters) return parameters.error();
+    if (parameters->camerasX || parameters->camerasY) {
+      if (!parameters->camerasX || !parameters->camerasY)
         return fileError(ErrorCode::Format, configPath, "num_cams_x and num_cams_y must both be positive integers");
-      grid.nu = int(**columns);
-      grid.nv = int(**rows);
+      grid.nu = *parameters->camerasX;
+      grid.nv = *parameters->camerasY;
       gridFromConfig = true;
     }
-    for (auto [key, target] : {std::pair{"disp_min", &grid.metadata.disparityMin},
-                               std::pair{"disp_max", &grid.metadata.disparityMax}}) {
-      auto value = numberFrom(configPath, *config, key);
-      if (!value) return value.error();
-      *target = *value;
-    }
+    grid.metadata.disparityMin = parameters->disparityMin;
+    grid.metadata.disparityMax = parameters->disparityMax;
+    // The virtual camera, for metric distances (hci_parameters.hpp).
+    if (auto optics = hciOptics(*parameters)) grid.metadata.optics = optics;
   }
   if (grid.nu == 0) {
     // No parameters.cfg: a square grid.
@@ -133,8 +89,21 @@ Result<ViewGrid> placeHciViews(const fs::path& folder, const fs::path& configFol
     grid.nu = grid.nv = side;
   }
 
-  const int views = grid.nu * grid.nv;
   const std::string gridText = std::to_string(grid.nu) + "x" + std::to_string(grid.nv);
+  // More views than files: a view is missing. Said before allocating, and without int overflow:
+  // parameters.cfg may ask for up to 100000 x 100000 views.
+  const std::uint64_t viewCount = std::uint64_t(grid.nu) * std::uint64_t(grid.nv);
+  if (viewCount > files.size()) {
+    int missing = 0;  // the first gap in the sorted indices
+    for (const auto& file : files) {
+      if (file.first != missing) break;
+      ++missing;
+    }
+    return fileError(ErrorCode::Format, folder / hciViewName(missing, int(std::min<std::uint64_t>(viewCount, INT_MAX))),
+                     "missing view: a " + gridText + " grid needs " + std::to_string(viewCount) + " views, found " +
+                         std::to_string(files.size()));
+  }
+  const int views = int(viewCount);
   grid.files.resize(std::size_t(views));
   for (const auto& [index, path] : files) {
     if (index >= views)
@@ -151,15 +120,28 @@ Result<ViewGrid> placeHciViews(const fs::path& folder, const fs::path& configFol
 }
 
 std::string hciParameters(const LightField& lightField) {
+  const LightFieldMetadata& metadata = lightField.metadata;
+  // The virtual camera, inverting hciOptics, when the optics focus at a finite distance.
+  std::string intrinsics, extrinsics;
+  if (const auto& optics = metadata.optics; optics && optics->focalLengthMm && optics->lensToMicrolensMm > 0) {
+    const double inverseFocus = 1.0 / *optics->focalLengthMm - 1.0 / optics->lensToMicrolensMm;
+    if (inverseFocus > 0 && optics->lensStepMm > 0 && optics->spatialStepMm > 0) {
+      intrinsics = "focal_length_mm = " + shortest(optics->lensToMicrolensMm) + "\nsensor_size_mm = " +
+                   shortest(optics->spatialStepMm * std::max(lightField.ns(), lightField.nt())) + "\n";
+      extrinsics = "baseline_mm = " + shortest(optics->lensStepMm) + "\nfocus_distance_m = " +
+                   shortest(1.0 / inverseFocus / 1000.0) + "\n";
+    }
+  }
   std::ostringstream text;
   text << "# Written by lfcam, in the layout of the HCI 4D light field benchmark.\n"
        << "[intrinsics]\n"
        << "image_resolution_x_px = " << lightField.ns() << "\n"
-       << "image_resolution_y_px = " << lightField.nt() << "\n\n"
+       << "image_resolution_y_px = " << lightField.nt() << "\n"
+       << intrinsics << "\n"
        << "[extrinsics]\n"
        << "num_cams_x = " << lightField.nu() << "\n"
-       << "num_cams_y = " << lightField.nv() << "\n";
-  const LightFieldMetadata& metadata = lightField.metadata;
+       << "num_cams_y = " << lightField.nv() << "\n"
+       << extrinsics;
   if (metadata.disparityMin || metadata.disparityMax) {
     text << "\n[meta]\n";
     if (metadata.disparityMin) text << "disp_min = " << shortest(*metadata.disparityMin) << "\n";

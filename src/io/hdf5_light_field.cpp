@@ -215,6 +215,17 @@ Result<OpenedFile> openLightFieldFile(const fs::path& path) {
   LightFieldShape& shape = opened.info.shape;
   shape = {.nu = int((*dims)[1]), .nv = int((*dims)[0]), .ns = int((*dims)[4]), .nt = int((*dims)[3]),
            .channels = int((*dims)[2])};
+  // Samples the file cannot hold mean a corrupt header (or chunks never written): deflate, the
+  // only filter lfcam writes, compresses at most about 1032:1.
+  {
+    std::error_code ec;
+    const std::uint64_t fileSize = fs::file_size(path, ec);
+    const auto bytes = checkedProduct({(*dims)[0], (*dims)[1], (*dims)[2], (*dims)[3], (*dims)[4], sizeof(float)});
+    if (!ec && (!bytes || *bytes / 1100 > fileSize + 4096))
+      return fileError(ErrorCode::Format, path,
+                       "truncated or corrupt: /lightfield claims " + formatBytes(bytes.value_or(UINT64_MAX)) +
+                           " of samples but the file has only " + std::to_string(fileSize) + " bytes");
+  }
   LFCAM_TRY(checkSampleCount(path, {(*dims)[0], (*dims)[1], (*dims)[2], (*dims)[3], (*dims)[4]}));
 
   if (H5Lexists(file, "weight", H5P_DEFAULT) > 0) {

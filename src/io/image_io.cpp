@@ -111,14 +111,16 @@ Result<std::unique_ptr<OIIO::ImageInput>> openInput(const fs::path& path, Kind k
 }
 
 // A header that promises far more pixels than the file could hold is refused before allocating.
-// Deflate cannot compress better than about 1032:1, so a PNG's pixels fit in ~1100 x its size.
+// Deflate cannot compress better than about 1032:1, so a PNG's pixels fit in ~1100 x its size;
+// no other codec of these formats (LZW, PackBits, JPEG, EXR's RLE/ZIP/PIZ) reaches 4096:1.
 Status checkAgainstFileLength(const fs::path& path, Kind kind, const OIIO::ImageSpec& spec) {
-  if (kind == Kind::Png) {
+  {
     std::error_code ec;
     const std::uint64_t fileSize = fs::file_size(path, ec);
-    const auto bytes = io::checkedProduct({std::uint64_t(spec.width), std::uint64_t(spec.height),
+    const std::uint64_t ratio = kind == Kind::Png ? 1100 : 4096;
+    const auto bytes = checkedProduct({std::uint64_t(spec.width), std::uint64_t(spec.height),
                                            std::uint64_t(spec.nchannels), spec.format.size()});
-    if (!ec && (!bytes || *bytes / 1100 > fileSize + 1024))
+    if (!ec && (!bytes || *bytes / ratio > fileSize + 1024))
       return fileError(ErrorCode::Format, path,
                        "truncated or corrupt: the header claims " + std::to_string(spec.width) + "x" +
                            std::to_string(spec.height) + " pixels but the file has only " +

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <system_error>
 
 namespace lfcam::io {
@@ -29,19 +30,22 @@ Error renamedInMessage(Error error, const fs::path& from, const fs::path& to) {
   return error;
 }
 
-std::optional<std::uint64_t> checkedProduct(std::initializer_list<std::uint64_t> factors) {
-  std::uint64_t product = 1;
-  for (std::uint64_t factor : factors)
-    if (__builtin_mul_overflow(product, factor, &product)) return std::nullopt;
-  return product;
+Status checkSampleCount(const fs::path& path, std::initializer_list<std::uint64_t> dims) {
+  std::optional<std::uint64_t> samples = checkedProduct(dims);
+  std::string what;
+  for (std::uint64_t dim : dims) what += (what.empty() ? "" : " x ") + std::to_string(dim);
+  return checkMemory(path.string(), samples ? checkedProduct({*samples, sizeof(float)}) : samples,
+                     what + " samples");
 }
 
-Status checkSampleCount(const fs::path& path, std::initializer_list<std::uint64_t> dims) {
-  const auto samples = checkedProduct(dims);
-  if (!samples || *samples > kMaxSamples)
-    return fileError(ErrorCode::Resource, path,
-                     "too large: more than " + std::to_string(kMaxSamples) + " samples");
-  return {};
+Status checkFinite(const fs::path& path, std::span<const float> values, std::string_view what) {
+  bool finite = true;
+  for (float value : values) finite &= std::isfinite(value);  // no early exit: vectorises
+  if (finite) return {};
+  const auto bad = std::find_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); });
+  return fileError(ErrorCode::Format, path,
+                   std::string(what) + " " + std::to_string(bad - values.begin()) + " is " +
+                       (std::isnan(*bad) ? "NaN" : "infinite") + "; only finite values are accepted");
 }
 
 Status checkReadableFile(const fs::path& path) {

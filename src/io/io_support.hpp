@@ -1,21 +1,19 @@
 // Helpers shared by the file readers and writers of src/io: error messages that name the file,
-// size arithmetic that cannot overflow, and the memory limit for one input.
+// and the memory budget for one input (memory_budget.hpp).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
+#include "lfcam/memory_budget.hpp"
 #include "lfcam/result.hpp"
 
 namespace lfcam::io {
-
-// The largest image or light field lfcam reads, in float samples (8 GiB): a header asking for
-// more is taken to be corrupt or hostile rather than a reason to try the allocation.
-inline constexpr std::uint64_t kMaxSamples = std::uint64_t(1) << 31;
 
 // "path: what", on one line.
 std::string oneLine(std::string_view text);
@@ -27,11 +25,13 @@ inline Error fileError(ErrorCode code, const std::filesystem::path& path, std::s
 // hidden temporary that should name the user's destination.
 Error renamedInMessage(Error error, const std::filesystem::path& from, const std::filesystem::path& to);
 
-// The product of the factors, or nothing when it would not fit in 64 bits.
-std::optional<std::uint64_t> checkedProduct(std::initializer_list<std::uint64_t> factors);
-
-// A Resource error when width x height x channels (x views) samples exceed kMaxSamples.
+// Ok when width x height x channels (x views) float samples fit in the memory budget
+// (memory_budget.hpp), else a Resource error naming the file, the bytes needed and the limit.
 Status checkSampleCount(const std::filesystem::path& path, std::initializer_list<std::uint64_t> dims);
+
+// A Format error naming the file when a value is NaN or infinite (light-field samples and weights
+// are radiance and trust: a non-finite one would spread through every photograph made from it).
+Status checkFinite(const std::filesystem::path& path, std::span<const float> values, std::string_view what);
 
 // Existing regular file, else an Io or Usage error naming it.
 Status checkReadableFile(const std::filesystem::path& path);

@@ -109,6 +109,7 @@ Result<LightField> readLensletImage(const fs::path& path, const LightFieldReadOp
   auto shape = shapeOf(path, image->width(), image->height(), image->channels(), *views);
   if (!shape) return shape.error();
 
+  LFCAM_TRY(checkSampleCount(path, {shape->views(), shape->viewPixels(), std::uint64_t(shape->channels)}));
   LightField lightField(*shape);
   lightField.metadata.source = path.string();
   const int nu = shape->nu, nv = shape->nv;

@@ -119,13 +119,21 @@ Result<LightField> readLightField(const fs::path& path, const LightFieldReadOpti
   auto source = identify(path, options);
   if (!source) return source.error();
   if (progress) progress(0.0);
-  switch (source->format) {
-    case LightFieldFormat::Hdf5: return io::readHdf5(path, progress);
-    case LightFieldFormat::LensletImage: return io::readLensletImage(path, options, progress);
-    case LightFieldFormat::HciFolder:
-    case LightFieldFormat::RowColumnFolder: return io::readViewGrid(*source->grid, progress);
-  }
-  return fileError(ErrorCode::Unsupported, path, "unknown light-field format");
+  auto lightField = [&]() -> Result<LightField> {
+    switch (source->format) {
+      case LightFieldFormat::Hdf5: return io::readHdf5(path, progress);
+      case LightFieldFormat::LensletImage: return io::readLensletImage(path, options, progress);
+      case LightFieldFormat::HciFolder:
+      case LightFieldFormat::RowColumnFolder: return io::readViewGrid(*source->grid, progress);
+    }
+    return fileError(ErrorCode::Unsupported, path, "unknown light-field format");
+  }();
+  if (!lightField) return lightField;
+  LFCAM_TRY(io::checkFinite(path, lightField->samples(), "sample"));
+  if (lightField->hasWeight())
+    LFCAM_TRY(io::checkFinite(path, {lightField->weightPlane(0, 0), lightField->shape().views() * lightField->shape().viewPixels()},
+                          "weight"));
+  return lightField;
 }
 
 Status writeLightField(const fs::path& path, const LightField& lightField, const LightFieldWriteOptions& options,

@@ -38,6 +38,25 @@ std::uint32_t bigEndian32(const unsigned char* bytes) {
   return std::uint32_t(bytes[0]) << 24 | std::uint32_t(bytes[1]) << 16 | std::uint32_t(bytes[2]) << 8 | bytes[3];
 }
 
+// libpng's default user limit on width and height (PNG_USER_WIDTH_MAX, PNG_USER_HEIGHT_MAX).
+constexpr std::uint32_t kLibpngSideLimit = 1000000;
+
+// The IHDR fields libpng would reject with a message of its own on stderr (PNG specification,
+// section 11.2.2): sizes, and the allowed pairs of bit depth and colour type.
+template <class Corrupt>
+Status checkHeader(const unsigned char* ihdr, const Corrupt& corrupt) {
+  const std::uint32_t width = bigEndian32(ihdr), height = bigEndian32(ihdr + 4);
+  const int depth = ihdr[8], colour = ihdr[9];
+  if (width == 0 || height == 0 || width > kLibpngSideLimit || height > kLibpngSideLimit)
+    return corrupt("corrupt PNG: its header gives a size of " + std::to_string(width) + " x " + std::to_string(height));
+  const bool depthFits = (colour == 0 && (depth == 1 || depth == 2 || depth == 4 || depth == 8 || depth == 16)) ||
+                         (colour == 3 && (depth == 1 || depth == 2 || depth == 4 || depth == 8)) ||
+                         ((colour == 2 || colour == 4 || colour == 6) && (depth == 8 || depth == 16));
+  if (!depthFits || ihdr[10] != 0 || ihdr[11] != 0 || ihdr[12] > 1)
+    return corrupt("corrupt PNG: its header has an invalid bit depth, colour type, compression, filter or interlace");
+  return {};
+}
+
 }  // namespace
 
 Status checkPngStructure(const fs::path& path) {
@@ -75,6 +94,7 @@ Status checkPngStructure(const fs::path& path) {
     in.read(reinterpret_cast<char*>(stored), 4);
     if (in.gcount() != 4) return corrupt("truncated PNG: chunk '" + type + "' has no CRC");
     if (bigEndian32(stored) != ~crc) return corrupt("corrupt PNG: chunk '" + type + "' fails its CRC check");
+    if (type == "IHDR") LFCAM_TRY(checkHeader(data.data(), corrupt));
     if (type == "IDAT") sawData = true;
     if (type == "IEND") break;
   }

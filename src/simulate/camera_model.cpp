@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "lfcam/memory_budget.hpp"
 #include "simulate/json_reader.hpp"
 
 namespace lfcam {
@@ -82,6 +83,9 @@ Status CameraModel::validate(const std::string& where) const {
     return bad("camera.main_lens.focus_distance_mm", "must be beyond the focal length (" + std::to_string(l.focalLengthMm) + " mm)");
   const Sensor& s = sensor;
   if (s.width < 1 || s.height < 1 || double(s.width) * s.height > 1e9) return bad("camera.sensor.width", "the sensor must have 1 to 1e9 pixels");
+  // The simulation holds about four float images of the sensor at once (irradiance, raw, codes).
+  LFCAM_TRY(checkMemory(where, checkedProduct({std::uint64_t(s.width), std::uint64_t(s.height), 4 * sizeof(float)}),
+                        "a simulated sensor of " + std::to_string(s.width) + " x " + std::to_string(s.height) + " pixels"));
   if (!(s.pixelPitchMm > 0)) return bad("camera.sensor.pixel_pitch_mm", "must be positive");
   if (s.bitDepth < 1 || s.bitDepth > 16) return bad("camera.sensor.bit_depth", "must be in [1, 16]");
   if (s.whiteLevel > (1 << s.bitDepth) - 1) return bad("camera.sensor.white_level", "exceeds the bit depth");

@@ -7,6 +7,7 @@
 #include "lfcam/atomic_file.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/light_field_io.hpp"
+#include "lfcam/memory_budget.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/simulate.hpp"
 #include "simulate/tracing.hpp"
@@ -34,11 +35,16 @@ ViewGrid viewGrid(const CameraModel& camera) {
 
 Result<LightField> idealLightField(const Scene& scene, const CameraModel& camera) {
   if (!camera.microlenses) return makeError(ErrorCode::Usage, "ideal light field: the camera has no microlens array");
-  const auto [columns, rows] = camera.microlensCounts();
+  const auto counts = camera.microlensCounts();  // named, not bound: lambdas capture them (clang)
+  const int columns = counts[0], rows = counts[1];
   const ViewGrid grid = viewGrid(camera);
   const int channels = camera.sensor.colorFilter == ColorFilter::Mono ? 1 : 3;
-  const double samples = double(grid.views) * grid.views * columns * rows * channels;
-  if (samples > double(1u << 31)) return makeError(ErrorCode::Resource, "ideal light field: too large (" + std::to_string(samples) + " samples)");
+  // Samples and weight, float each.
+  LFCAM_TRY(checkMemory("ideal light field",
+                        checkedProduct({std::uint64_t(grid.views), std::uint64_t(grid.views), std::uint64_t(columns),
+                                        std::uint64_t(rows), std::uint64_t(channels + 1), sizeof(float)}),
+                        std::to_string(grid.views) + " x " + std::to_string(grid.views) + " views of " +
+                            std::to_string(columns) + " x " + std::to_string(rows) + " samples"));
   LightField lf(LightFieldShape{grid.views, grid.views, columns, rows, channels});
   lf.enableWeight(0);
   const PreparedScene prepared(scene, camera);
@@ -75,7 +81,8 @@ Result<LightField> idealLightField(const Scene& scene, const CameraModel& camera
 
 Result<Image> idealDepth(const Scene& scene, const CameraModel& camera) {
   if (!camera.microlenses) return makeError(ErrorCode::Usage, "ideal depth: the camera has no microlens array");
-  const auto [columns, rows] = camera.microlensCounts();
+  const auto counts = camera.microlensCounts();
+  const int columns = counts[0], rows = counts[1];
   Image depth(columns, rows, 1);
   const PreparedScene prepared(scene, camera);
   parallelFor(0, std::size_t(rows), 4, [&](std::size_t begin, std::size_t end) {

@@ -29,9 +29,17 @@ Rgb blend(const Rgb& a, const Rgb& b, double w) {
   return {float(a[0] + (b[0] - a[0]) * w), float(a[1] + (b[1] - a[1]) * w), float(a[2] + (b[2] - a[2]) * w)};
 }
 
+// floor(v) as a cell index, saturated: a huge ratio (a period of 1e-300 mm) or a NaN must not
+// overflow the conversion to an integer, which is undefined behaviour.
+long long cellIndex(double v) {
+  constexpr double kLimit = 0x1p62;
+  if (!(std::abs(v) < kLimit)) return std::isnan(v) ? 0 : v > 0 ? (1ll << 62) : -(1ll << 62);
+  return (long long)std::floor(v);
+}
+
 double smoothNoise(std::uint64_t seed, double x, double y) {
   const double fx = std::floor(x), fy = std::floor(y);
-  const long long ix = (long long)fx, iy = (long long)fy;
+  const long long ix = cellIndex(x), iy = cellIndex(y);
   double tx = x - fx, ty = y - fy;
   tx = tx * tx * (3 - 2 * tx);
   ty = ty * ty * (3 - 2 * ty);
@@ -50,7 +58,8 @@ Rgb Texture::evaluate(double x, double y, double width, double height) const {
     case TextureKind::Image: {
       const Image& im = *image;
       const double fx = x / width * im.width() - 0.5, fy = y / height * im.height() - 0.5;
-      const int x0 = std::clamp(int(std::floor(fx)), 0, im.width() - 1), y0 = std::clamp(int(std::floor(fy)), 0, im.height() - 1);
+      const int x0 = int(std::clamp<long long>(cellIndex(fx), 0, im.width() - 1)),
+                y0 = int(std::clamp<long long>(cellIndex(fy), 0, im.height() - 1));
       const int x1 = std::min(x0 + 1, im.width() - 1), y1 = std::min(y0 + 1, im.height() - 1);
       const double wx = std::clamp(fx - std::floor(fx), 0.0, 1.0), wy = std::clamp(fy - std::floor(fy), 0.0, 1.0);
       Rgb out{};
@@ -63,15 +72,15 @@ Rgb Texture::evaluate(double x, double y, double width, double height) const {
       return out;
     }
     case TextureKind::Checkerboard: {
-      const long long i = (long long)std::floor((x - 0.5 * width) / periodMm);
-      const long long j = (long long)std::floor((y - 0.5 * height) / periodMm);
+      const long long i = cellIndex((x - 0.5 * width) / periodMm);
+      const long long j = cellIndex((y - 0.5 * height) / periodMm);
       return ((i + j) & 1) ? dark : light;
     }
     case TextureKind::Chart: {
       // Group k in the k-th column; vertical bars (frequency along x) on top, horizontal below;
       // a margin of 10% of the column around each group, light background.
       const double column = width / groups;
-      const int k = std::clamp(int(x / column), 0, groups - 1);
+      const int k = int(std::clamp<long long>(cellIndex(x / column), 0, groups - 1));
       const double lx = x - k * column, half = 0.5 * height;
       const bool top = y < half;
       const double ly = top ? y : y - half;
@@ -84,21 +93,25 @@ Rgb Texture::evaluate(double x, double y, double width, double height) const {
     case TextureKind::SiemensStar: {
       const double angle = std::atan2(y - 0.5 * height, x - 0.5 * width);
       const double sector = (angle + M_PI) / (2 * M_PI) * spokes * 2;
-      return (long long)std::floor(sector) & 1 ? dark : light;
+      return cellIndex(sector) & 1 ? dark : light;
     }
     case TextureKind::Text: {
       // Lines of glyphs: each glyph a 3x5 grid of random strokes in a 4x7 cell, gaps between
       // words; one line of glyph height `periodMm` every 1.5 lines.
       const double cell = periodMm / 5.0;  // one stroke
-      const long long line = (long long)std::floor(y / (1.5 * periodMm));
+      const long long line = cellIndex(y / (1.5 * periodMm));
       const double inLine = y - line * 1.5 * periodMm;
       if (inLine >= periodMm) return light;
-      const long long glyph = (long long)std::floor(x / (4 * cell));
+      const long long glyph = cellIndex(x / (4 * cell));
       const double inGlyph = x - glyph * 4 * cell;
       if (inGlyph >= 3 * cell) return light;
-      if (hashUnit(seed, line, glyph * 7 + 3) < 0.18) return light;  // a space between words
-      const int gx = std::clamp(int(inGlyph / cell), 0, 2), gy = std::clamp(int(inLine / cell), 0, 4);
-      return hashUnit(seed ^ 0x51ed, line * 1000003 + glyph, gy * 3 + gx) < 0.55 ? dark : light;
+      // Hash keys in unsigned arithmetic: it wraps where signed would overflow.
+      if (hashUnit(seed, line, (long long)(std::uint64_t(glyph) * 7 + 3)) < 0.18) return light;  // a space between words
+      const int gx = int(std::clamp<long long>(cellIndex(inGlyph / cell), 0, 2));
+      const int gy = int(std::clamp<long long>(cellIndex(inLine / cell), 0, 4));
+      return hashUnit(seed ^ 0x51ed, (long long)(std::uint64_t(line) * 1000003 + std::uint64_t(glyph)), gy * 3 + gx) < 0.55
+                 ? dark
+                 : light;
     }
     case TextureKind::Noise: {
       const double n = 0.6 * smoothNoise(seed, x / periodMm, y / periodMm) +
@@ -244,6 +257,10 @@ Result<Texture> parseTexture(const nlohmann::json& json, const std::string& wher
     if (file.is_relative()) file = baseFolder / file;
     auto image = readImage(file);
     if (!image) return makeError(image.error().code, where + ": " + o.keyPath("file") + ": " + image.error().message);
+    for (int c = 0; c < image->channels(); ++c)
+      for (std::size_t i = 0; i < image->planeSize(); ++i)
+        if (!std::isfinite(image->plane(c)[i]))
+          return o.fail(o.keyPath("file"), file.string() + " holds NaN or infinite values");
     t.image = std::make_shared<const Image>(std::move(*image));
   }
   LFCAM_TRY(o.noUnknownKeys());
@@ -256,7 +273,7 @@ Result<Scene> parseScene(const std::string& text, const std::string& where, cons
   nlohmann::json json;
   try {
     json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax, and numbers out of range (1e999)
     std::string message = e.what();
     const auto colon = message.find("parse error");
     if (colon != std::string::npos) message = message.substr(colon);

@@ -28,9 +28,9 @@ struct CommandResult {
   }
 };
 
-// Runs `lfcam args...` with stdout and stderr captured through files in `scratch`.
-inline CommandResult runLfcam(const std::vector<std::string>& args, const std::filesystem::path& scratch) {
-  const auto outPath = scratch / ".stdout", errPath = scratch / ".stderr";
+// Starts `lfcam args...` with stdout and stderr going to the given files; its process id, or -1.
+inline pid_t startLfcam(const std::vector<std::string>& args, const std::filesystem::path& outPath,
+                        const std::filesystem::path& errPath) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -40,15 +40,22 @@ inline CommandResult runLfcam(const std::vector<std::string>& args, const std::f
   std::vector<char*> argv;
   for (auto& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
-  pid_t pid = 0;
+  pid_t pid = -1;
+  if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) != 0) pid = -1;
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+// Runs `lfcam args...` with stdout and stderr captured through files in `scratch`.
+inline CommandResult runLfcam(const std::vector<std::string>& args, const std::filesystem::path& scratch) {
+  const auto outPath = scratch / ".stdout", errPath = scratch / ".stderr";
   CommandResult result;
-  if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0) {
+  if (const pid_t pid = startLfcam(args, outPath, errPath); pid > 0) {
     int status = 0;
     waitpid(pid, &status, 0);
     if (WIFEXITED(status)) result.exitStatus = WEXITSTATUS(status);
     if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
   }
-  posix_spawn_file_actions_destroy(&actions);
   result.out = readBytes(outPath);
   result.err = readBytes(errPath);
   std::filesystem::remove(outPath);

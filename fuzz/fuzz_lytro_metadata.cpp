@@ -1,0 +1,15 @@
+// Lytro frame metadata JSON (both real layouts, wrapped or not).
+#include <nlohmann/json.hpp>
+
+#include "fuzz_support.hpp"
+#include "lfcam/lytro_metadata.hpp"
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const auto json = nlohmann::json::parse(data, data + size, nullptr, false);
+  if (json.is_discarded()) return 0;
+  const nlohmann::json* frame = lfcam::findLytroFrameMetadata(json);
+  (void)lfcam::parseLytroFrameMetadata(frame ? *frame : json, "fuzz.json");
+  return 0;
+}
