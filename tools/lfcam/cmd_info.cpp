@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "lfcam/lytro_container.hpp"
+#include "lytro_info.hpp"
 
 namespace lfcam::cli {
 
@@ -60,6 +62,7 @@ void addInfoCommand(CLI::App& app, Job& job) {
   command->add_flag("--json", options->json, "print a JSON object (angular, spatial, channels, ...)");
   command->callback([options, &job] {
     job = [options]() -> Status {
+      if (looksLikeLytroContainer(options->input.path)) return printLytroInfo(options->input.path, options->json);
       auto info = probeLightField(options->input.path, options->input.readOptions());
       if (!info) return info.error();
       if (options->json)

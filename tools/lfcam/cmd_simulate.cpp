@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "lfcam/raw_io.hpp"
 #include "lfcam/scene.hpp"
 #include "lfcam/simulate.hpp"
 #include "progress_bar.hpp"
@@ -11,7 +12,7 @@ namespace lfcam::cli {
 
 void addSimulateCommand(CLI::App& app, Job& job) {
   struct Options {
-    std::string scene, output, noise, rawFormat = "png";
+    std::string scene, output, noise, rawFormat = "png", container;
     std::optional<double> fNumber, imageFNumber, focusMm, pixelsPerLens, exposure;
     std::optional<int> size;
     std::optional<std::uint64_t> seed;
@@ -48,6 +49,10 @@ void addSimulateCommand(CLI::App& app, Job& job) {
   command->add_option("--noise", options->noise, "photon and read noise")->check(CLI::IsMember({"on", "off"}));
   command->add_option("--raw-format", options->rawFormat, "raw and white image format")
       ->check(CLI::IsMember({"png", "tiff"}));
+  command->add_option("--container", options->container,
+                      "also write the raw as a Lytro container: lfp (first generation: raw.lfp) or lfr (Illum: "
+                      "raw.lfr, white.lfr)")
+      ->check(CLI::IsMember({"lfp", "lfr"}));
   command->add_flag("--no-white", options->noWhite, "skip white.png");
   command->add_flag("--no-ground-truth", options->noGroundTruth, "skip depth.pfm and ideal.lf.h5");
   command->callback([options, &job] {
@@ -94,7 +99,9 @@ void addSimulateCommand(CLI::App& app, Job& job) {
       outputs.groundTruth = !o.noGroundTruth;
       outputs.rawExtension = "." + o.rawFormat;
       ProgressBar bar("simulating " + o.scene);
-      return writeSimulation(o.output, scene, camera, simulation, outputs, [&](double f) { bar(f); });
+      LFCAM_TRY(writeSimulation(o.output, scene, camera, simulation, outputs, [&](double f) { bar(f); }));
+      if (o.container.empty()) return {};
+      return writeSimulationContainers(o.output, o.container == "lfp" ? LytroStyle::FirstGeneration : LytroStyle::Illum);
     };
   });
 }

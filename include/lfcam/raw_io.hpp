@@ -1,0 +1,61 @@
+// Reading raw sensor images into RawImage (raw_image.hpp), and writing simulated Lytro raws.
+//
+// readRaw recognises its input by content:
+//   - a Lytro container (.lfp, .lfr) holding a raw frame: unpacked (raw_packing.hpp) and
+//     described by its frame metadata (lytro_metadata.hpp);
+//   - a PNG or TIFF lenslet image, 8 or 16 bit: values in DN (a 16-bit file holds DN directly,
+//     an 8-bit file its codes 0-255). Black/white levels and the Bayer pattern come from the
+//     options, else from a camera.json beside the file written by `lfcam simulate` (with the
+//     lattice as the lenslet hint), else black 0, white = the largest code, monochrome;
+//   - a camera raw (DNG, CR2, NEF, ARW, ...) through LibRaw: the un-demosaiced mosaic of the
+//     visible area, black/white levels, CFA pattern, as-shot white balance, camera -> sRGB matrix.
+// Errors name the file in one line; nothing is printed.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "lfcam/lytro_container.hpp"
+#include "lfcam/lytro_metadata.hpp"
+#include "lfcam/raw_image.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam {
+
+struct RawReadOptions {
+  std::optional<ColorFilter> colorFilter;  // for images: the Bayer pattern (default: camera.json, else mono)
+  std::optional<double> blackLevel;        // DN, overrides what the file says
+  std::optional<double> whiteLevel;        // DN, overrides what the file says
+  bool useCameraJson = true;               // images: read camera.json beside the file
+};
+
+Result<RawImage> readRaw(const std::filesystem::path& path, const RawReadOptions& options = {});
+
+// The raw frame of a parsed container (Unsupported when it holds only processed pictures).
+Result<RawImage> rawFromLytroContainer(const LytroContainer& container, const std::string& where);
+
+// "RGGB", "BGGR", "GRBG", "GBRG", "mono" (any case).
+std::optional<ColorFilter> parseColorFilterName(std::string_view name);
+
+struct LytroWriteOptions {
+  LytroStyle style = LytroStyle::FirstGeneration;
+  double pixelPitchMm = 0.0014;   // the Lytro sensors' 1.4 um unless the caller knows better
+  bool modulationFrame = false;   // a white image (Lytro's "modulation" frame)
+  nlohmann::json extra;           // stored in the frame metadata under "lfcam" when not null
+};
+
+// A container holding `raw` (integer DN in [0, 65535]) with real-style metadata: F01 style packs
+// 12-bit big-endian when every value fits 12 bits, Illum style 10-bit little-endian when they fit
+// 10 bits; otherwise 16-bit little-endian (as Lytro's own simulator wrote). readRaw of the result
+// returns the same mosaic, levels, Bayer pattern, lenslet hint, white balance and colour matrix.
+Result<LytroContainer> makeLytroRawContainer(const RawImage& raw, const LytroWriteOptions& options,
+                                             const std::string& where);
+Status writeLytroRaw(const std::filesystem::path& path, const RawImage& raw, const LytroWriteOptions& options);
+
+// `lfcam simulate --container`: from raw.png (or .tiff), white.* and camera.json in `folder`,
+// writes raw.lfp (first generation) or raw.lfr and white.lfr (Illum) beside them.
+Status writeSimulationContainers(const std::filesystem::path& folder, LytroStyle style);
+
+}  // namespace lfcam

@@ -1,0 +1,13 @@
+// Camera raw files through LibRaw (private to src/raw_io; readRaw is the public entry).
+#pragma once
+
+#include <filesystem>
+
+#include "lfcam/raw_image.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam {
+
+Result<RawImage> readCameraRaw(const std::filesystem::path& path);
+
+}  // namespace lfcam

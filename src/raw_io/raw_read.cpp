@@ -1,0 +1,127 @@
+// readRaw (raw_io.hpp): dispatch by content, and the image-file path with camera.json.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "lfcam/image_io.hpp"
+#include "io/io_support.hpp"
+#include "lfcam/raw_io.hpp"
+#include "raw_io/libraw_read.hpp"
+
+namespace lfcam {
+
+namespace {
+
+// Extensions LibRaw is asked first about: many are TIFF inside and would pass for images.
+bool hasCameraRawExtension(const std::filesystem::path& path) {
+  const std::string ext = io::lowerExtension(path);
+  static const char* known[] = {".dng", ".cr2", ".cr3", ".crw", ".nef", ".nrw", ".arw", ".srf", ".sr2", ".orf",
+                                ".rw2", ".raf", ".pef", ".srw", ".3fr", ".erf", ".kdc", ".dcr", ".mrw", ".mos",
+                                ".iiq", ".rwl", ".x3f"};
+  return std::any_of(std::begin(known), std::end(known), [&](const char* k) { return ext == k; });
+}
+
+// camera.json written by `lfcam simulate` beside the image, when it describes this sensor.
+void applyCameraJson(const std::filesystem::path& path, RawImage& raw) {
+  const std::filesystem::path file = path.parent_path() / "camera.json";
+  std::ifstream in(file);
+  if (!in) return;
+  const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+  if (json.is_discarded() || !json.is_object() || json.value("lfcam_format", "") != "lfcam-simulated-camera") return;
+  const nlohmann::json& sensor = json.value("sensor", nlohmann::json::object());
+  if (!sensor.is_object() || sensor.value("width", -1) != raw.mosaic.width() ||
+      sensor.value("height", -1) != raw.mosaic.height())
+    return;
+  if (sensor.contains("black_level") && sensor["black_level"].is_number()) raw.blackLevel = sensor["black_level"].get<double>();
+  if (sensor.contains("white_level") && sensor["white_level"].is_number()) raw.whiteLevel = sensor["white_level"].get<double>();
+  if (sensor.contains("color_filter") && sensor["color_filter"].is_string())
+    if (auto filter = parseColorFilterName(sensor["color_filter"].get<std::string>())) raw.colorFilter = *filter;
+  const nlohmann::json lattice = json.value("lattice_px", nlohmann::json());
+  if (lattice.is_object() && lattice.contains("pitch_px") && lattice["pitch_px"].is_number()) {
+    LensletHint hint;
+    hint.pitchPx = lattice["pitch_px"].get<double>();
+    hint.rotationRad = lattice.value("rotation_deg", 0.0) * std::numbers::pi / 180.0;
+    const nlohmann::json offset = lattice.value("offset_px", nlohmann::json::array());
+    if (offset.is_array() && offset.size() == 2 && offset[0].is_number() && offset[1].is_number())
+      hint.offsetPx = {offset[0].get<double>(), offset[1].get<double>()};
+    hint.packing = lattice.value("packing", "square") == "hexagonal" ? Packing::Hexagonal : Packing::Square;
+    raw.lenslet = hint;
+  }
+  raw.source = "simulator";
+  raw.metadata = json;
+}
+
+Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOptions& options) {
+  auto header = readImageHeader(path);
+  if (!header) return header.error();
+  auto image = readImage(path);
+  if (!image) return image.error();
+  const int colours = image->channels() == 2 || image->channels() == 4 ? image->channels() - 1 : image->channels();
+  RawImage raw;
+  raw.mosaic = Image(image->width(), image->height(), 1);
+  // Back to the file's codes: 8-bit files were sRGB-decoded by readImage (exactly invertible),
+  // 16-bit ones scaled by 1/65535. Colour lenslet images become their channels' mean.
+  const SampleType type = header->sampleType;
+  float* out = raw.mosaic.plane(0);
+  for (std::size_t k = 0; k < raw.mosaic.planeSize(); ++k) {
+    double sum = 0;
+    for (int c = 0; c < colours; ++c) {
+      const float v = image->plane(c)[k];
+      sum += type == SampleType::UInt8 ? std::round(linearToSrgb(v) * 255.0)
+             : type == SampleType::UInt16 ? std::round(double(v) * 65535.0)
+                                          : double(v);
+    }
+    out[k] = float(sum / colours);
+  }
+  raw.blackLevel = 0;
+  raw.whiteLevel = type == SampleType::UInt8 ? 255.0 : type == SampleType::UInt16 ? 65535.0 : 1.0;
+  raw.source = "image";
+  if (options.useCameraJson) applyCameraJson(path, raw);
+  return raw;
+}
+
+}  // namespace
+
+std::optional<ColorFilter> parseColorFilterName(std::string_view name) {
+  std::string upper(name);
+  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return char(std::toupper(c)); });
+  if (upper == "RGGB") return ColorFilter::RGGB;
+  if (upper == "BGGR") return ColorFilter::BGGR;
+  if (upper == "GRBG") return ColorFilter::GRBG;
+  if (upper == "GBRG") return ColorFilter::GBRG;
+  if (upper == "MONO" || upper == "MONOCHROME") return ColorFilter::Mono;
+  return std::nullopt;
+}
+
+Result<RawImage> readRaw(const std::filesystem::path& path, const RawReadOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return makeError(ErrorCode::Io, path.string() + ": no such file");
+  if (std::filesystem::is_directory(path, ec))
+    return makeError(ErrorCode::Usage, path.string() + ": is a folder, expected a raw image file");
+  Result<RawImage> raw = makeError(ErrorCode::Format, "");
+  if (looksLikeLytroContainer(path)) {
+    auto container = readLytroContainer(path);
+    if (!container) return container.error();
+    raw = rawFromLytroContainer(*container, path.string());
+  } else if (hasCameraRawExtension(path) || !looksLikeImageFile(path)) {
+    raw = readCameraRaw(path);
+    if (!raw && !hasCameraRawExtension(path))
+      return makeError(ErrorCode::Format, path.string() +
+                                              ": not a raw image lfcam reads (Lytro container, PNG/TIFF lenslet "
+                                              "image or camera raw)");
+  } else {
+    raw = readImageRaw(path, options);
+  }
+  if (!raw) return raw.error();
+  if (options.colorFilter) raw->colorFilter = *options.colorFilter;
+  if (options.blackLevel) raw->blackLevel = *options.blackLevel;
+  if (options.whiteLevel) raw->whiteLevel = *options.whiteLevel;
+  if (!(raw->whiteLevel > raw->blackLevel))
+    return makeError(ErrorCode::Usage, path.string() + ": white level " + std::to_string(raw->whiteLevel) +
+                                           " must be above the black level " + std::to_string(raw->blackLevel));
+  return raw;
+}
+
+}  // namespace lfcam
