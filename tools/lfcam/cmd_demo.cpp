@@ -11,16 +11,19 @@
 
 #include "commands.hpp"
 #include "lfcam/all_in_focus.hpp"
+#include "lfcam/calibrate.hpp"
 #include "lfcam/atomic_file.hpp"
 #include "lfcam/colour_map.hpp"
 #include "lfcam/contact_sheet.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
+#include "lfcam/raw_io.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/scene.hpp"
 #include "lfcam/simulate.hpp"
 #include "progress_bar.hpp"
+#include "raw_input.hpp"
 
 namespace lfcam::cli {
 
@@ -78,23 +81,35 @@ Image rawCloseUp(const Image& raw, int size) {
   return crop;
 }
 
-// A built-in scene captured by the simulated plenoptic camera (the paper's prototype at reduced
-// resolution), and its ideal light field refocused.
+// The paper's whole chain: a built-in scene captured by the simulated plenoptic camera (the
+// prototype at reduced resolution) as a raw mosaic and a white image, the microlens grid
+// calibrated from the white image, the raw decoded into a light field, and that light field
+// refocused. The ideal light field is kept beside it for comparison, not used.
 Status captureWithTheCamera(const fs::path& out) {
   const CameraModel camera = CameraModel::paperPrototype(1400, 1400);
   auto scene = builtinScene("people", camera);
   if (!scene) return scene.error();
+  const fs::path folder = out / "camera";
   {
     ProgressBar bar("simulating the camera");
-    LFCAM_TRY(writeSimulation(out / "camera", *scene, camera, {}, {}, [&](double f) { bar(f); }));
+    LFCAM_TRY(writeSimulation(folder, *scene, camera, {}, {}, [&](double f) { bar(f); }));
   }
-  auto raw = readImage(out / "camera" / "raw.png");
+  auto raw = readImage(folder / "raw.png");
   if (!raw) return raw.error();
-  LFCAM_TRY(writeImage(out / "camera" / "raw-closeup.png", rawCloseUp(*raw, 160)));
-  auto ideal = readLightField(out / "camera" / "ideal.lf.h5");
-  if (!ideal) return ideal.error();
-  for (double slope : kCameraSlopes) LFCAM_TRY(writeImage(out / cameraSlopeName(slope), refocus(*ideal, slope)));
-  std::printf("  simulated the plenoptic camera -> camera/ (raw.png, white.png, camera.json, ideal.lf.h5)\n");
+  LFCAM_TRY(writeImage(folder / "raw-closeup.png", rawCloseUp(*raw, 160)));
+  auto white = readRaw(folder / "white.png");
+  if (!white) return white.error();
+  auto grid = calibrateGrid(*white, CalibrationOptions{}, (folder / "white.png").string());
+  if (!grid) return grid.error();
+  LFCAM_TRY(writeGrid(folder / "grid.json", *grid));
+  auto decoded = decodeRawInput({.raw = (folder / "raw.png").string(), .white = (folder / "white.png").string(),
+                                 .grid = (folder / "grid.json").string()});
+  if (!decoded) return decoded.error();
+  LFCAM_TRY(writeLightField(folder / "decoded.lf.h5", *decoded));
+  for (double slope : kCameraSlopes) LFCAM_TRY(writeImage(out / cameraSlopeName(slope), refocus(*decoded, slope)));
+  std::printf("  simulated the plenoptic camera, calibrated its microlens grid (%dx%d, pitch %.3f px, fit rms %.3f px)\n"
+              "  and decoded its raw image -> camera/ (raw.png, white.png, grid.json, decoded.lf.h5)\n",
+              grid->columns, grid->rows, grid->pitchX, grid->fit.rmsResidualPx);
   return {};
 }
 
@@ -126,12 +141,16 @@ one focused on each plane, then the ground-truth disparity and every sub-apertur
 <h2>The plenoptic camera, simulated</h2>
 <p>The scene <code>people</code> traced ray by ray through the paper's prototype (140 mm main lens at image-side f/4,
 125 &micro;m microlenses of f/4, 9 &micro;m pixels) at 1400&times;1400 pixels: under each microlens, an image of the
-main lens. The outputs in <code>camera/</code> are what <code>lfcam simulate people</code> writes.</p>
+main lens. <code>raw.png</code> and <code>white.png</code> are what <code>lfcam simulate people</code> writes; then, as in
+the paper's section 5.2, <code>lfcam calibrate</code> finds the microlens grid in the white image (<code>grid.json</code>)
+and <code>lfcam decode</code> turns the raw into the light field (<code>decoded.lf.h5</code>): black level, devignetting by the
+white image, demosaicing, sampling at the sub-pixel microlens centres. The photographs below are computed from that
+decoded light field.</p>
 <figure><img src="camera/raw-closeup.png" style="width:320px;image-rendering:pixelated"><figcaption>middle of the raw sensor image</figcaption></figure>
 )";
   for (double slope : kCameraSlopes)
     html << "<figure><img src=\"" << cameraSlopeName(slope)
-         << "\" style=\"width:300px\"><figcaption>its light field refocused at slope " << slope << "</figcaption></figure>\n";
+         << "\" style=\"width:300px\"><figcaption>the decoded light field refocused at slope " << slope << "</figcaption></figure>\n";
   html << R"(<h2>All sub-aperture views</h2>
 <div class="sheet"><img src="contact-sheet.png"></div>
 <p>The light field itself: <code>lightfield.lf.h5</code> (HDF5), its views in <code>views/</code>.

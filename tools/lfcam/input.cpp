@@ -1,5 +1,6 @@
 #include "commands.hpp"
 #include "progress_bar.hpp"
+#include "raw_input.hpp"
 
 namespace lfcam::cli {
 
@@ -17,9 +18,13 @@ void addInputOptions(CLI::App& command, InputOptions& input) {
           {"auto", ViewNumberOrder::Auto},
           {"row-first", ViewNumberOrder::RowFirst},
           {"column-first", ViewNumberOrder::ColumnFirst}}));
+  command.add_option("--white", input.white, "INPUT is a raw lenslet image: its white image (decoded on the way)");
+  command.add_option("--dark", input.dark, "with --white: dark frame of the raw");
+  command.add_option("--grid", input.grid, "with --white: grid.json (default: calibrated from the white image)");
 }
 
 Result<LightField> loadInput(const InputOptions& input) {
+  if (!input.white.empty()) return decodeRawInput({.raw = input.path, .white = input.white, .dark = input.dark, .grid = input.grid});
   ProgressBar bar("reading " + input.path);
   return readLightField(input.path, input.readOptions(),
                         [&](double fraction) { bar(fraction); });

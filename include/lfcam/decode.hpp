@@ -1,0 +1,87 @@
+// decode: a raw lenslet image (RawImage) and its microlens grid (LensletGrid) -> the light field
+// L(u, v, s, t) (the paper's section 5.2, with the two shortcomings of its section 6.3 removed).
+//
+// Steps: black level or dark frame subtraction, hot-pixel repair, devignetting by the white image
+// (per photosite, before demosaicing, so each colour is divided by its own response), demosaicing,
+// sampling every microlens image at its fitted sub-pixel centre, hexagonal to rectangular
+// resampling, white balance and colour matrix.
+//
+// Orientation (the same as idealLightField in simulate.hpp, so that a decoded simulator capture can
+// be scored against the ideal one): (s, t) = (columns - 1 - i, rows - 1 - j) for microlens (i, j) of
+// the grid (the sensor image is upside down); view (u, v) is the sensor point at the microlens
+// image's centre plus (-(u - (nu - 1) / 2), -(v - (nv - 1) / 2)) pixels (a ray through the left of
+// the main lens lands on the right of the microlens image). Views are one sensor pixel apart on the
+// sensor, in sensor axes (the main lens does not turn with the microlens array).
+//
+// Weights: the white image's response at each sample, over its brightest level (1: the full
+// aperture reached that pixel, 0: no light); without a white image, 1 inside the aperture disc of
+// diameter apertureDiameterPx and 0 outside. Values are radiance relative to the white image's
+// (raw / white), so refocusing normalises by the weight (section 5.2).
+#pragma once
+
+#include <optional>
+
+#include "lfcam/image.hpp"
+#include "lfcam/lenslet_grid.hpp"
+#include "lfcam/light_field.hpp"
+#include "lfcam/raw_image.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam {
+
+enum class DemosaicMethod {
+  MalvarHeCutler,  // gradient-corrected bilinear (Malvar, He, Cutler 2004): the default
+  HamiltonAdams,   // the paper's choice: edge-directed green, colour differences for red and blue
+  LensletAware,    // bilinear within each microlens image from its own pixels only: nothing leaks
+                   // across a microlens boundary
+};
+
+enum class Sampling {
+  SubPixel,       // each microlens image sampled at its fitted centre, views one pixel apart,
+                  // Catmull-Rom cubic interpolation: no vernier error (section 6.3)
+  IntegralPitch,  // the paper's: rotate and scale the raw to round(pitch) pixels per microlens
+                  // (bilinear), then dice: kept for comparison
+};
+
+struct DecodeOptions {
+  // Not owned; must outlive the call. White image of the same camera and settings, as a raw (same
+  // size and CFA), or as an image already black-subtracted (any scale, 1 channel, same size).
+  // Neither: weights from the aperture disc.
+  const RawImage* white = nullptr;
+  const Image* whiteImage = nullptr;
+  const RawImage* dark = nullptr;  // subtracted (from the raw and the white) instead of black levels
+  bool repairHotPixels = true;
+  DemosaicMethod demosaic = DemosaicMethod::MalvarHeCutler;
+  Sampling sampling = Sampling::SubPixel;
+  int views = 0;                  // across and down; 0: round(grid.pitchX)
+  double apertureDiameterPx = 0;  // without a white image; 0: grid.pitchX
+  // Hexagonal grids: interpolate the shifted rows onto the other rows' s positions. Off: odd
+  // rows keep their half-pitch shift (as idealLightField stores them).
+  bool hexToRectangular = true;
+  bool applyWhiteBalance = true;  // raw.whiteBalance and raw.colorMatrix, when present
+  std::optional<Optics> optics;   // copied into metadata (the grid alone has no millimetres)
+  // Plain per-pixel and per-sample kernels instead of the fast ones (slow): what tests compare to.
+  bool referenceKernels = false;
+};
+
+Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options = {});
+
+// The steps on their own, for tests and other tools.
+
+// Demosaics a one-channel mosaic (any scale) into 3 planes (R, G, B); a Mono filter gives a copy.
+// LensletAware needs the grid; the other methods ignore it.
+Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid = nullptr);
+// Plain per-pixel implementations of the same, the references the fast kernels are tested against.
+Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method);
+
+// Replaces each photosite more than `threshold` above every same-colour neighbour (8 of them, two
+// pixels away in a Bayer mosaic) by their median. Returns the number repaired.
+int repairHotPixels(Image& mosaic, ColorFilter filter, float threshold);
+
+// Interpolates the shifted rows of a hexagonal-grid light field (decoded with hexToRectangular
+// off, or idealLightField) onto the s positions of the other rows (cubic along s). shiftedT: the
+// parity of the rows t whose sample s lies at s - 1/2 (a grid's shifted rows j lie half a pitch
+// towards +x on the sensor, which is -s once turned the right way up): (rows + hexParity) & 1.
+void hexRowsToRectangular(LightField& lightField, int shiftedT);
+
+}  // namespace lfcam

@@ -1,0 +1,360 @@
+// calibrateGrid: preparation of the image, a first lattice, centres grown outwards from the
+// middle with a refit at each step, and the final grid (calibrate.hpp, docs/design.md).
+#include "lfcam/calibrate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "calibrate/calibrate_internal.hpp"
+#include "edof/edof_internal.hpp"
+#include "lfcam/parallel.hpp"
+
+namespace lfcam {
+
+using calibrate_detail::CentreEstimate;
+using calibrate_detail::Lattice;
+using calibrate_detail::LatticeFit;
+using calibrate_detail::Sample;
+
+namespace {
+
+bool isMosaic(ColorFilter filter) { return filter != ColorFilter::Mono; }
+
+// One channel, black level off, each 2x2 phase of a mosaic scaled to the common mean (so a white
+// image's colours agree), hot and dead pixels removed by a 3x3 median, and for a mosaic what is
+// left of its pattern removed by the [1 2 1] binomial (zero at the mosaic's frequency; symmetric,
+// so no centre moves).
+Image prepare(const Image& image, const CalibrationOptions& options) {
+  const int width = image.width(), height = image.height(), channels = image.channels();
+  Image grey(width, height, 1);
+  const float black = float(options.blackLevel);
+  parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
+    for (int y = int(begin); y < int(end); ++y) {
+      float* out = grey.row(y, 0);
+      for (int x = 0; x < width; ++x) out[x] = image.at(x, y, 0);
+      for (int c = 1; c < channels; ++c) {
+        const float* in = image.row(y, c);
+        for (int x = 0; x < width; ++x) out[x] += in[x];
+      }
+      for (int x = 0; x < width; ++x) out[x] = out[x] / float(channels) - black;
+    }
+  });
+  if (isMosaic(options.colorFilter)) {
+    std::vector<std::array<double, 2>> rowSums(height);
+    parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
+      for (int y = int(begin); y < int(end); ++y) {
+        const float* row = grey.row(y, 0);
+        double even = 0, odd = 0;
+        for (int x = 0; x + 1 < width; x += 2) {
+          even += row[x];
+          odd += row[x + 1];
+        }
+        rowSums[y] = {even, odd};
+      }
+    });
+    double phase[4] = {0, 0, 0, 0};
+    for (int y = 0; y < height; ++y) {
+      phase[2 * (y & 1)] += rowSums[y][0];
+      phase[2 * (y & 1) + 1] += rowSums[y][1];
+    }
+    const double mean = 0.25 * (phase[0] + phase[1] + phase[2] + phase[3]);
+    float gain[4];
+    for (int p = 0; p < 4; ++p) gain[p] = phase[p] > 0 && mean > 0 ? float(mean / phase[p]) : 1.0f;
+    parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
+      for (int y = int(begin); y < int(end); ++y) {
+        float* row = grey.row(y, 0);
+        const float g0 = gain[2 * (y & 1)], g1 = gain[2 * (y & 1) + 1];
+        for (int x = 0; x + 1 < width; x += 2) {
+          row[x] *= g0;
+          row[x + 1] *= g1;
+        }
+        if (width & 1) row[width - 1] *= g0;
+      }
+    });
+  }
+  // A pinhole target's spots may be a pixel across: the median would take them for hot pixels.
+  Image work = options.target == CalibrationTarget::Pinhole ? grey.copy() : median3x3(grey);
+  if (!isMosaic(options.colorFilter)) return work;
+  // Binomial [1 2 1] / 4 along x into grey, then along y into work (borders clamped).
+  parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
+    for (int y = int(begin); y < int(end); ++y) {
+      const float* in = work.row(y, 0);
+      float* out = grey.row(y, 0);
+      for (int x = 0; x < width; ++x)
+        out[x] = 0.25f * (in[std::max(x - 1, 0)] + 2 * in[x] + in[std::min(x + 1, width - 1)]);
+    }
+  });
+  parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
+    for (int y = int(begin); y < int(end); ++y) {
+      const float* above = grey.row(std::max(y - 1, 0), 0);
+      const float* middle = grey.row(y, 0);
+      const float* below = grey.row(std::min(y + 1, height - 1), 0);
+      float* out = work.row(y, 0);
+      for (int x = 0; x < width; ++x) out[x] = 0.25f * (above[x] + 2 * middle[x] + below[x]);
+    }
+  });
+  return work;
+}
+
+// A scene raw: divided by its local mean (over about two microlenses each way), so that every
+// microlens image looks like a white one whatever the scene's brightness there.
+void flattenScene(Image& work, double pitch) {
+  const int radius = std::max(2, int(std::lround(pitch)));
+  Image mean(work.width(), work.height(), 1);
+  edof::boxFilter(work.plane(0), mean.plane(0), work.width(), work.height(), radius);
+  float floor = 0;
+  for (float v : mean.pixels()) floor = std::max(floor, v);
+  floor *= 1e-3f;
+  parallelFor(0, work.planeSize(), 1 << 16, [&](std::size_t begin, std::size_t end) {
+    float* w = work.plane(0);
+    const float* m = mean.plane(0);
+    for (std::size_t k = begin; k < end; ++k) w[k] = w[k] / std::max(m[k], floor);
+  });
+}
+
+// Index ranges of the lattice points whose centres may lie in the image.
+struct IndexBox {
+  int k0 = 0, k1 = -1, n0 = 0, n1 = -1;
+};
+
+IndexBox indexBoxOfImage(const Lattice& l, int width, int height) {
+  const double c = std::cos(l.theta), s = std::sin(l.theta);
+  double aLo = INFINITY, aHi = -INFINITY, bLo = INFINITY, bHi = -INFINITY;
+  for (const auto& [x, y] : {std::array<double, 2>{0, 0}, {double(width), 0}, {0, double(height)}, {double(width), double(height)}}) {
+    const double dx = x - l.ox, dy = y - l.oy;
+    const double a = (c * dx + s * dy) / l.pitchX, b = (-s * dx + c * dy) / l.pitchY;
+    aLo = std::min(aLo, a);
+    aHi = std::max(aHi, a);
+    bLo = std::min(bLo, b);
+    bHi = std::max(bHi, b);
+  }
+  return {int(std::floor(aLo)) - 1, int(std::ceil(aHi)) + 1, int(std::floor(bLo)) - 1, int(std::ceil(bHi)) + 1};
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  const auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// [1 2 1] along each axis (borders clamped): symmetric, takes the remaining pixel noise off the
+// centre estimates.
+Image smoothBinomial(const Image& work) {
+  const int width = work.width(), height = work.height();
+  Image smooth(width, height, 1);
+  auto at = [&](int x, int y) { return work.at(std::clamp(x, 0, width - 1), std::clamp(y, 0, height - 1), 0); };
+  parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
+    for (int y = int(begin); y < int(end); ++y)
+      for (int x = 0; x < width; ++x)
+        smooth.at(x, y, 0) = (at(x - 1, y - 1) + 2 * at(x, y - 1) + at(x + 1, y - 1) + 2 * at(x - 1, y) + 4 * at(x, y) +
+                              2 * at(x + 1, y) + at(x - 1, y + 1) + 2 * at(x, y + 1) + at(x + 1, y + 1)) /
+                             16.0f;
+  });
+  return smooth;
+}
+
+// Central differences along x and y.
+std::pair<Image, Image> gradients(const Image& image) {
+  const int w = image.width(), h = image.height();
+  std::pair<Image, Image> out{Image(w, h, 1), Image(w, h, 1)};
+  parallelFor(0, std::size_t(h), 32, [&](std::size_t begin, std::size_t end) {
+    for (int y = int(begin); y < int(end); ++y) {
+      const float* row = image.row(y, 0);
+      const float* above = image.row(std::max(y - 1, 0), 0);
+      const float* below = image.row(std::min(y + 1, h - 1), 0);
+      float* gx = out.first.row(y, 0);
+      float* gy = out.second.row(y, 0);
+      for (int x = 0; x < w; ++x) {
+        gx[x] = 0.5f * (row[std::min(x + 1, w - 1)] - row[std::max(x - 1, 0)]);
+        gy[x] = 0.5f * (below[x] - above[x]);
+      }
+    }
+  });
+  return out;
+}
+
+// The start of the growth: the microlens nearest the image's centre (highest contrast of a few
+// hill climbs).
+CentreEstimate findSeed(const Image& smooth, const Lattice& lattice, double radius, double relax) {
+  CentreEstimate best;
+  const double step = lattice.pitchX / 3;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const CentreEstimate e = calibrate_detail::refineCentre(smooth, 0.5 * smooth.width() + dx * step,
+                                                              0.5 * smooth.height() + dy * step, radius, 60, relax);
+      if (e.ok && (!best.ok || e.contrast > best.contrast)) best = e;
+    }
+  return best;
+}
+
+}  // namespace
+
+// Measures the centres and fits the lattice, starting from `lattice`.
+Result<Calibration> calibrateFrom(Image work, Lattice lattice, const CalibrationOptions& options, const std::string& where) {
+  if (lattice.pitchX < 3 || lattice.pitchY < 2)
+    return makeError(ErrorCode::Format, where + ": the microlens pitch found (" + std::to_string(lattice.pitchX) +
+                                            " px) is too small to calibrate");
+  if (options.target == CalibrationTarget::Scene) flattenScene(work, lattice.pitchX);
+
+  // Centres in two steps: an iterated centroid in a disc of half the neighbour distance (robust
+  // from a guess a quarter pitch off), then, except for pinhole spots whose centroid is already
+  // exact, the centre of symmetry over a slightly larger disc (unbiased whatever the shape of the
+  // microlens images, which fill square or hexagonal cells and whose flat tops carry no
+  // information for a centroid).
+  const bool pinhole = options.target == CalibrationTarget::Pinhole;
+  const Image smooth = smoothBinomial(work);
+  work = Image();
+  // Named pair members, not structured bindings: clang 14 cannot capture those in a lambda.
+  const std::pair<Image, Image> grads = pinhole ? std::pair<Image, Image>() : gradients(smooth);
+  const Image& gradX = grads.first;
+  const Image& gradY = grads.second;
+  const double spacing = lattice.neighbourDistance();
+  const double centroidRadius = 0.5 * spacing, symmetricRadius = 0.75 * spacing;
+  const double relax = pinhole ? 1.0 : 1.5;  // a flat disc's centroid moves half-way per step
+  const double minContrast = options.target == CalibrationTarget::Scene ? 0.15 : 0.3;
+  const CentreEstimate seed = findSeed(smooth, lattice, centroidRadius, relax);
+  if (!seed.ok) return makeError(ErrorCode::Format, where + ": no microlens image found near the centre");
+  lattice.ox = seed.x;
+  lattice.oy = seed.y;
+
+  // Grow: measure the microlenses within `reach` lattice steps of the seed, refit, widen.
+  std::vector<Sample> samples, present;
+  LatticeFit fit;
+  for (int reach = 3;; reach *= 4) {
+    IndexBox box = indexBoxOfImage(lattice, smooth.width(), smooth.height());
+    const bool last = box.k0 >= -reach && box.n0 >= -reach && box.k1 <= reach && box.n1 <= reach;
+    box = {std::max(box.k0, -reach), std::min(box.k1, reach), std::max(box.n0, -reach), std::min(box.n1, reach)};
+    std::vector<Sample> predicted;
+    for (int n = box.n0; n <= box.n1; ++n)
+      for (int k = box.k0; k <= box.k1; ++k) {
+        const auto c = lattice.centre(k, n);
+        if (c[0] - centroidRadius - 1 < 0 || c[1] - centroidRadius - 1 < 0 || c[0] + centroidRadius + 1 > smooth.width() ||
+            c[1] + centroidRadius + 1 > smooth.height())
+          continue;
+        predicted.push_back({k, n, c[0], c[1]});
+      }
+    std::vector<CentreEstimate> rough(predicted.size()), fine(predicted.size());
+    parallelFor(0, predicted.size(), 64, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t m = begin; m < end; ++m) {
+        // Until the last step the centroid alone is enough to predict further out.
+        rough[m] = calibrate_detail::refineCentre(smooth, predicted[m].x, predicted[m].y, centroidRadius, 20, relax,
+                                                  pinhole ? 1e-3 : 0.01);
+        if (!rough[m].ok) continue;
+        if (pinhole || !last) {
+          fine[m] = rough[m];
+          continue;
+        }
+        fine[m] = calibrate_detail::refineSymmetric(smooth, gradX, gradY, rough[m].x, rough[m].y, symmetricRadius, 6);
+        if (std::hypot(fine[m].x - rough[m].x, fine[m].y - rough[m].y) > 1) fine[m].ok = false;
+      }
+    });
+    std::vector<double> contrasts;
+    for (const CentreEstimate& e : rough)
+      if (e.ok) contrasts.push_back(e.contrast);
+    const double contrastFloor = minContrast * median(contrasts);
+    const double tolerance = 0.3 * spacing;
+    samples.clear();
+    present.clear();
+    for (std::size_t m = 0; m < predicted.size(); ++m) {
+      const CentreEstimate& e = rough[m];
+      if (!e.ok || e.contrast < contrastFloor) continue;
+      if (std::hypot(e.x - predicted[m].x, e.y - predicted[m].y) > tolerance) continue;
+      present.push_back({predicted[m].k, predicted[m].n, e.x, e.y});
+      if (fine[m].ok) samples.push_back({predicted[m].k, predicted[m].n, fine[m].x, fine[m].y});
+    }
+    if (samples.size() < 6)
+      return makeError(ErrorCode::Format, where + ": too few microlens images found (" + std::to_string(samples.size()) +
+                                              ") to fit a lattice");
+    fit = calibrate_detail::fitLattice(samples, lattice);
+    if (fit.used < 6 || !(fit.lattice.pitchX > 2) || !(fit.lattice.pitchY > 2))
+      return makeError(ErrorCode::Format, where + ": the microlens centres do not fit a lattice");
+    lattice = fit.lattice;
+    if (last) break;
+  }
+  const int found = int(samples.size());
+
+  // The grid: the index rectangle around the microlenses whose image was found inside the image
+  // (the first, centroid step needs only the image's own disc) where the lattice puts one.
+  int k0 = INT32_MAX, k1 = INT32_MIN, n0 = INT32_MAX, n1 = INT32_MIN;
+  const double onLattice = std::max(1.0, 0.1 * spacing);
+  for (const Sample& p : present) {
+    const auto c = lattice.centre(p.k, p.n);
+    if (std::hypot(p.x - c[0], p.y - c[1]) > onLattice) continue;
+    k0 = std::min(k0, p.k);
+    k1 = std::max(k1, p.k);
+    n0 = std::min(n0, p.n);
+    n1 = std::max(n1, p.n);
+  }
+  if (k0 > k1) return makeError(ErrorCode::Format, where + ": no microlens image lies wholly inside the image");
+  Calibration result;
+  LensletGrid& grid = result.grid;
+  grid.packing = lattice.packing;
+  grid.pitchX = lattice.pitchX;
+  grid.pitchY = lattice.pitchY;
+  grid.rotationRad = lattice.theta;
+  grid.hexParity = lattice.packing == Packing::Hexagonal ? (n0 & 1) : 0;
+  {
+    // centre(i, j) = lattice.centre(k0 + i, n0 + j): the origin is the unshifted position of row n0.
+    const double a = k0 * lattice.pitchX, b = n0 * lattice.pitchY;
+    const double c = std::cos(lattice.theta), s = std::sin(lattice.theta);
+    grid.origin = {lattice.ox + c * a - s * b, lattice.oy + s * a + c * b};
+  }
+  grid.columns = k1 - k0 + 1;
+  grid.rows = n1 - n0 + 1;
+  grid.fit = {found, fit.used, fit.rms, fit.max};
+  result.centres.reserve(samples.size());
+  for (std::size_t m = 0; m < samples.size(); ++m)
+    result.centres.push_back({samples[m].k - k0, samples[m].n - n0, samples[m].x, samples[m].y, fit.residual[m],
+                              bool(fit.inlier[m])});
+  return result;
+}
+
+Result<Calibration> calibrateGridDetailed(const Image& image, const CalibrationOptions& options, const std::string& where) {
+  if (image.empty() || image.channels() < 1) return makeError(ErrorCode::Usage, where + ": empty image");
+  Image work = prepare(image, options);
+  // The hint is only a guess (a metadata file may belong to another camera), and the image's own
+  // autocorrelation can be fooled on a small image: when the two disagree (packing, or pitch by
+  // more than 5%), both are fitted and the lattice that fits its centres better (relative to its
+  // pitch) wins; the hint serves where the autocorrelation finds nothing.
+  auto measured = calibrate_detail::latticeFromAutocorrelation(work, where);
+  if (!options.hint) {
+    if (!measured) return measured.error();
+    return calibrateFrom(std::move(work), *measured, options, where);
+  }
+  const LensletHint& hint = *options.hint;
+  if (!std::isfinite(hint.pitchPx) || hint.pitchPx < 3 || hint.pitchPx > 0.5 * std::min(image.width(), image.height()))
+    return makeError(ErrorCode::Usage, where + ": the lenslet hint's pitch (" + std::to_string(hint.pitchPx) +
+                                           " px) must lie in [3, half the image's size]");
+  if (!std::isfinite(hint.rotationRad) || std::abs(hint.rotationRad) > 0.5)
+    return makeError(ErrorCode::Usage, where + ": the lenslet hint's rotation must be within 0.5 rad");
+  Lattice hinted;
+  hinted.packing = hint.packing;
+  hinted.pitchX = hint.pitchPx;
+  hinted.pitchY = hint.packing == Packing::Hexagonal ? hint.pitchPx * std::sqrt(3.0) / 2 : hint.pitchPx;
+  hinted.theta = hint.rotationRad;
+  if (!measured || (measured->packing == hinted.packing && std::abs(measured->pitchX / hinted.pitchX - 1) <= 0.05))
+    return calibrateFrom(std::move(work), hinted, options, where);
+  auto fromHint = calibrateFrom(work.copy(), hinted, options, where);
+  auto fromImage = calibrateFrom(std::move(work), *measured, options, where);
+  if (!fromHint) return fromImage;
+  if (!fromImage) return fromHint;
+  const auto relativeResidual = [](const Calibration& c) { return c.grid.fit.rmsResidualPx / c.grid.pitchX; };
+  return relativeResidual(*fromImage) < relativeResidual(*fromHint) ? std::move(fromImage) : std::move(fromHint);
+}
+
+Result<LensletGrid> calibrateGrid(const Image& image, const CalibrationOptions& options, const std::string& where) {
+  auto result = calibrateGridDetailed(image, options, where);
+  if (!result) return result.error();
+  return std::move(result->grid);
+}
+
+Result<LensletGrid> calibrateGrid(const RawImage& raw, CalibrationOptions options, const std::string& where) {
+  if (!options.hint && raw.lenslet) options.hint = raw.lenslet;
+  if (options.colorFilter == ColorFilter::Mono) options.colorFilter = raw.colorFilter;
+  if (options.blackLevel == 0) options.blackLevel = raw.blackLevel;
+  return calibrateGrid(raw.mosaic, options, where);
+}
+
+}  // namespace lfcam

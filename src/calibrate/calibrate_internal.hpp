@@ -1,0 +1,71 @@
+// Steps of the lattice calibration (src/calibrate/), shared by its source files.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "lfcam/calibrate.hpp"
+
+namespace lfcam::calibrate_detail {
+
+// The lattice in its own indices: microlens (k, n) at
+//   o + R(theta) ((k + shift(n)) pitchX, n pitchY),  shift(n) = 1/2 for odd n when hexagonal.
+struct Lattice {
+  Packing packing = Packing::Square;
+  double ox = 0, oy = 0, theta = 0, pitchX = 0, pitchY = 0;
+
+  double shift(int n) const { return packing == Packing::Hexagonal && (n & 1) ? 0.5 : 0.0; }
+  std::array<double, 2> centre(int k, int n) const;
+  // Centre-to-centre distance of nearest neighbours.
+  double neighbourDistance() const;
+};
+
+// A measured centre with its lattice indices.
+struct Sample {
+  int k = 0, n = 0;
+  double x = 0, y = 0;
+};
+
+struct LatticeFit {
+  Lattice lattice;
+  std::vector<char> inlier;       // per sample
+  std::vector<double> residual;   // per sample, pixels
+  int used = 0;
+  double rms = 0, max = 0;        // over the inliers
+};
+
+// Least squares (Gauss-Newton on origin, rotation, pitchX, pitchY) with iterative rejection of
+// samples whose residual exceeds 4 sigma (sigma from the median residual). Starts at `start`.
+LatticeFit fitLattice(const std::vector<Sample>& samples, const Lattice& start);
+
+// A first lattice (packing, pitches, rotation; no origin) from the autocorrelation of the central
+// part of a prepared image. Fails when no two independent periodic peaks are found.
+Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::string& where);
+
+struct CentreEstimate {
+  double x = 0, y = 0;
+  double contrast = 0;   // max - min of the image in the window
+  bool ok = false;       // converged with the window inside the image
+};
+
+// Iterated centroid of max(image - level, 0) over a soft-edged disc of `radius` around the
+// estimate (level: 10% of the way from the first window's min to its max): converges to the
+// centre of a bright spot or disc from a guess a quarter of its size off. relax multiplies each
+// step (a flat disc's centroid moves only half-way). Not ok when the window leaves the image or
+// the steps do not settle.
+// Stops when a step is below `tolerance` pixels.
+CentreEstimate refineCentre(const Image& image, double x, double y, double radius, int iterations,
+                            double relax = 1.0, double tolerance = 1e-3);
+
+// The centre of symmetry of `image` near (x, y): Gauss-Newton on the sum over offsets d within
+// `radius` of [I(c + d) - I(c - d)]^2, bilinear samples; gradX, gradY: the image's gradient.
+// Unbiased for any centrally symmetric microlens image, whatever its shape.
+CentreEstimate refineSymmetric(const Image& image, const Image& gradX, const Image& gradY, double x, double y,
+                               double radius, int iterations);
+
+// The JSON in a file; errors name it. expected: what the file should be, for the message.
+Result<nlohmann::json> readJsonFile(const std::filesystem::path& path, const char* expected);
+
+}  // namespace lfcam::calibrate_detail

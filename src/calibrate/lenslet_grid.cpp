@@ -1,0 +1,123 @@
+// LensletGrid: the lattice formula of lenslet_grid.hpp and its grid.json form (docs/formats.md).
+#include "lfcam/lenslet_grid.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "lfcam/atomic_file.hpp"
+#include "calibrate/calibrate_internal.hpp"
+#include "simulate/json_reader.hpp"
+
+namespace lfcam {
+
+namespace {
+constexpr const char* kFormatName = "lfcam-lenslet-grid";
+constexpr int kFormatVersion = 1;
+}  // namespace
+
+std::array<double, 2> LensletGrid::centre(int i, int j) const {
+  const bool shifted = packing == Packing::Hexagonal && ((j + hexParity) & 1);
+  const double a = (i + (shifted ? 0.5 : 0.0)) * pitchX, b = j * pitchY;
+  const double c = std::cos(rotationRad), s = std::sin(rotationRad);
+  return {origin[0] + c * a - s * b, origin[1] + s * a + c * b};
+}
+
+nlohmann::json gridToJson(const LensletGrid& grid) {
+  return {{"format", kFormatName},
+          {"version", kFormatVersion},
+          {"packing", packingName(grid.packing)},
+          {"pitch_x_px", grid.pitchX},
+          {"pitch_y_px", grid.pitchY},
+          {"rotation_deg", grid.rotationRad * 180.0 / M_PI},
+          {"origin_px", {grid.origin[0], grid.origin[1]}},
+          {"columns", grid.columns},
+          {"rows", grid.rows},
+          {"hex_parity", grid.hexParity},
+          {"fit",
+           {{"lenslets_found", grid.fit.lensletsFound},
+            {"lenslets_used", grid.fit.lensletsUsed},
+            {"rms_residual_px", grid.fit.rmsResidualPx},
+            {"max_residual_px", grid.fit.maxResidualPx}}}};
+}
+
+Result<LensletGrid> gridFromJson(const nlohmann::json& json, const std::string& where) {
+  using simulate_detail::JsonObject;
+  JsonObject root(json, where, "");
+  LFCAM_TRY(root.requireObject());
+  std::string format, packing;
+  LFCAM_TRY(root.string("format", format));
+  if (format != kFormatName) return root.fail("format", "expected \"" + std::string(kFormatName) + "\"");
+  int version = 0;
+  LFCAM_TRY(root.integer("version", version, 1, 1000));
+  if (version != kFormatVersion)
+    return makeError(ErrorCode::Unsupported, where + ": version: " + std::to_string(version) + " is not supported");
+  LensletGrid grid;
+  LFCAM_TRY(root.string("packing", packing));
+  if (packing == "square") grid.packing = Packing::Square;
+  else if (packing == "hexagonal") grid.packing = Packing::Hexagonal;
+  else return root.fail("packing", "expected \"square\" or \"hexagonal\"");
+  for (const char* key : {"pitch_x_px", "pitch_y_px", "rotation_deg", "origin_px", "columns", "rows"})
+    if (!root.has(key)) return root.fail(key, "missing");
+  double rotationDeg = 0;
+  LFCAM_TRY(root.number("pitch_x_px", grid.pitchX, 0, 1e5, true));
+  LFCAM_TRY(root.number("pitch_y_px", grid.pitchY, 0, 1e5, true));
+  LFCAM_TRY(root.number("rotation_deg", rotationDeg, -180, 180));
+  grid.rotationRad = rotationDeg * M_PI / 180.0;
+  LFCAM_TRY(root.numbers("origin_px", grid.origin, -1e7, 1e7));
+  LFCAM_TRY(root.integer("columns", grid.columns, 1, 1000000));
+  LFCAM_TRY(root.integer("rows", grid.rows, 1, 1000000));
+  LFCAM_TRY(root.integer("hex_parity", grid.hexParity, 0, 1));
+  if (root.has("fit")) {
+    JsonObject fit(root.at("fit"), where, "fit");
+    LFCAM_TRY(fit.requireObject());
+    LFCAM_TRY(fit.integer("lenslets_found", grid.fit.lensletsFound, 0, 2000000000));
+    LFCAM_TRY(fit.integer("lenslets_used", grid.fit.lensletsUsed, 0, 2000000000));
+    LFCAM_TRY(fit.number("rms_residual_px", grid.fit.rmsResidualPx, 0, 1e9));
+    LFCAM_TRY(fit.number("max_residual_px", grid.fit.maxResidualPx, 0, 1e9));
+    LFCAM_TRY(fit.noUnknownKeys());
+  }
+  root.markSeen("fit");
+  LFCAM_TRY(root.noUnknownKeys());
+  return grid;
+}
+
+Result<nlohmann::json> calibrate_detail::readJsonFile(const std::filesystem::path& path, const char* expected) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    return makeError(ErrorCode::Usage, path.string() + ": is a folder, expected " + expected);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return makeError(ErrorCode::Io, path.string() + ": cannot open");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return makeError(ErrorCode::Io, path.string() + ": cannot read");
+  try {
+    return nlohmann::json::parse(text.str());
+  } catch (const nlohmann::json::exception& e) {  // syntax, and numbers out of range (1e999)
+    std::string message = e.what();
+    const auto at = message.find("parse error");
+    if (at != std::string::npos) message = message.substr(at);
+    return makeError(ErrorCode::Format, path.string() + ": not valid JSON: " + message);
+  }
+}
+
+Result<LensletGrid> readGrid(const std::filesystem::path& path) {
+  auto json = calibrate_detail::readJsonFile(path, "a grid file (.json)");
+  if (!json) return json.error();
+  return gridFromJson(*json, path.string());
+}
+
+Status writeGrid(const std::filesystem::path& path, const LensletGrid& grid) {
+  const std::string text = gridToJson(grid).dump(2) + "\n";
+  return writeFileAtomically(path, [&](const std::filesystem::path& temporary) -> Status {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) return makeError(ErrorCode::Io, path.string() + ": cannot write");
+    return {};
+  });
+}
+
+}  // namespace lfcam

@@ -1,0 +1,216 @@
+// decodeLightField: the decoder's pipeline (decode.hpp); the kernels are in the other files.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "decode/decode_internal.hpp"
+#include "lfcam/decode.hpp"
+#include "lfcam/parallel.hpp"
+
+namespace lfcam {
+
+namespace {
+
+using decode_detail::CfaTable;
+
+constexpr float kHotPixelThreshold = 0.25f;  // of full scale above every same-colour neighbour
+constexpr float kDarkWhite = 0.02f;          // white response (of its brightest) below which a photosite is unlit
+
+std::string sizeText(const Image& image) { return std::to_string(image.width()) + "x" + std::to_string(image.height()); }
+
+Status checkSameSize(const Image& image, const Image& mosaic, const std::string& what) {
+  if (image.width() != mosaic.width() || image.height() != mosaic.height() || image.channels() < 1)
+    return makeError(ErrorCode::Usage, what + ": " + sizeText(image) + " does not match the raw's " + sizeText(mosaic));
+  return {};
+}
+
+// (raw - offset) / (white level - black level), with offset the dark frame or the black level.
+Image normalise(const RawImage& raw, const RawImage* dark) {
+  const Image& mosaic = raw.mosaic;
+  Image out(mosaic.width(), mosaic.height(), 1);
+  const float black = float(raw.blackLevel), scale = float(1.0 / (raw.whiteLevel - raw.blackLevel));
+  const float* in = mosaic.plane(0);
+  const float* darkPlane = dark ? dark->mosaic.plane(0) : nullptr;
+  float* o = out.plane(0);
+  const std::size_t n = mosaic.planeSize();
+  parallelFor(0, n, 1 << 16, [&](std::size_t begin, std::size_t end) {
+    if (darkPlane)
+      for (std::size_t k = begin; k < end; ++k) o[k] = (in[k] - darkPlane[k]) * scale;
+    else
+      for (std::size_t k = begin; k < end; ++k) o[k] = (in[k] - black) * scale;
+  });
+  return out;
+}
+
+// The brightest level of each colour of the white image (99.5th percentile, hot pixels aside).
+std::array<float, 3> whiteReferences(const Image& white, ColorFilter filter) {
+  const bool mono = filter == ColorFilter::Mono;
+  const CfaTable cfa(mono ? ColorFilter::RGGB : filter);
+  const int w = white.width(), h = white.height();
+  // About a million photosites are plenty for a percentile: every stride-th 2x2 block.
+  const int stride = std::max(1, int(std::sqrt(double(w) * h / 1e6)));
+  std::array<std::vector<float>, 3> values;
+  for (int y = 0; y < h; ++y) {
+    if ((y / 2) % stride) continue;
+    for (int x = 0; x < w; ++x)
+      if ((x / 2) % stride == 0) values[std::size_t(mono ? 0 : cfa(x, y))].push_back(white.at(x, y, 0));
+  }
+  std::array<float, 3> refs{1, 1, 1};
+  for (std::size_t c = 0; c < 3; ++c) {
+    auto& v = values[mono ? 0 : c];
+    if (v.empty()) continue;
+    const std::size_t k = std::min(v.size() - 1, std::size_t(0.995 * double(v.size())));
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+    refs[c] = std::max(v[k], 1e-6f);
+  }
+  return refs;
+}
+
+// Devignetting per photosite: value / white (radiance relative to the white image's) and the
+// white's response over its brightest (the weight).
+Image devignette(Image& value, const Image& white, ColorFilter filter) {
+  const auto refs = whiteReferences(white, filter);
+  const CfaTable cfa(filter == ColorFilter::Mono ? ColorFilter::RGGB : filter);
+  const int w = value.width(), h = value.height();
+  Image weight(w, h, 1);
+  parallelFor(0, std::size_t(h), 16, [&](std::size_t begin, std::size_t end) {
+    for (int y = int(begin); y < int(end); ++y) {
+      float* v = value.row(y, 0);
+      float* wt = weight.row(y, 0);
+      const float* wh = white.row(y, 0);
+      for (int x = 0; x < w; ++x) {
+        const float ref = refs[std::size_t(filter == ColorFilter::Mono ? 0 : cfa(x, y))];
+        const float level = wh[x] / ref;
+        const bool lit = level > kDarkWhite;
+        v[x] = lit ? v[x] / wh[x] : 0.0f;
+        wt[x] = lit ? std::min(level, 1.0f) : 0.0f;
+      }
+    }
+  });
+  return weight;
+}
+
+// Camera RGB -> white-balanced, colour-corrected RGB, per sample.
+void correctColour(LightField& lf, const std::array<double, 3>& gains, const std::array<double, 9>& matrix) {
+  float m[9];
+  for (int k = 0; k < 9; ++k) m[k] = float(matrix[std::size_t(k)] * gains[std::size_t(k % 3)]);
+  const std::size_t pixels = lf.shape().viewPixels();
+  parallelFor(0, lf.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t view = begin; view < end; ++view) {
+      const int u = int(view % std::size_t(lf.nu())), v = int(view / std::size_t(lf.nu()));
+      float* r = lf.plane(u, v, 0);
+      float* g = lf.plane(u, v, 1);
+      float* b = lf.plane(u, v, 2);
+      for (std::size_t k = 0; k < pixels; ++k) {
+        const float R = r[k], G = g[k], B = b[k];
+        r[k] = m[0] * R + m[1] * G + m[2] * B;
+        g[k] = m[3] * R + m[4] * G + m[5] * B;
+        b[k] = m[6] * R + m[7] * G + m[8] * B;
+      }
+    }
+  });
+}
+
+Status checkInputs(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options) {
+  const Image& mosaic = raw.mosaic;
+  if (mosaic.empty() || mosaic.channels() != 1)
+    return makeError(ErrorCode::Usage, "decode: the raw must be one non-empty channel of photosites");
+  if (!(raw.whiteLevel > raw.blackLevel))
+    return makeError(ErrorCode::Usage, "decode: white level " + std::to_string(raw.whiteLevel) +
+                                           " is not above black level " + std::to_string(raw.blackLevel));
+  if (!(grid.pitchX > 1 && grid.pitchY > 1) || grid.columns < 1 || grid.rows < 1 || !std::isfinite(grid.rotationRad))
+    return makeError(ErrorCode::Usage, "decode: the lenslet grid is empty or its pitch is below 2 pixels");
+  if (options.views < 0 || options.views > 256)
+    return makeError(ErrorCode::Usage, "decode: views must be in [1, 256], not " + std::to_string(options.views));
+  if (options.dark) LFCAM_TRY(checkSameSize(options.dark->mosaic, mosaic, "dark frame"));
+  if (const RawImage* white = options.white) {
+    LFCAM_TRY(checkSameSize(white->mosaic, mosaic, "white image"));
+    if (!(white->whiteLevel > white->blackLevel))
+      return makeError(ErrorCode::Usage, "white image: white level is not above black level");
+  }
+  if (options.whiteImage) LFCAM_TRY(checkSameSize(*options.whiteImage, mosaic, "white image"));
+  return {};
+}
+
+}  // namespace
+
+Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options) {
+  LFCAM_TRY(checkInputs(raw, grid, options));
+  const ColorFilter filter = raw.colorFilter;
+  const int channels = filter == ColorFilter::Mono ? 1 : 3;
+  const int n = options.views > 0 ? options.views : std::max(1, int(std::lround(grid.pitchX)));
+  const double samples = double(n) * n * grid.columns * grid.rows * (channels + 1);
+  if (samples > 4e9) return makeError(ErrorCode::Resource, "decode: light field too large (" + std::to_string(samples) + " samples)");
+
+  // 1. Offset and scale, hot pixels.
+  Image value = normalise(raw, options.dark);
+  if (options.repairHotPixels) repairHotPixels(value, filter, kHotPixelThreshold);
+
+  // 2. Devignetting by the white image (same offset treatment: the dark frame holds the
+  //    sensor's offset for both).
+  Image weight;
+  const bool hasWhite = options.white || options.whiteImage;
+  if (hasWhite) {
+    Image white;
+    if (options.white) {
+      white = normalise(*options.white, options.dark);
+      if (options.repairHotPixels) repairHotPixels(white, filter, kHotPixelThreshold);
+    } else {
+      const Image& given = *options.whiteImage;
+      white = Image(given.width(), given.height(), 1);
+      std::copy(given.plane(0), given.plane(0) + given.planeSize(), white.plane(0));
+    }
+    weight = devignette(value, white, filter);
+  }
+
+  // 3. Demosaicing.
+  Image planes = options.referenceKernels && options.demosaic != DemosaicMethod::LensletAware
+                     ? demosaicReference(value, filter, options.demosaic)
+                     : demosaic(value, filter, options.demosaic, &grid);
+  value = Image();
+
+  // 4. Dicing.
+  LightField lf(LightFieldShape{n, n, grid.columns, grid.rows, channels});
+  lf.enableWeight(0);
+  decode_detail::ViewLayout layout;
+  layout.views = n;
+  layout.sampling = options.sampling;
+  layout.integralScale = grid.pitchX / std::max(1.0, std::round(grid.pitchX));
+  decode_detail::sampleLenslets(planes, weight, grid, layout, lf, options.referenceKernels);
+  planes = Image();
+  weight = Image();
+
+  // Without a white image the aperture is a disc of the microlens image's diameter.
+  if (!hasWhite) {
+    const double diameter = options.apertureDiameterPx > 0 ? options.apertureDiameterPx : grid.pitchX;
+    const double scale = options.sampling == Sampling::IntegralPitch ? layout.integralScale : 1.0;
+    for (int v = 0; v < n; ++v)
+      for (int u = 0; u < n; ++u) {
+        const double du = lf.uFromCentre(u) * scale, dv = lf.vFromCentre(v) * scale;
+        if (du * du + dv * dv <= 0.25 * diameter * diameter) continue;
+        float* wt = lf.weightPlane(u, v);
+        std::fill(wt, wt + lf.shape().viewPixels(), 0.0f);
+      }
+  }
+
+  // 5. Colour: the white image already divided out each colour's response, so the camera's white
+  //    balance gains apply only without it.
+  if (channels == 3 && options.applyWhiteBalance && (raw.colorMatrix || (!hasWhite && raw.whiteBalance))) {
+    const std::array<double, 3> gains = !hasWhite && raw.whiteBalance ? *raw.whiteBalance : std::array<double, 3>{1, 1, 1};
+    const std::array<double, 9> identity{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    correctColour(lf, gains, raw.colorMatrix.value_or(identity));
+  }
+
+  // 6. Hexagonal rows onto a rectangular s grid.
+  if (grid.packing == Packing::Hexagonal && options.hexToRectangular)
+    hexRowsToRectangular(lf, (grid.rows + grid.hexParity) & 1);
+
+  lf.metadata.optics = options.optics;
+  lf.metadata.source = "lfcam decode" + (raw.source.empty() ? std::string() : " of a " + raw.source + " raw") + ": " +
+                       std::to_string(grid.columns) + "x" + std::to_string(grid.rows) + " " + packingName(grid.packing) +
+                       " microlenses, pitch " + std::to_string(grid.pitchX) + " px";
+  return lf;
+}
+
+}  // namespace lfcam

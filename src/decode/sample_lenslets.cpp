@@ -1,0 +1,141 @@
+// Dicing: every microlens image sampled into the views of L(u, v, s, t).
+//
+// SubPixel: view (u, v) of microlens (i, j) is the sensor point centre(i, j) - (u - (n-1)/2,
+// v - (n-1)/2), interpolated with a Catmull-Rom cubic. All views of one microlens share the same
+// sub-pixel phase (they are whole pixels apart), so the fast kernel filters the microlens's patch
+// separably with one set of 4 weights per axis: (n + 3) n 4 + n n 4 multiply-adds per microlens and
+// channel instead of 16 n n.
+// IntegralPitch (the paper's section 5.2): the raw rotated and scaled to round(pitch) pixels per
+// microlens with bilinear interpolation, then diced; sampled here directly at the points that
+// resampling and dicing would read, which gives the same values without the resampled image.
+#include <algorithm>
+#include <cmath>
+
+#include "decode/decode_internal.hpp"
+#include "lfcam/parallel.hpp"
+
+namespace lfcam::decode_detail {
+
+namespace {
+
+// Weights of the 4 taps at -1, 0, 1, 2 for a sample at fraction f in [0, 1).
+inline void catmullRom(double f, float w[4]) {
+  const double f2 = f * f, f3 = f2 * f;
+  w[0] = float(-0.5 * f3 + f2 - 0.5 * f);
+  w[1] = float(1.5 * f3 - 2.5 * f2 + 1.0);
+  w[2] = float(-1.5 * f3 + 2.0 * f2 + 0.5 * f);
+  w[3] = float(0.5 * f3 - 0.5 * f2);
+}
+
+inline int clampIndex(int i, int n) { return std::clamp(i, 0, n - 1); }
+
+// Cubic (or bilinear) interpolation of one plane at array coordinates (x, y) (pixel centres at
+// integers), borders clamped.
+float interpolate(const float* plane, int w, int h, double x, double y, bool cubic) {
+  const int bx = int(std::floor(x)), by = int(std::floor(y));
+  const double fx = x - bx, fy = y - by;
+  auto at = [&](int xx, int yy) { return plane[std::size_t(clampIndex(yy, h)) * w + clampIndex(xx, w)]; };
+  if (!cubic) {
+    return float((1 - fy) * ((1 - fx) * at(bx, by) + fx * at(bx + 1, by)) +
+                 fy * ((1 - fx) * at(bx, by + 1) + fx * at(bx + 1, by + 1)));
+  }
+  float wx[4], wy[4];
+  catmullRom(fx, wx);
+  catmullRom(fy, wy);
+  float sum = 0;
+  for (int ty = 0; ty < 4; ++ty) {
+    float row = 0;
+    for (int tx = 0; tx < 4; ++tx) row += wx[tx] * at(bx - 1 + tx, by - 1 + ty);
+    sum += wy[ty] * row;
+  }
+  return sum;
+}
+
+inline float cleanWeight(float w) { return w < 0.02f ? 0.0f : std::min(w, 1.0f); }
+
+// One microlens, one sample at a time (the reference, and the path for microlenses at the border).
+void sampleMicrolensPlain(const Image& planes, const Image& weight, const LensletGrid& grid, const ViewLayout& layout,
+                          LightField& lf, int i, int j) {
+  const int n = layout.views, w = planes.width(), h = planes.height();
+  const int s = grid.columns - 1 - i, t = grid.rows - 1 - j;
+  const auto centre = grid.centre(i, j);
+  const bool cubic = layout.sampling == Sampling::SubPixel;
+  const double cs = std::cos(grid.rotationRad), sn = std::sin(grid.rotationRad);
+  for (int v = 0; v < n; ++v)
+    for (int u = 0; u < n; ++u) {
+      double ox = -(u - 0.5 * (n - 1)), oy = -(v - 0.5 * (n - 1));
+      if (!cubic) {  // the resampled image's pixels: lattice axes, pitch / round(pitch) apart
+        const double rx = ox * layout.integralScale, ry = oy * layout.integralScale;
+        ox = cs * rx - sn * ry, oy = sn * rx + cs * ry;
+      }
+      const double x = centre[0] + ox, y = centre[1] + oy;
+      const std::size_t k = std::size_t(t) * lf.ns() + s;
+      for (int c = 0; c < planes.channels(); ++c)
+        lf.plane(u, v, c)[k] = interpolate(planes.plane(c), w, h, x - 0.5, y - 0.5, cubic);
+      float wt = x >= 0 && y >= 0 && x < w && y < h ? 1.0f : 0.0f;
+      if (wt > 0 && !weight.empty()) wt = cleanWeight(interpolate(weight.plane(0), w, h, x - 0.5, y - 0.5, cubic));
+      lf.weightPlane(u, v)[k] = wt;
+    }
+}
+
+// One microlens, separable: the fast kernel of SubPixel sampling. `rows` is scratch space of
+// (n + 3) * n floats. Returns false when the patch reaches beyond the image (caller falls back).
+bool sampleMicrolensSeparable(const Image& planes, const Image& weight, const LensletGrid& grid, int n, LightField& lf,
+                              int i, int j, std::vector<float>& rows) {
+  const int w = planes.width(), h = planes.height();
+  const auto centre = grid.centre(i, j);
+  // Array coordinate of view 0 (the rightmost/lowest sensor point); view u is u pixels left of it.
+  const double x0 = centre[0] + 0.5 * (n - 1) - 0.5, y0 = centre[1] + 0.5 * (n - 1) - 0.5;
+  const int bx = int(std::floor(x0)), by = int(std::floor(y0));
+  const int left = bx - (n - 1) - 1, top = by - (n - 1) - 1;  // first tap column / row
+  if (left < 0 || top < 0 || bx + 2 >= w || by + 2 >= h) return false;
+  float wx[4], wy[4];
+  catmullRom(x0 - bx, wx);
+  catmullRom(y0 - by, wy);
+  const int s = grid.columns - 1 - i, t = grid.rows - 1 - j;
+  const std::size_t k = std::size_t(t) * lf.ns() + s;
+  auto filter = [&](const float* plane, auto&& store) {
+    // Horizontal pass over the n + 3 rows the vertical taps need: rows[r * n + u].
+    for (int r = 0; r < n + 3; ++r) {
+      const float* src = plane + std::size_t(top + r) * w;
+      float* dst = rows.data() + std::size_t(r) * n;
+      for (int u = 0; u < n; ++u) {
+        const float* p = src + (bx - u - 1);
+        dst[u] = wx[0] * p[0] + wx[1] * p[1] + wx[2] * p[2] + wx[3] * p[3];
+      }
+    }
+    // Vertical pass: view v reads rows n-1-v .. n+2-v.
+    for (int v = 0; v < n; ++v) {
+      const float* r0 = rows.data() + std::size_t(n - 1 - v) * n;
+      for (int u = 0; u < n; ++u)
+        store(u, v, wy[0] * r0[u] + wy[1] * r0[u + n] + wy[2] * r0[u + 2 * n] + wy[3] * r0[u + 3 * n]);
+    }
+  };
+  for (int c = 0; c < planes.channels(); ++c)
+    filter(planes.plane(c), [&](int u, int v, float value) { lf.plane(u, v, c)[k] = value; });
+  if (weight.empty()) {
+    for (int v = 0; v < n; ++v)
+      for (int u = 0; u < n; ++u) lf.weightPlane(u, v)[k] = 1.0f;
+  } else {
+    filter(weight.plane(0), [&](int u, int v, float value) { lf.weightPlane(u, v)[k] = cleanWeight(value); });
+  }
+  return true;
+}
+
+}  // namespace
+
+void sampleLenslets(const Image& planes, const Image& weight, const LensletGrid& grid, const ViewLayout& layout,
+                    LightField& lf, bool reference) {
+  const int n = layout.views;
+  parallelFor(0, std::size_t(grid.rows), 1, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> rows(std::size_t(n + 3) * n);
+    for (int j = int(begin); j < int(end); ++j)
+      for (int i = 0; i < grid.columns; ++i) {
+        const bool fast = !reference && layout.sampling == Sampling::SubPixel &&
+                          sampleMicrolensSeparable(planes, weight, grid, n, lf, i, j, rows);
+        if (!fast) sampleMicrolensPlain(planes, weight, grid, layout, lf, i, j);
+      }
+  });
+}
+
+}  // namespace lfcam::decode_detail

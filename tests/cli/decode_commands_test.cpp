@@ -1,0 +1,54 @@
+// lfcam decode, and other commands reading a raw with --white: a small simulator capture decoded
+// through the whole command line.
+#include <gtest/gtest.h>
+
+#include "cli_support.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "test_support.hpp"
+
+namespace lfcam::test {
+namespace {
+
+TEST(DecodeCommand, DecodesASimulatorCapture) {
+  TempDir dir;
+  const std::string sim = (dir / "sim").string();
+  auto simulate = runLfcam({"simulate", "people", "--size", "160", "--pixels-per-lens", "13.37", "--hexagonal",
+                            "--samples", "4", "--noise", "off", "-o", sim},
+                           dir.path());
+  ASSERT_EQ(simulate.exitStatus, 0) << simulate.err;
+  const std::string out = (dir / "out.lf.h5").string();
+  auto decode = runLfcam({"decode", sim + "/raw.png", "--white", sim + "/white.png", "--sampling", "integral",
+                          "--demosaic", "ha", "-o", out},
+                         dir.path());
+  ASSERT_EQ(decode.exitStatus, 0) << decode.err;
+  auto lf = readLightField(out);
+  ASSERT_TRUE(lf.ok());
+  auto ideal = readLightField(sim + "/ideal.lf.h5");
+  ASSERT_TRUE(ideal.ok());
+  EXPECT_EQ(lf->nu(), ideal->nu());
+  EXPECT_EQ(lf->channels(), 3);
+  EXPECT_TRUE(lf->hasWeight());
+  ASSERT_TRUE(lf->metadata.optics.has_value());  // from camera.json
+  EXPECT_NEAR(lf->metadata.optics->lensStepMm, ideal->metadata.optics->lensStepMm, 1e-9);
+
+  // Any command takes the raw directly with its white image.
+  auto refocus = runLfcam({"refocus", sim + "/raw.png", "--white", sim + "/white.png", "--slope", "0", "-o",
+                           (dir / "photo.png").string()},
+                          dir.path());
+  EXPECT_EQ(refocus.exitStatus, 0) << refocus.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "photo.png"));
+}
+
+TEST(DecodeCommand, NeedsAGridOrAWhiteImage) {
+  TempDir dir;
+  const std::string sim = (dir / "sim").string();
+  ASSERT_EQ(runLfcam({"simulate", "white", "--size", "64", "--samples", "1", "--no-white", "-o", sim}, dir.path()).exitStatus, 0);
+  auto decode = runLfcam({"decode", sim + "/raw.png", "-o", (dir / "out.lf.h5").string()}, dir.path());
+  EXPECT_EQ(decode.exitStatus, 2);
+  EXPECT_NE(decode.err.find("lfcam: " + sim + "/raw.png: decoding needs --grid or a --white image"), std::string::npos)
+      << decode.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.lf.h5"));
+}
+
+}  // namespace
+}  // namespace lfcam::test

@@ -1,0 +1,65 @@
+// lfcam calibrate WHITE [--metadata FILE] [--pinhole | --scene] [--bayer PATTERN] -o grid.json:
+// finds the microlens lattice and writes it as grid.json (docs/formats.md).
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "commands.hpp"
+#include "lfcam/calibrate.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/raw_io.hpp"
+
+namespace lfcam::cli {
+
+void addCalibrateCommand(CLI::App& app, Job& job) {
+  struct Options {
+    std::string white, metadata, bayer, output;
+    bool pinhole = false, scene = false;
+    std::optional<double> black;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand("calibrate", "find the microlens grid in a white image; write grid.json");
+  command->add_option("WHITE", options->white, "white image (PNG or TIFF, 8 or 16 bit)")->required();
+  command->add_option("--metadata", options->metadata,
+                      "starting guess: the simulator's camera.json or a Lytro frame metadata JSON");
+  auto* pinhole = command->add_flag("--pinhole", options->pinhole,
+                                    "the image is a pinhole-source target: a sharp spot under each microlens");
+  auto* scene = command->add_flag("--scene", options->scene, "no white image: estimate the grid from a raw scene");
+  pinhole->excludes(scene);
+  command->add_option("--bayer", options->bayer, "the image is a Bayer mosaic: RGGB, BGGR, GRBG or GBRG");
+  command->add_option("--black", options->black, "black level, in the image's units (16-bit: code / 65535)");
+  command->add_option("-o,--output", options->output, "grid file to write (.json)")->required();
+  command->callback([options, &job] {
+    job = [options]() -> Status {
+      CalibrationOptions calibration;
+      if (!options->bayer.empty()) {
+        const auto filter = parseColorFilterName(options->bayer);
+        if (!filter) return makeError(ErrorCode::Usage, "--bayer: " + options->bayer + ": expected RGGB, BGGR, GRBG, GBRG or mono");
+        calibration.colorFilter = *filter;
+      }
+      if (options->pinhole) calibration.target = CalibrationTarget::Pinhole;
+      if (options->scene) calibration.target = CalibrationTarget::Scene;
+      calibration.blackLevel = options->black.value_or(0.0);
+      if (!options->metadata.empty()) {
+        auto hint = readLensletHint(options->metadata);
+        if (!hint) return hint.error();
+        calibration.hint = *hint;
+      }
+      auto image = readImage(options->white);
+      if (!image) return image.error();
+      auto grid = calibrateGrid(*image, calibration, options->white);
+      if (!grid) return grid.error();
+      LFCAM_TRY(writeGrid(options->output, *grid));
+      const LensletGrid& g = *grid;
+      std::printf("%s grid, %d x %d microlenses; pitch %.4f x %.4f px; rotation %.4f deg; origin (%.3f, %.3f) px%s\n",
+                  packingName(g.packing), g.columns, g.rows, g.pitchX, g.pitchY, g.rotationRad * 180.0 / M_PI,
+                  g.origin[0], g.origin[1], g.packing == Packing::Hexagonal ? (g.hexParity ? ", row 0 shifted" : ", row 1 shifted") : "");
+      std::printf("fit: %d centres found, %d used; residual RMS %.4f px, max %.4f px\n", g.fit.lensletsFound,
+                  g.fit.lensletsUsed, g.fit.rmsResidualPx, g.fit.maxResidualPx);
+      return {};
+    };
+  });
+}
+
+}  // namespace lfcam::cli

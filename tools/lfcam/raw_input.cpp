@@ -1,0 +1,76 @@
+#include "raw_input.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "lfcam/calibrate.hpp"
+#include "lfcam/raw_io.hpp"
+#include "progress_bar.hpp"
+
+namespace lfcam::cli {
+
+namespace {
+
+// The optics of a simulator capture, from the camera.json that readRaw keeps as metadata.
+std::optional<Optics> opticsFromMetadata(const nlohmann::json& metadata) {
+  if (!metadata.is_object()) return std::nullopt;
+  const nlohmann::json lf = metadata.value("light_field", nlohmann::json()), lens = metadata.value("main_lens", nlohmann::json());
+  auto number = [](const nlohmann::json& o, const char* key) {
+    return o.is_object() && o.contains(key) && o[key].is_number() ? o[key].get<double>() : 0.0;
+  };
+  Optics optics;
+  optics.lensStepMm = number(lf, "lens_step_mm");
+  optics.spatialStepMm = number(lf, "spatial_step_mm");
+  optics.lensToMicrolensMm = number(lens, "image_distance_mm");
+  if (number(lens, "focal_length_mm") > 0) optics.focalLengthMm = number(lens, "focal_length_mm");
+  if (optics.lensStepMm <= 0 || optics.spatialStepMm <= 0 || optics.lensToMicrolensMm <= 0) return std::nullopt;
+  return optics;
+}
+
+}  // namespace
+
+Result<ColorFilter> parseBayerOption(const std::string& text) {
+  if (auto filter = parseColorFilterName(text)) return *filter;
+  return makeError(ErrorCode::Usage, "--bayer: " + text + " is not one of RGGB, BGGR, GRBG, GBRG, mono");
+}
+
+Result<LightField> decodeRawInput(RawDecodeInput input) {
+  ProgressBar bar("decoding " + input.raw);
+  RawReadOptions readOptions;
+  readOptions.colorFilter = input.bayer;
+  auto raw = readRaw(input.raw, readOptions);
+  if (!raw) return raw.error();
+  bar(0.1);
+  RawImage dark, white;
+  if (!input.dark.empty()) {
+    auto read = readRaw(input.dark, readOptions);
+    if (!read) return read.error();
+    dark = std::move(*read);
+    input.decode.dark = &dark;
+  }
+  if (!input.white.empty()) {
+    auto read = readRaw(input.white, readOptions);
+    if (!read) return read.error();
+    white = std::move(*read);
+    input.decode.white = &white;
+  }
+  bar(0.2);
+  LensletGrid grid;
+  if (!input.grid.empty()) {
+    auto read = readGrid(input.grid);
+    if (!read) return read.error();
+    grid = *read;
+  } else {
+    if (input.white.empty()) return makeError(ErrorCode::Usage, input.raw + ": decoding needs --grid or a --white image to calibrate from");
+    auto calibrated = calibrateGrid(white, CalibrationOptions{}, input.white);
+    if (!calibrated) return calibrated.error();
+    grid = *calibrated;
+  }
+  bar(0.4);
+  if (!input.decode.optics) input.decode.optics = opticsFromMetadata(raw->metadata);
+  auto lf = decodeLightField(*raw, grid, input.decode);
+  if (!lf) return makeError(lf.error().code, input.raw + ": " + lf.error().message);
+  bar(1.0);
+  return lf;
+}
+
+}  // namespace lfcam::cli

@@ -1,0 +1,24 @@
+// A raw lenslet image decoded on the way: what `lfcam decode` and every command's --white take.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "lfcam/camera_model.hpp"
+#include "lfcam/decode.hpp"
+#include "lfcam/light_field.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam::cli {
+
+struct RawDecodeInput {
+  std::string raw, white, dark, grid;  // files; grid: grid.json, else calibrated from the white image
+  std::optional<ColorFilter> bayer;    // overrides what the raw says
+  DecodeOptions decode;                // its white and dark are filled from the files
+};
+
+// "RGGB", "mono", ... (any case); Usage error naming the option otherwise.
+Result<ColorFilter> parseBayerOption(const std::string& text);
+Result<LightField> decodeRawInput(RawDecodeInput input);
+
+}  // namespace lfcam::cli
