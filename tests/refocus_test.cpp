@@ -4,11 +4,14 @@
 #include "lfcam/refocus.hpp"
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "random_light_field.hpp"
 
@@ -53,6 +56,30 @@ TEST(Refocus, FastMatchesReferenceOnALargerWeightedField) {
   for (double slope : {-2.3, 0.75, 3.0})
     EXPECT_LT(worstRelativeError(refocus(lightField, slope), refocusReference(lightField, slope)), 1e-5)
         << "slope " << slope;
+}
+
+// The SIMD row kernel on every instruction set this CPU runs (Highway's dispatch forced to each
+// in turn), at widths around the vector lengths (4, 8, 16 lanes) so that every tail and edge
+// column path runs: odd widths, widths below one vector, one pixel wide.
+TEST(Refocus, EverySimdTargetMatchesReferenceAtOddWidthsAndTails) {
+  std::mt19937 random(1729);
+  std::uniform_real_distribution<double> anySlope(-3.0, 3.0);
+  const std::vector<std::int64_t> targets = hwy::SupportedAndGeneratedTargets();
+  ASSERT_FALSE(targets.empty());
+  for (std::int64_t target : targets) {
+    hwy::SetSupportedTargetsForTest(target);
+    for (int ns : {1, 2, 3, 5, 7, 9, 15, 17, 23, 31, 33, 47}) {
+      for (bool weighted : {false, true}) {
+        const LightField lightField =
+            randomLightField({.nu = 3, .nv = 2, .ns = ns, .nt = 5, .channels = 3}, random, weighted);
+        for (double slope : {0.0, 0.5, -1.0, anySlope(random), double(ns) + 0.25}) {
+          EXPECT_LT(worstRelativeError(refocus(lightField, slope), refocusReference(lightField, slope)), 1e-5)
+              << hwy::TargetName(target) << ", width " << ns << (weighted ? ", weighted" : "") << ", slope " << slope;
+        }
+      }
+    }
+  }
+  hwy::SetSupportedTargetsForTest(0);  // back to the CPU's best
 }
 
 TEST(Refocus, SlopeZeroIsTheMeanOfTheViews) {

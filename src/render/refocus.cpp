@@ -11,6 +11,7 @@
 
 #include "lfcam/parallel.hpp"
 #include "render/shift_and_add.hpp"
+#include "render/shift_and_add_rows.hpp"
 
 namespace lfcam {
 
@@ -87,26 +88,15 @@ Image refocusReference(const LightField& lightField, double slope) {
 // the synthetic camera's apertures and quadrature (synthetic_camera.cpp), views weighted by the
 // aperture, or blends of neighbouring views at the shifts of aperture samples between them.
 // For one view the shift is the same at every pixel, so its bilinear coefficients are constants:
-// a view's contribution to an output row is a blend of two source rows (vertical taps) followed by
-// a blend of two neighbouring columns (horizontal taps), both straight loops over a row. Taps
-// outside the view read a zero pad on either side of the blended row, so the loops have no
-// per-pixel tests. Without a weight plane the weight sum factors:
+// a view's contribution to an output row is four taps (two source rows, two neighbouring columns)
+// with the same four coefficients at every pixel: one straight SIMD loop over the row, with the
+// at most two columns whose taps leave the view done apart (shift_and_add_rows.hpp), so the loop
+// has no per-pixel tests. Without a weight plane the weight sum factors:
 //   sum_{u,v} wx_u(x) wy_v(y) = (sum_u wx_u(x)) (sum_v wy_v(y)),
 // with wx_u(x) the bilinear coefficients of view column u's taps that fall inside the view, so it
 // is computed once per column and once per row instead of accumulated per pixel.
 
 namespace {
-
-// Schedule: the row kernel below is compiled twice, for AVX2 and for baseline x86-64, and the
-// loader picks one for the CPU (function multiversioning: run-time dispatch without a library).
-// AVX2 halves the instructions of the inner loops; on 2 EPYC cores, 9x9 views of 512x512 RGB
-// went from about 32 to 22 ms, near the memcpy floor of about 18 ms. FMA is left out, so both
-// versions round identically.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define LFCAM_REFOCUS_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define LFCAM_REFOCUS_CLONES
-#endif
 
 struct RefocusPlan {
   const LightField* lightField = nullptr;
@@ -133,32 +123,11 @@ std::vector<float> separableWeight(const std::vector<AxisShift>& shifts, int siz
   return weight;
 }
 
-// out[i] = a * first[i] + b * second[i]: the two vertical taps.
-void blendRows(float* __restrict out, const float* __restrict first, const float* __restrict second, float a,
-               float b, int count) {
-  for (int i = 0; i < count; ++i) out[i] = a * first[i] + b * second[i];
-}
-
-// out[i] = weight0[i] * value0[i] + weight1[i] * value1[i]: the vertical taps of w * L.
-void blendWeightedRows(float* __restrict out, const float* __restrict weight0, const float* __restrict value0,
-                       const float* __restrict weight1, const float* __restrict value1, int count) {
-  for (int i = 0; i < count; ++i) out[i] = weight0[i] * value0[i] + weight1[i] * value1[i];
-}
-
-// accumulator[i] += a * row[i] + b * row[i + 1]: the two horizontal taps.
-void accumulateTaps(float* __restrict accumulator, const float* __restrict row, float a, float b, int count) {
-  for (int i = 0; i < count; ++i) accumulator[i] += a * row[i] + b * row[i + 1];
-}
-
-// out[i] = sum[i] / weight[i], or 0 where no ray arrived.
-void normalise(float* __restrict out, const float* __restrict sum, const float* __restrict weight, int count) {
-  for (int i = 0; i < count; ++i) out[i] = weight[i] > 0 ? sum[i] / weight[i] : 0.0f;
-}
-
 // Output rows [y0, y1) of the refocused photograph: the whole algorithm for one block of rows.
-// Views are the outer loop so that each source row is read from memory once and reused, from
-// cache, by the two output rows it is a tap of.
-LFCAM_REFOCUS_CLONES void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
+// Views are the outer loop: each source row is read from memory once and reused, from cache, by
+// the two output rows it is a tap of, while the block's accumulators stay in L2. The four
+// bilinear taps of a row are one SIMD pass (shift_and_add_rows.hpp).
+void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
   const LightField& lightField = *plan.lightField;
   const int ns = lightField.ns(), nt = lightField.nt(), channels = lightField.channels();
   const bool lightFieldWeighted = lightField.hasWeight();
@@ -169,61 +138,52 @@ LFCAM_REFOCUS_CLONES void refocusRows(const RefocusPlan& plan, int y0, int y1, I
   const int planes = channels + (weighted ? 1 : 0);
   std::vector<float> accumulator(std::size_t(planes) * rows * ns, 0.0f);
   auto accumulatorRow = [&](int plane, int y) { return accumulator.data() + (std::size_t(plane) * rows + (y - y0)) * ns; };
-  // A blended source row with one zero on either side: padded[1 + i] holds column i.
-  std::vector<float> padded(std::size_t(ns) + 2, 0.0f);
-  float* blended = padded.data() + 1;
-  std::vector<float> tapWeight0(lightFieldWeighted ? ns : 0), tapWeight1(lightFieldWeighted ? ns : 0);
+  // Without a weight plane each tap weighs its coefficients alone: the weight sum accumulates a
+  // row of ones. With one, the channels accumulate w * L, products formed a row at a time.
+  std::vector<float> ones(weighted && !lightFieldWeighted ? ns : 0, 1.0f);
+  std::vector<float> product0(lightFieldWeighted ? ns : 0), product1(lightFieldWeighted ? ns : 0);
 
   for (std::size_t term = 0; term < plan.terms.size(); ++term) {
     const int u = plan.terms[term].u, v = plan.terms[term].v;
     const float termWeight = plan.terms[term].weight;
     if (termWeight == 0.0f) continue;
-    const AxisShift sy = plan.termRowShift[term];
-    {
-      const AxisShift sx = plan.termColumnShift[term];
-      // Output columns with at least one tap in the view: -1 <= x + whole <= ns - 1.
-      const int xBegin = std::max(0, -1 - sx.whole), xEnd = std::min(ns, ns - sx.whole);
-      if (xBegin >= xEnd) continue;
-      // Source columns those taps read, clipped to the view; the rest is the zero pad.
-      const int sBegin = std::max(0, xBegin + sx.whole), sEnd = std::min(ns, xEnd + sx.whole + 1);
-      const float ax0 = float(1 - sx.fraction), ax1 = float(sx.fraction);
+    const AxisShift sx = plan.termColumnShift[term], sy = plan.termRowShift[term];
+    // No output column has a tap in the view.
+    if (sx.whole <= -ns - 1 || sx.whole >= ns) continue;
+    const float ax0 = float(1 - sx.fraction), ax1 = float(sx.fraction);
 
-      for (int y = y0; y < y1; ++y) {
-        // Vertical taps: rows y + whole and y + whole + 1, each kept only if inside the view.
-        const int row0 = y + sy.whole, row1 = row0 + 1;
-        // The term's weight rides on the vertical coefficients (exactly 1 for plain refocus).
-        const float ay0 = inside(row0, nt) ? float(1 - sy.fraction) * termWeight : 0.0f;
-        const float ay1 = inside(row1, nt) ? float(sy.fraction) * termWeight : 0.0f;
-        if (ay0 == 0.0f && ay1 == 0.0f) continue;
-        // A tap with coefficient 0 still reads a row: point it at a valid one.
-        const std::size_t offset0 = std::size_t(std::clamp(row0, 0, nt - 1)) * ns;
-        const std::size_t offset1 = std::size_t(std::clamp(row1, 0, nt - 1)) * ns;
-        const int count = sEnd - sBegin;
+    for (int y = y0; y < y1; ++y) {
+      // Vertical taps: rows y + whole and y + whole + 1, each kept only if inside the view.
+      const int row0 = y + sy.whole, row1 = row0 + 1;
+      // The term's weight rides on the vertical coefficients (exactly 1 for plain refocus).
+      float ay0 = inside(row0, nt) ? float(1 - sy.fraction) * termWeight : 0.0f;
+      float ay1 = inside(row1, nt) ? float(sy.fraction) * termWeight : 0.0f;
+      if (ay0 == 0.0f && ay1 == 0.0f) continue;
+      // A tap of coefficient 0 is not read: with one live row, it is passed as row0 alone.
+      std::size_t offset0 = std::size_t(ay0 != 0.0f ? row0 : row1) * ns, offset1 = std::size_t(row1) * ns;
+      if (ay0 == 0.0f) ay0 = ay1, ay1 = 0.0f;
+      if (ay1 == 0.0f) offset1 = offset0;
+      const float c00 = ay0 * ax0, c01 = ay0 * ax1, c10 = ay1 * ax0, c11 = ay1 * ax1;
+      const auto accumulate = [&](int plane, const float* first, const float* second) {
+        accumulateBilinearRow(accumulatorRow(plane, y), first, second, sx.whole, c00, c01, c10, c11, ns);
+      };
 
-        if (lightFieldWeighted) {
-          // Each tap's weight is the bilinear coefficient times the light field's weight
-          // (refocus.hpp): the weight rows scaled by the vertical coefficients, kept for the
-          // channels below, and blended and accumulated as one more channel.
-          const float* weightPlane = lightField.weightPlane(u, v);
-          for (int i = sBegin; i < sEnd; ++i) {
-            tapWeight0[i] = ay0 * weightPlane[offset0 + i];
-            tapWeight1[i] = ay1 * weightPlane[offset1 + i];
-          }
-          blendRows(blended + sBegin, weightPlane + offset0 + sBegin, weightPlane + offset1 + sBegin, ay0, ay1, count);
-          accumulateTaps(accumulatorRow(channels, y) + xBegin, blended + xBegin + sx.whole, ax0, ax1, xEnd - xBegin);
-        } else if (weighted) {
-          // No weight plane: each tap weighs its coefficients alone.
-          std::fill(blended + sBegin, blended + sEnd, ay0 + ay1);
-          accumulateTaps(accumulatorRow(channels, y) + xBegin, blended + xBegin + sx.whole, ax0, ax1, xEnd - xBegin);
-        }
+      if (lightFieldWeighted) {
+        // Each tap's weight is the bilinear coefficient times the light field's weight
+        // (refocus.hpp), accumulated as one more channel.
+        const float* weightPlane = lightField.weightPlane(u, v);
+        accumulate(channels, weightPlane + offset0, weightPlane + offset1);
         for (int c = 0; c < channels; ++c) {
           const float* plane = lightField.plane(u, v, c);
-          if (lightFieldWeighted)
-            blendWeightedRows(blended + sBegin, tapWeight0.data() + sBegin, plane + offset0 + sBegin,
-                              tapWeight1.data() + sBegin, plane + offset1 + sBegin, count);
-          else
-            blendRows(blended + sBegin, plane + offset0 + sBegin, plane + offset1 + sBegin, ay0, ay1, count);
-          accumulateTaps(accumulatorRow(c, y) + xBegin, blended + xBegin + sx.whole, ax0, ax1, xEnd - xBegin);
+          multiplyRows(product0.data(), weightPlane + offset0, plane + offset0, ns);
+          multiplyRows(product1.data(), weightPlane + offset1, plane + offset1, ns);
+          accumulate(c, product0.data(), product1.data());
+        }
+      } else {
+        if (weighted) accumulate(channels, ones.data(), ones.data());
+        for (int c = 0; c < channels; ++c) {
+          const float* plane = lightField.plane(u, v, c);
+          accumulate(c, plane + offset0, plane + offset1);
         }
       }
     }
@@ -238,7 +198,7 @@ LFCAM_REFOCUS_CLONES void refocusRows(const RefocusPlan& plan, int y0, int y1, I
     } else {
       for (int x = 0; x < ns; ++x) weightRow[x] = plan.columnWeight[x] * plan.rowWeight[y];
     }
-    for (int c = 0; c < channels; ++c) normalise(out.row(y, c), accumulatorRow(c, y), weight, ns);
+    for (int c = 0; c < channels; ++c) normaliseRow(out.row(y, c), accumulatorRow(c, y), weight, ns);
   }
 }
 

@@ -117,10 +117,13 @@ TEST(Cli, RefocusBySlopeAndByAlpha) {
   auto byAlpha = runLfcam({"refocus", input.string(), "--alpha", "1.02", "-o", (dir / "a.exr").string()}, dir.path());
   EXPECT_EQ(byAlpha.exitStatus, 0) << byAlpha.err;
   EXPECT_TRUE(fs::exists(dir / "a.exr"));
-  // A folder of views has no optics: --alpha is a usage error that says why.
-  ASSERT_EQ(runLfcam({"convert", input.string(), "-o", (dir / "hci").string()}, dir.path()).exitStatus, 0);
+  // A row/column folder of views has no optics (an HCI folder keeps them in parameters.cfg):
+  // --alpha is a usage error that says why.
+  ASSERT_EQ(runLfcam({"convert", input.string(), "--layout", "rowcol", "-o", (dir / "rowcol").string()}, dir.path())
+                .exitStatus,
+            0);
   auto noOptics =
-      runLfcam({"refocus", (dir / "hci").string(), "--alpha", "1.02", "-o", (dir / "b.png").string()}, dir.path());
+      runLfcam({"refocus", (dir / "rowcol").string(), "--alpha", "1.02", "-o", (dir / "b.png").string()}, dir.path());
   EXPECT_EQ(noOptics.exitStatus, 2);
   EXPECT_NE(noOptics.err.find("optics"), std::string::npos) << noOptics.err;
   EXPECT_FALSE(fs::exists(dir / "b.png"));

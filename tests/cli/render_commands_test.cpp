@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli_support.hpp"
+#include "lfcam/animation.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/light_field_io.hpp"
 
@@ -109,7 +110,8 @@ TEST(CliRender, FourierMethodAndBenchJson) {
     for (const char* key : {"seconds_per_photo", "floor_seconds", "ratio_to_floor"})
       EXPECT_GT(double(entry[key]), 0.0) << entry.dump();
   }
-  EXPECT_EQ(methods, (std::vector<std::string>{"fast", "fast-aperture", "quadrature", "observer", "fourier"}));
+  EXPECT_EQ(methods, (std::vector<std::string>{"fast", "fast-aperture", "quadrature", "observer", "fourier",
+                                              "fast-1-thread"}));
 }
 
 // Frames in a GIF: one graphic control extension (21 F9 04) precedes each.
@@ -133,6 +135,24 @@ TEST(CliRender, AnimateWritesLoopingGifs) {
   EXPECT_EQ(gifFrames(test::readBytes(dir / "o.gif")), 5);
 }
 
+TEST(CliRender, AnimateWritesMp4WhenAsked) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  const auto orbit = runLfcam({"animate", input, "--orbit", "--frames", "5", "-o", (dir / "o.mp4").string()}, dir.path());
+  ASSERT_EQ(orbit.exitStatus, 0) << orbit.err;
+  auto video = readVideoSummary(dir / "o.mp4");
+  ASSERT_TRUE(video) << video.error().message;
+  EXPECT_EQ(video->frames, 5);
+  EXPECT_EQ(video->width, 40);
+  EXPECT_EQ(video->height, 40);
+  // An output folder that does not exist: failed work, one line, no file.
+  const fs::path bad = dir / "missing" / "o.mp4";
+  const auto failed = runLfcam({"animate", input, "--orbit", "--frames", "3", "-o", bad.string()}, dir.path());
+  EXPECT_EQ(failed.exitStatus, 1) << failed.err;
+  EXPECT_EQ(failed.errLines(), 1) << failed.err;
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+}
+
 TEST(CliRender, UsageErrorsExitTwoWithOneLine) {
   test::TempDir dir;
   const std::string input = test::makeSynthLightField(dir, 5, 40).string();
@@ -151,7 +171,7 @@ TEST(CliRender, UsageErrorsExitTwoWithOneLine) {
       {"refocus", input, "--slope", "1", "--method", "fourier", "--aperture", "1", "-o", out},
       {"bench", input, "--repeat", "0"},
       {"animate", input, "-o", (dir / "a.gif").string()},
-      {"animate", input, "--orbit", "-o", (dir / "a.mp4").string()},
+      {"animate", input, "--orbit", "-o", (dir / "a.avi").string()},
       {"animate", input, "--orbit", "--focus-pull", "-o", (dir / "a.gif").string()},
   };
   for (const auto& args : cases) {

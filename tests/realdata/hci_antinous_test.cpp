@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <vector>
 
+#include "lfcam/focal_stack.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/refocus.hpp"
@@ -104,6 +107,36 @@ TEST_F(HciAntinous, RegionIsSharpestAtItsGroundTruthDisparity) {
                  std::to_string(region->disparity));
     EXPECT_GT(atTruth, 1.5 * sharpness(atEnds[0]));
     EXPECT_GT(atTruth, 1.5 * sharpness(atEnds[1]));
+  }
+}
+
+// Click-to-focus (--focus-at): at the most textured points of the centre view where the ground
+// truth is flat (so that the answer is one number), the slope found is the true disparity.
+TEST_F(HciAntinous, FocusAtAPixelFindsItsGroundTruthDisparity) {
+  const LightField& lf = *lightField_;
+  const Image& gt = *groundTruth_;
+  const Image centre = lf.subApertureImage(4, 4);
+  struct Point {
+    int x, y;
+    double texture;
+  };
+  std::vector<Point> points;
+  for (int y = 24; y < 512 - 24; y += 16)
+    for (int x = 24; x < 512 - 24; x += 16) {
+      double lo = 1e9, hi = -1e9;
+      for (int j = y - 4; j <= y + 4; ++j)
+        for (int i = x - 4; i <= x + 4; ++i) lo = std::min(lo, double(gt.at(i, j, 0))), hi = std::max(hi, double(gt.at(i, j, 0)));
+      if (hi - lo < 0.05) points.push_back({x, y, test::laplacianVariance(centre, x - 4, y - 4, x + 5, y + 5)});
+    }
+  ASSERT_GE(points.size(), 6u);
+  std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.texture > b.texture; });
+  points.resize(6);
+  for (const Point& point : points) {
+    auto slope = slopeAtPixel(lf, point.x, point.y);
+    ASSERT_TRUE(slope) << slope.error().message;
+    const double truth = gt.at(point.x, point.y, 0);
+    std::printf("focus at (%d, %d): slope %.3f, ground truth %.3f\n", point.x, point.y, *slope, truth);
+    EXPECT_NEAR(*slope, truth, 0.1) << "at (" << point.x << ", " << point.y << ")";
   }
 }
 

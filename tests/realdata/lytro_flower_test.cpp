@@ -2,8 +2,11 @@
 // IMG_0001_NNN_RR_CC.png (NNN a serpentine counter, RR row, CC column).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <utility>
 
+#include "lfcam/focal_stack.hpp"
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/refocus.hpp"
 #include "sharpness.hpp"
@@ -53,6 +56,43 @@ TEST(LytroFlower, LoadsInViewOrderAndRefocuses) {
   EXPECT_NEAR(columnSlope, slope, 0.25);
   EXPECT_GT(rowGain, 1.2);
   EXPECT_GT(columnGain, 1.2);
+}
+
+// The sign of the slope. The centre view (IMG_0001_045_05_05.png) shows two pink flowers in the
+// middle, their yellow centres at about (110, 65) and (158, 118), standing in front of the ground
+// cover around them. Measured with --focus-at, everything lies
+// at negative slopes: the camera's optical focus plane is nearer than the whole scene (the
+// first-generation Lytro focuses close and refocuses out to infinity), and a negative slope is
+// farther than that plane (light_field.hpp; alpha < 1 in the paper). So the expected signs:
+// the flowers come into focus at a negative slope, not at its mirror image, and, being nearer,
+// at a larger slope than the far ground. Views read in the wrong order or mirrored would flip
+// both.
+TEST(LytroFlower, NearFlowerFocusesAtTheExpectedSignOfSlope) {
+  LFCAM_REQUIRE_SHARED_DATA("lytro-f01-flower", dir);
+  auto lf = readLightField(dir);
+  ASSERT_TRUE(lf) << lf.error().message;
+  const FocusSearch search{.minSlope = -1.5, .maxSlope = 1.5, .steps = 151, .radius = 4};
+  double flowerSlope = 1e9, groundSlope = -1e9;
+  for (auto [x, y] : {std::pair{110, 65}, std::pair{158, 118}}) {
+    auto slope = slopeAtPixel(*lf, x, y, search);
+    ASSERT_TRUE(slope) << slope.error().message;
+    flowerSlope = std::min(flowerSlope, *slope);  // the farther of the two flowers
+  }
+  for (auto [x, y] : {std::pair{30, 60}, std::pair{220, 40}}) {
+    auto slope = slopeAtPixel(*lf, x, y, search);
+    ASSERT_TRUE(slope) << slope.error().message;
+    groundSlope = std::max(groundSlope, *slope);  // the nearer of the two ground points
+  }
+  EXPECT_LT(flowerSlope, -0.3);
+  EXPECT_GT(flowerSlope, groundSlope + 0.02) << "the flowers must be nearer than the far ground";
+
+  // Refocusing at that slope sharpens the flowers; its mirror image blurs them.
+  const Image focused = refocus(*lf, flowerSlope), mirrored = refocus(*lf, -flowerSlope);
+  for (auto [x0, y0, x1, y1] : {std::array{75, 35, 150, 95}, std::array{115, 85, 210, 150}}) {
+    const double sharp = test::laplacianVariance(focused, x0, y0, x1, y1);
+    const double blurred = test::laplacianVariance(mirrored, x0, y0, x1, y1);
+    EXPECT_GT(sharp, 1.5 * blurred) << "flower window (" << x0 << ", " << y0 << ")";
+  }
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// lfcam animate INPUT (--focus-pull | --orbit) -o OUT.gif: a looping animation, either the focus
-// swept through the scene's depth and back, or the observer (Equation 7) moved round a circle on
-// the lens.
+// lfcam animate INPUT (--focus-pull | --orbit) -o OUT.gif|OUT.mp4: a looping animation, either the
+// focus swept through the scene's depth and back, or the observer (Equation 7) moved round a
+// circle on the lens; a GIF or an MP4 video by the output's extension.
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -24,7 +24,7 @@ void addAnimateCommand(CLI::App& app, Job& job) {
     std::string output;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* command = app.add_subcommand("animate", "a looping GIF: a focus pull or an orbit of the observer");
+  CLI::App* command = app.add_subcommand("animate", "a looping GIF or an MP4 video: a focus pull or an orbit of the observer");
   addInputOptions(*command, options->input);
   auto* pull = command->add_flag("--focus-pull", options->focusPull, "sweep the focus through the scene and back");
   auto* orbit = command->add_flag("--orbit", options->orbit, "move the observer round a circle on the lens");
@@ -35,7 +35,7 @@ void addAnimateCommand(CLI::App& app, Job& job) {
       ->check(CLI::NonNegativeNumber);
   command->add_option("--frames", options->frames, "frames (a focus pull goes there and back)")->check(CLI::Range(2, 1000));
   command->add_option("--fps", options->fps, "frames per second")->check(CLI::Range(1, 100));
-  command->add_option("-o,--output", options->output, "output .gif")->required();
+  command->add_option("-o,--output", options->output, "output .gif or .mp4")->required();
   command->callback([options, &job] {
     job = [options]() -> Status {
       if (!options->focusPull && !options->orbit)
@@ -75,7 +75,7 @@ void addAnimateCommand(CLI::App& app, Job& job) {
           bar(double(i + 1) / options->frames);
         }
       }
-      return writeAnimatedGif(options->output, frames, options->fps);
+      return writeAnimation(options->output, frames, options->fps);
     };
   });
 }

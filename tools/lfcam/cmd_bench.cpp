@@ -3,7 +3,9 @@
 // in the same run (bytes read plus bytes written per second, over buffers far larger than the
 // caches), then times each renderer N times after a warm-up and prints the median seconds per
 // photograph and its ratio to the floor: the light field's bytes as stored, read once at that
-// bandwidth.
+// bandwidth. Last, the fast method again on one thread, for the scaling over threads; with
+// --stack N, a focal stack of N slices per method first (fast, quadrature, fourier), timed whole
+// and reported per slice (fourier's 4D FFT included).
 #include <algorithm>
 #include <cmath>
 #include <chrono>
@@ -16,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "lfcam/focal_stack.hpp"
 #include "lfcam/fourier_slice.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/refocus.hpp"
@@ -60,6 +63,7 @@ void addBenchCommand(CLI::App& app, Job& job) {
     int repeat = 5;
     bool json = false;
     bool noFourier = false;
+    int stack = 0;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("bench", "time the renderers against the memory-copy floor");
@@ -68,6 +72,8 @@ void addBenchCommand(CLI::App& app, Job& job) {
   command->add_flag("--json", options->json, "a JSON list of {method, seconds_per_photo, floor_seconds, ratio_to_floor}");
   command->add_flag("--no-fourier", options->noFourier,
                     "skip the Fourier slice method (its spectrum needs about 8x the light field's memory)");
+  command->add_option("--stack", options->stack, "also time a focal stack of N slices per method (0: none)")
+      ->check(CLI::Range(0, 10000));
   command->callback([options, &job] {
     job = [options]() -> Status {
       auto loaded = loadInput(options->input);
@@ -145,6 +151,50 @@ void addBenchCommand(CLI::App& app, Job& job) {
           else
             std::printf("fourier is never faster than fast here\n");
         }
+      }
+      const auto report = [&](const std::string& name, double seconds, const char* unit) {
+        results.push_back({{"method", name},
+                           {"seconds_per_photo", seconds},
+                           {"floor_seconds", floorSeconds},
+                           {"ratio_to_floor", seconds / floorSeconds}});
+        if (!options->json)
+          std::printf("%-14s %10.2f ms per %-5s %6.2fx floor\n", name.c_str(), seconds * 1e3, unit, seconds / floorSeconds);
+      };
+      // Focal stacks over the scene's disparity range: the time of the whole stack per slice.
+      if (options->stack > 0) {
+        const std::vector<double> slopes = evenlySpaced(lightField.metadata.disparityMin.value_or(-2.0),
+                                                        lightField.metadata.disparityMax.value_or(2.0), options->stack);
+        const auto discard = [](int, double, Image&&) -> Status { return {}; };
+        const auto timeStack = [&](const std::string& name, const RenderOptions& render) -> Status {
+          const auto start = std::chrono::steady_clock::now();
+          LFCAM_TRY(renderFocalStack(lightField, slopes, {}, render, discard));
+          report(name, secondsSince(start) / double(slopes.size()), "slice");
+          return {};
+        };
+        LFCAM_TRY(timeStack("stack-fast", {}));
+        LFCAM_TRY(timeStack("stack-quadrature", {.method = RenderMethod::Quadrature, .supersampling = 2}));
+        if (!options->noFourier) {
+          const auto start = std::chrono::steady_clock::now();
+          auto refocuser = FourierRefocuser::create(lightField);
+          if (!refocuser) return refocuser.error();
+          for (double sliceSlope : slopes) Image photo = refocuser->refocus(sliceSlope);
+          report("stack-fourier", secondsSince(start) / double(slopes.size()), "slice");
+        }
+      }
+      // Scaling: the fast method on one thread (last, since the limit stays for the process).
+      {
+        setThreadCount(1);
+        { Image warm = refocus(lightField, slope); }
+        std::vector<double> times;
+        for (int i = 0; i < options->repeat; ++i) {
+          const auto start = std::chrono::steady_clock::now();
+          Image photo = refocus(lightField, slope);
+          times.push_back(secondsSince(start));
+        }
+        const double oneThread = median(times);
+        report("fast-1-thread", oneThread, "photo");
+        if (!options->json)
+          std::printf("fast: %.2fx faster on all threads than on one\n", oneThread / double(results[0]["seconds_per_photo"]));
       }
       if (options->json) std::printf("%s\n", results.dump(2).c_str());
       return {};

@@ -1,0 +1,104 @@
+// Highway row kernels of shift_and_add_rows.hpp. foreach_target.h compiles this file once per
+// instruction set; HWY_DYNAMIC_DISPATCH picks one on the first call.
+#include "render/shift_and_add_rows.hpp"
+
+#include <algorithm>
+#include <cstddef>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "render/shift_and_add_rows.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace lfcam {
+namespace HWY_NAMESPACE {
+
+namespace hn = hwy::HWY_NAMESPACE;
+
+// Columns x with both horizontal taps inside the view are the vector loop; at most one column on
+// either side has a single tap, and the last partial vector is done one lane at a time.
+void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, const float* row1, int whole,
+                           float c00, float c01, float c10, float c11, int ns) {
+  const hn::ScalableTag<float> d;
+  const int lanes = int(hn::Lanes(d));
+  const int interiorBegin = std::max(0, -whole), interiorEnd = std::min(ns, ns - 1 - whole);
+  // Single-tap edges: the right tap alone at source column 0, the left tap alone at ns - 1.
+  if (const int x = -1 - whole; x >= 0 && x < ns) accumulator[x] += c01 * row0[0] + c11 * row1[0];
+  if (const int x = ns - 1 - whole; x >= 0 && x < ns && x >= interiorEnd)
+    accumulator[x] += c00 * row0[ns - 1] + c10 * row1[ns - 1];
+  if (interiorBegin >= interiorEnd) return;
+
+  // From here on, pointers start at the first interior column's source.
+  const float* source0 = row0 + (interiorBegin + whole);
+  const float* source1 = row1 + (interiorBegin + whole);
+  accumulator += interiorBegin;
+  const int count = interiorEnd - interiorBegin;
+  int x = 0;
+  const auto k00 = hn::Set(d, c00), k01 = hn::Set(d, c01);
+  if (c10 == 0.0f && c11 == 0.0f) {
+    // One source row (integer vertical shift, or the other row outside the view): half the loads.
+    for (; x + lanes <= count; x += lanes) {
+      auto sum = hn::MulAdd(k01, hn::LoadU(d, source0 + x + 1), hn::LoadU(d, accumulator + x));
+      hn::StoreU(hn::MulAdd(k00, hn::LoadU(d, source0 + x), sum), d, accumulator + x);
+    }
+    for (; x < count; ++x) accumulator[x] += c00 * source0[x] + c01 * source0[x + 1];
+    return;
+  }
+  const auto k10 = hn::Set(d, c10), k11 = hn::Set(d, c11);
+  for (; x + lanes <= count; x += lanes) {
+    auto top = hn::MulAdd(k01, hn::LoadU(d, source0 + x + 1), hn::Mul(k00, hn::LoadU(d, source0 + x)));
+    auto bottom = hn::MulAdd(k11, hn::LoadU(d, source1 + x + 1), hn::Mul(k10, hn::LoadU(d, source1 + x)));
+    hn::StoreU(hn::Add(hn::LoadU(d, accumulator + x), hn::Add(top, bottom)), d, accumulator + x);
+  }
+  for (; x < count; ++x)
+    accumulator[x] += (c00 * source0[x] + c01 * source0[x + 1]) + (c10 * source1[x] + c11 * source1[x + 1]);
+}
+
+void MultiplyRows(float* HWY_RESTRICT out, const float* HWY_RESTRICT a, const float* HWY_RESTRICT b, int count) {
+  const hn::ScalableTag<float> d;
+  const int lanes = int(hn::Lanes(d));
+  int i = 0;
+  for (; i + lanes <= count; i += lanes) hn::StoreU(hn::Mul(hn::LoadU(d, a + i), hn::LoadU(d, b + i)), d, out + i);
+  for (; i < count; ++i) out[i] = a[i] * b[i];
+}
+
+void NormaliseRow(float* HWY_RESTRICT out, const float* HWY_RESTRICT sum, const float* HWY_RESTRICT weight,
+                  int count) {
+  const hn::ScalableTag<float> d;
+  const int lanes = int(hn::Lanes(d));
+  const auto zero = hn::Zero(d);
+  int i = 0;
+  for (; i + lanes <= count; i += lanes) {
+    const auto w = hn::LoadU(d, weight + i);
+    hn::StoreU(hn::IfThenElseZero(w > zero, hn::Div(hn::LoadU(d, sum + i), w)), d, out + i);
+  }
+  for (; i < count; ++i) out[i] = weight[i] > 0 ? sum[i] / weight[i] : 0.0f;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace lfcam
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace lfcam {
+
+HWY_EXPORT(AccumulateBilinearRow);
+HWY_EXPORT(MultiplyRows);
+HWY_EXPORT(NormaliseRow);
+
+void accumulateBilinearRow(float* accumulator, const float* row0, const float* row1, int whole, float c00, float c01,
+                           float c10, float c11, int ns) {
+  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRow)(accumulator, row0, row1, whole, c00, c01, c10, c11, ns);
+}
+
+void multiplyRows(float* out, const float* a, const float* b, int count) {
+  HWY_DYNAMIC_DISPATCH(MultiplyRows)(out, a, b, count);
+}
+
+void normaliseRow(float* out, const float* sum, const float* weight, int count) {
+  HWY_DYNAMIC_DISPATCH(NormaliseRow)(out, sum, weight, count);
+}
+
+}  // namespace lfcam
+#endif  // HWY_ONCE
