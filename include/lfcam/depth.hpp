@@ -22,11 +22,19 @@
 //     weighted by `defocusWeight` (both terms are squared luminance).
 //  4. Aggregation: each cost slice is smoothed by a guided filter (He et al. 2010) steered by the
 //     centre view, which averages over a window without crossing intensity edges.
-//  5. Regularisation: semi-global optimisation (Hirschmueller 2008) along 8 paths, with a jump
-//     penalty lowered across intensity edges of the centre view.
-//  6. The optimiser's label per pixel, then a parabola through the aggregated cost (step 4) at
-//     that label and its neighbours places the disparity between labels.
-//  7. Confidence in [0, 1]: 1 - exp(-(mean cost - chosen cost) / m), the aggregated costs of the
+//  5. Regularisation: semi-global optimisation (Hirschmueller 2008) along 8 paths, with a small
+//     penalty for a one-label step (slanted surfaces) and a large one for jumps, lowered across
+//     intensity edges of the centre view. The optimiser's label per pixel, then a parabola through
+//     the aggregated cost (step 4) at that label and its neighbours places it between labels.
+//  6. Fine search (`refineSteps`): the cost of step 2 at the map's own disparity plus k / refineSteps
+//     of a label step, k in [-refineSteps, refineSteps], per pixel, aggregated by a wider guided
+//     filter (`refineRadius`) over slices that follow the map, and a parabola at the lowest. The
+//     labels of steps 1-5 leave steps on slanted and curved surfaces, and the interpolation of
+//     views biases the cost towards disparities of whole-pixel shifts; this removes both.
+//  7. Weighted median (`medianRadius`, `medianSigma`): each disparity becomes the median of its
+//     window weighted by likeness in the centre view (Ma et al. 2013), which removes isolated
+//     mistakes and pulls occlusion edges back onto intensity edges.
+//  8. Confidence in [0, 1]: 1 - exp(-(mean cost - chosen cost) / m), the aggregated costs of the
 //     pixel, m the mean of (mean cost - lowest cost) over the image: 0 where every label is as
 //     good (no texture), near 1 at a clear minimum.
 //
@@ -35,13 +43,19 @@
 // equation 1/z + 1/(alpha F) = 1/f gives the distance z from the main lens to the plane in focus,
 // in millimetres. Disparities at or beyond infinity give +infinity.
 //
+// Metric distance for HCI folders: parameters.cfg gives optics for which this is the benchmark's
+// own disparity-to-depth conversion (hci_parameters.hpp).
+//
 // Measured (tests/depth_layered_planes_test.cpp, tests/realdata/hci_depth_test.cpp): BadPix(0.07)
-// 9.4 % and MSE x100 13.4 on the layered-planes default scene (9x9 views of 128x128); 21.9 % and
-// 35.1 on HCI antinous (the goal of 7 % is not reached: errors of 0.05-0.1 px in blotches on
-// smooth slanted surfaces such as the wall, and occlusion edges fattened by a pixel or two).
-// Cost: labels x (33 views + one luminance refocus) bilinear passes over ns x nt, plus 8 passes of
-// labels x ns x nt for the optimisation; memory 2 x labels x ns x nt floats. About 60 refocus
-// times for 9x9 views of 512x512 with 62 labels (bench/depth_bench.cpp).
+// 9.0 %, BadPix(0.03) 10.3 %, MSE x100 10.0 on the layered-planes default scene (9x9 views of
+// 128x128); 17.6 %, 37.4 % and 31.2 on HCI antinous (the goal of 7 % is not reached: the floor,
+// the dark wall whose texture is below the views' 8-bit quantisation, and occlusion edges a pixel
+// or two fat); 15.8 %, 27.2 %, 3.4 on the simulator's `people` scene (ideal light field, 9x9 views
+// of 200x200, exact disparity from idealDepth).
+// Cost: labels x (33 views + one luminance refocus) bilinear passes over ns x nt, 8 passes of
+// labels x ns x nt for the optimisation, (2 refineSteps + 1) x 33 bilinear passes for the fine
+// search and a (2 medianRadius + 1)^2 sort per pixel for the median; memory 2 x labels x ns x nt
+// floats (bench/depth_bench.cpp: ratio to one refocus).
 #pragma once
 
 #include <optional>
@@ -59,6 +73,10 @@ struct DepthOptions {
   int filterRadius = 1;           // guided filter window: (2 r + 1)^2 pixels
   double filterEpsilon = 1e-4;    // guided filter regulariser, squared linear luminance
   double smoothness = 1.0;        // scales both jump penalties of the optimisation; 0 disables it
+  int refineSteps = 2;            // fine search: steps per label on each side; 0 disables it
+  int refineRadius = 8;           // guided filter window of the fine search: (2 r + 1)^2 pixels
+  int medianRadius = 4;           // weighted median window; 0 disables it
+  double medianSigma = 0.05;      // guide (sRGB luminance) difference that weighs a neighbour 0.6
 };
 
 struct DepthMap {
@@ -74,6 +92,9 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
 // Distance (mm) from the main lens to the plane that a disparity brings into focus; +infinity at
 // or beyond infinity; nullopt without a focal length.
 std::optional<double> distanceFromDisparity(const Optics& optics, double disparity);
+// The inverse: the disparity of a surface at `distanceMm` from the main lens (+infinity allowed);
+// nullopt without a focal length or for a distance at or inside the focal length.
+std::optional<double> disparityFromDistance(const Optics& optics, double distanceMm);
 // The map of distances for a disparity map (mm; +infinity beyond infinity). Usage error without
 // optics or focal length.
 Result<Image> distanceMap(const LightFieldMetadata& metadata, const Image& disparity);

@@ -65,12 +65,33 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
       const double d = disparity->plane(0)[i];
       if (std::isfinite(d)) label[i] = std::clamp(int(std::lround((d - dmin) / step)), 0, slices - 1);
     }
+    if (slices > 1 && options.focusRadius >= 0) {
+      // A depth map errs by a fraction of a slice step here and there (a few hundredths of a pixel
+      // on aliased texture), enough to pick the neighbour of the right slice: of the nearest slice
+      // and its two neighbours, keep the sharpest. Measured on luminance, a third of the work.
+      const LightField grey = edof::luminanceLightField(lightField);
+      std::vector<int> chosen(label);
+      std::vector<float> best(n, -1.0f), focus(n);
+      for (int k = 0; k < slices; ++k) {
+        if (std::none_of(label.begin(), label.end(), [k](int l) { return std::abs(l - k) <= 1; })) continue;
+        focusMeasure(refocus(grey, result.slopes[k]), options.focusRadius, focus.data());
+        for (std::size_t i = 0; i < n; ++i)
+          if (std::abs(label[i] - k) <= 1 && focus[i] > best[i]) best[i] = focus[i], chosen[i] = k;
+      }
+      label = std::move(chosen);
+    }
   } else if (slices > 1) {
-    // Cost = minus the focus measure, pixel-major for the optimisation.
-    std::vector<float> volume(n * slices), focus(n);
+    // Cost = minus the focus measure relative to its mean over the stack, pixel-major for the
+    // optimisation: relative, so that faint texture (a backdrop) is judged by how its own
+    // sharpness varies, not swamped by the penalties that strong texture elsewhere sets.
+    std::vector<float> volume(n * slices), focus(n), mean(n, 0.0f);
     for (int k = 0; k < slices; ++k) {
       focusMeasure(refocus(lightField, result.slopes[k]), std::max(options.focusRadius, 0), focus.data());
-      for (std::size_t i = 0; i < n; ++i) volume[i * slices + k] = -focus[i];
+      for (std::size_t i = 0; i < n; ++i) volume[i * slices + k] = focus[i], mean[i] += focus[i] / slices;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const float inverse = 1.0f / std::max(mean[i], 1e-12f);
+      for (int k = 0; k < slices; ++k) volume[i * slices + k] *= -inverse;
     }
     std::vector<float> continuous(n);
     if (options.smoothness > 0) {

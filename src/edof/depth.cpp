@@ -28,6 +28,8 @@ namespace {
 // seen at a grazing angle is foreshortened differently in every view of a column, not of a row).
 constexpr int kHalves = 6;
 
+
+
 struct StarView {
   int u = 0, v = 0;
   double uc = 0, vc = 0;  // view steps from the aperture centre
@@ -88,6 +90,7 @@ LFCAM_DEPTH_CLONES void accumulateSquaredDifference(const float* __restrict samp
     accumulator[x] += difference * difference;
   }
 }
+
 
 // The correspondence cue for every label: cost[l * n + p], n = ns * nt.
 std::vector<float> correspondenceCost(const LightField& grey, const std::vector<double>& disparities) {
@@ -152,6 +155,126 @@ std::vector<float> correspondenceCost(const LightField& grey, const std::vector<
   return cost;
 }
 
+float bilinear(const float* plane, int ns, int nt, double x, double y) {
+  x = std::clamp(x, 0.0, double(ns - 1));
+  y = std::clamp(y, 0.0, double(nt - 1));
+  const int x0 = std::min(int(x), ns - 2), y0 = std::min(int(y), nt - 2);
+  const float fx = float(x - x0), fy = float(y - y0);
+  const float* row0 = plane + std::size_t(y0) * ns + x0;
+  const float* row1 = row0 + ns;
+  const float top = row0[0] + fx * (row0[1] - row0[0]), bottom = row1[0] + fx * (row1[1] - row1[0]);
+  return top + fy * (bottom - top);
+}
+
+// Fine search around a disparity map: the correspondence cost (as correspondenceCost) at
+// disparity + k delta per pixel, k in [-steps, steps], each slice aggregated by `filter`, then
+// the lowest with a parabola through its neighbours. Slices follow the map, so a window averages
+// costs of neighbouring pixels at the same offset from their own disparities: a slanted surface
+// stays sharp where fixed labels would step.
+void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
+                     int steps) {
+  const int ns = grey.ns(), nt = grey.nt();
+  const std::size_t n = grey.shape().viewPixels();
+  const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
+  const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
+  const double referenceUc = grey.uFromCentre(referenceU), referenceVc = grey.vFromCentre(referenceV);
+  int viewsIn[kHalves] = {};
+  for (const StarView& view : views)
+    for (int h = 0; h < kHalves; ++h) viewsIn[h] += (view.halves >> h) & 1;
+  const int slices = 2 * steps + 1;
+  std::vector<float> cost(n * slices);
+  parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t y = begin; y < end; ++y)
+      for (int x = 0; x < ns; ++x) {
+        const std::size_t p = y * ns + x;
+        for (int k = 0; k < slices; ++k) {
+          const double d = disparity[p] + (k - steps) * delta;
+          const float reference =
+              bilinear(grey.plane(referenceU, referenceV, 0), ns, nt, x - referenceUc * d, double(y) - referenceVc * d);
+          float sums[kHalves] = {};
+          for (const StarView& view : views) {
+            const float difference =
+                bilinear(grey.plane(view.u, view.v, 0), ns, nt, x - view.uc * d, double(y) - view.vc * d) - reference;
+            for (int h = 0; h < kHalves; ++h)
+              if ((view.halves >> h) & 1) sums[h] += difference * difference;
+          }
+          float best = std::numeric_limits<float>::infinity();
+          for (int h = 0; h < kHalves; ++h)
+            if (viewsIn[h] > 0) best = std::min(best, sums[h] / viewsIn[h]);
+          cost[std::size_t(k) * n + p] = std::isfinite(best) ? best : 0.0f;
+        }
+      }
+  });
+  parallelFor(0, std::size_t(slices), 1, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> filtered(n);
+    for (std::size_t k = begin; k < end; ++k) {
+      filter.apply(cost.data() + k * n, filtered.data());
+      std::copy(filtered.begin(), filtered.end(), cost.begin() + std::ptrdiff_t(k * n));
+    }
+  });
+  parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) {
+      int best = 0;
+      for (int k = 1; k < slices; ++k)
+        if (cost[std::size_t(k) * n + p] < cost[std::size_t(best) * n + p]) best = k;
+      double offset = 0;
+      if (best > 0 && best + 1 < slices) {
+        const double left = cost[std::size_t(best - 1) * n + p], centre = cost[std::size_t(best) * n + p],
+                     right = cost[std::size_t(best + 1) * n + p];
+        const double curvature = left - 2 * centre + right;
+        if (curvature > 0) offset = std::clamp(0.5 * (left - right) / curvature, -0.5, 0.5);
+      }
+      disparity[p] += float((best - steps + offset) * delta);
+    }
+  });
+}
+
+// Weighted median of the disparity over a (2 r + 1)^2 window, each neighbour weighted by its
+// likeness to the pixel in the guide, exp(-(I_p - I_q)^2 / (2 sigma^2)): removes isolated
+// mistakes and pulls occlusion edges back onto the intensity edges (Ma et al. 2013).
+void weightedMedian(const float* guide, int ns, int nt, int radius, float sigma, float* disparity) {
+  const std::vector<float> input(disparity, disparity + std::size_t(ns) * nt);
+  // The weights from a table of |difference| in steps of 1/1024 (an exp per neighbour would cost
+  // more than the sort).
+  constexpr int kSteps = 1024;
+  std::vector<float> table(kSteps + 1);
+  for (int i = 0; i <= kSteps; ++i) {
+    const float difference = float(i) / kSteps;
+    table[i] = std::exp(-difference * difference / (2 * sigma * sigma));
+  }
+  parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::pair<float, float>> window;
+    for (std::size_t y = begin; y < end; ++y)
+      for (int x = 0; x < ns; ++x) {
+        const float centre = guide[y * ns + x];
+        window.clear();
+        float total = 0;
+        for (int dy = -radius; dy <= radius; ++dy) {
+          const long yy = long(y) + dy;
+          if (yy < 0 || yy >= nt) continue;
+          for (int dx = -radius; dx <= radius; ++dx) {
+            const int xx = x + dx;
+            if (xx < 0 || xx >= ns) continue;
+            const std::size_t q = std::size_t(yy) * ns + xx;
+            float difference = std::abs(guide[q] - centre);
+            if (!(difference < 1.0f)) difference = 1.0f;  // also NaN
+            const float weight = table[int(difference * kSteps + 0.5f)];
+            window.emplace_back(input[q], weight);
+            total += weight;
+          }
+        }
+        std::sort(window.begin(), window.end());
+        float running = 0;
+        for (const auto& [value, weight] : window) {
+          running += weight;
+          if (running >= 0.5f * total) {
+            disparity[y * ns + x] = value;
+            break;
+          }
+        }
+      }
+  });
+}
 
 }  // namespace
 
@@ -237,7 +360,9 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
   // 4. Semi-global optimisation, then the read-out.
   std::vector<float> label(n);
   if (options.smoothness > 0) {
-    const float p1 = float(0.03 * scale * options.smoothness), p2 = float(0.6 * scale * options.smoothness);
+    // A small step penalty: slanted surfaces climb one label at a time (the fine search below
+    // then smooths the steps); a large one for jumps, lowered across intensity edges.
+    const float p1 = float(0.01 * scale * options.smoothness), p2 = float(0.6 * scale * options.smoothness);
     const std::vector<float> summed =
         edof::semiGlobalMatching(volume, ns, nt, labels, guide.plane(0), p1, p2, /*edgeScale=*/0.01f);
     edof::winnerTakesAll(summed, ns, nt, labels, label.data());
@@ -260,8 +385,20 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
   }
 
   DepthMap result{Image(ns, nt, 1), Image(ns, nt, 1), dmin, dmax, labels};
+  for (std::size_t p = 0; p < n; ++p) result.disparity.plane(0)[p] = float(dmin + label[p] * step);
+  // 6. Fine search around the optimised map, then 7. the weighted median (depth.hpp).
+  if (options.refineSteps > 0) {
+    const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.refineRadius, 0),
+                                    std::max(options.filterEpsilon, 1e-12));
+    refineDisparity(grey, filter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps);
+    // The fine search may step past the ends of the range searched; the map stays inside it.
+    for (std::size_t p = 0; p < n; ++p)
+      result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
+  }
+  if (options.medianRadius > 0)
+    weightedMedian(guide.plane(0), ns, nt, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
+                   result.disparity.plane(0));
   for (std::size_t p = 0; p < n; ++p) {
-    result.disparity.plane(0)[p] = float(dmin + label[p] * step);
     const int chosen = std::clamp(int(std::lround(label[p])), 0, labels - 1);
     const double depthOfMinimum = meanCost[p] - volume[p * labels + chosen];
     result.confidence.plane(0)[p] = float(std::clamp(1.0 - std::exp(-std::max(depthOfMinimum, 0.0) / scale), 0.0, 1.0));
@@ -276,6 +413,15 @@ std::optional<double> distanceFromDisparity(const Optics& optics, double dispari
   const double inverse = 1.0 / *optics.focalLengthMm - 1.0 / film;  // 1/z = 1/f - 1/(alpha F)
   if (!(alpha > 0) || !(inverse > 0)) return std::numeric_limits<double>::infinity();
   return 1.0 / inverse;
+}
+
+std::optional<double> disparityFromDistance(const Optics& optics, double distanceMm) {
+  if (!optics.focalLengthMm || !(*optics.focalLengthMm > 0) || !(optics.lensToMicrolensMm > 0) ||
+      !(distanceMm > *optics.focalLengthMm))
+    return std::nullopt;
+  // Thin lens: the image of the surface lies at alpha F behind the lens.
+  const double film = 1.0 / (1.0 / *optics.focalLengthMm - 1.0 / distanceMm);
+  return optics.slopeFromAlpha(film / optics.lensToMicrolensMm);
 }
 
 Result<Image> distanceMap(const LightFieldMetadata& metadata, const Image& disparity) {
