@@ -1,0 +1,121 @@
+// The interactive viewer behind `lfcam view`: a light field held in memory and the photographs a
+// page asks for (click to focus, focus, aperture, observer position, all-in-focus and depth
+// layers), answered as JPEG bytes. Requests are plain values (ViewerRequest, ViewerAnswer) routed
+// by answerRequest, independent of the HTTP library, so that routing, parsing and limits are
+// unit-tested without a socket; viewer_server.hpp puts them on the network.
+//
+// Bounds, so that a page left open (or a hostile client) cannot grow the process: answers are
+// cached up to `cacheBytes`, at most `concurrentRenders` photographs are rendered at once (a
+// request that waits longer than `renderWaitSeconds` for its turn gets 503), every number is
+// checked against a range, and nothing but the embedded page and the answers computed from the
+// one light field can be read: no path of a request ever reaches the file system.
+//
+// The all-in-focus photograph and the depth map are slow (about 60-130 refocus times, depth.hpp,
+// all_in_focus.hpp): the first request for one computes it in its own (server) thread, and
+// while it runs every other request for it answers 202 with the estimated progress, so the page
+// can poll /api/status and stay responsive.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "lfcam/image.hpp"
+#include "lfcam/light_field.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam {
+
+enum class ViewerLayer { Photo, AllInFocus, Depth };
+
+// One photograph as the page describes it. Units of light_field.hpp.
+struct ViewerView {
+  ViewerLayer layer = ViewerLayer::Photo;
+  double slope = 0;                    // focus: the disparity brought into focus
+  std::optional<std::pair<double, double>> focusAt;  // pixel (x, y): pick the slope that makes it sharpest
+  double fNumber = 1;                  // aperture, relative to the whole lens (1): radius = lens radius / fNumber
+  double u = 0, v = 0;                 // observer: the aperture's centre, view steps from the lens centre
+  int quality = 80;                    // JPEG quality
+};
+
+struct ViewerLimits {
+  std::size_t cacheBytes = std::size_t(64) << 20;
+  int concurrentRenders = 2;
+  double renderWaitSeconds = 10;
+};
+
+class ViewerSession {
+ public:
+  explicit ViewerSession(LightField lightField, ViewerLimits limits = {});
+  ~ViewerSession();
+  ViewerSession(const ViewerSession&) = delete;
+  ViewerSession& operator=(const ViewerSession&) = delete;
+
+  const LightField& lightField() const;
+  // The slope range the page's focus slider spans (metadata, else [-4, 4]) and the lens radius
+  // (view steps) that fNumber 1 opens.
+  double slopeMin() const;
+  double slopeMax() const;
+  double lensRadius() const;
+
+  // JSON: size, views, slope range, lens radius, the f-number of the whole lens when the optics
+  // say it, and the source.
+  std::string infoJson() const;
+  // JSON: the state of the slow layers: {"allInFocus": {"state": "idle|running|ready|failed",
+  // "progress": 0..1, "error": ...}, "depth": {...}}. Progress while running is estimated from
+  // the time one refocus takes.
+  std::string statusJson() const;
+
+  // The slope that makes pixel (x, y) sharpest (slopeAtPixel over the slider's range).
+  Result<double> focusAt(double x, double y) const;
+
+  struct Photo {
+    std::string jpeg;
+    double slope = 0;  // the slope rendered (the one chosen, for a click)
+    bool cached = false;
+  };
+  // The photograph `view` describes. Errors: Usage for a view outside the light field's range;
+  // Resource when the render queue is full (503) or when the layer is being computed by another
+  // request (202: poll statusJson).
+  Result<Photo> render(const ViewerView& view);
+
+  // Bytes held by the answer cache (never more than ViewerLimits::cacheBytes).
+  std::size_t cacheBytes() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// A request as the HTTP layer hands it over: method, path (no query), and query parameters.
+struct ViewerRequest {
+  std::string method = "GET";
+  std::string path;
+  std::multimap<std::string, std::string> params;
+};
+
+struct ViewerAnswer {
+  int status = 200;
+  std::string contentType = "text/plain; charset=utf-8";
+  std::string body;
+  std::map<std::string, std::string> headers;
+};
+
+// Routes:
+//   GET /, /index.html, /viewer.js, /viewer.css   the embedded page
+//   GET /api/info, /api/status                    JSON (above)
+//   GET /api/focus?x=X&y=Y                         {"slope": D}
+//   GET /api/image?layer=photo|allinfocus|depth&slope=D&focus=X,Y&f=N&u=U&v=V&q=Q
+//       image/jpeg, the slope rendered in header X-Lfcam-Slope; every parameter optional
+// Anything else: 404 (unknown path), 405 (not GET/HEAD), 400 (bad, unknown or repeated
+// parameter), 202 (layer being computed), 503 (render queue full).
+ViewerAnswer answerRequest(ViewerSession& session, const ViewerRequest& request);
+
+// The parameters of /api/image, checked (400 material on error) against the light field.
+Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>& params,
+                                   const ViewerSession& session);
+
+}  // namespace lfcam

@@ -1,0 +1,105 @@
+// makeLivingPicture: focal stack, per-pixel sharpest slice and viewpoint sweep in one HTML page.
+#include "lfcam/living_picture.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+#include "lfcam/all_in_focus.hpp"
+#include "lfcam/focal_stack.hpp"
+#include "lfcam/image_encode.hpp"
+#include "lfcam/synthetic_camera.hpp"
+#include "viewer/viewer_assets.hpp"
+
+namespace lfcam {
+
+namespace {
+
+constexpr std::string_view placeholder = "{{LFCAM_DATA}}";
+
+Result<std::string> dataUrl(const Image& image, int quality) {
+  auto jpeg = encodeImage(image, {.format = EncodedFormat::Jpeg, .jpegQuality = quality});
+  if (!jpeg) return jpeg.error();
+  return "data:image/jpeg;base64," + base64Encode(*jpeg);
+}
+
+}  // namespace
+
+Result<std::string> makeLivingPicture(const LightField& lightField, const LivingPictureOptions& options,
+                                      const ProgressCallback& progress) {
+  if (lightField.empty()) return makeError(ErrorCode::Usage, "export-html: empty light field");
+  if (options.maxSlices < 2 || options.maxSlices > 255 || options.sweepFrames < 1 || options.sweepFrames > 360 ||
+      options.jpegQuality < 1 || options.jpegQuality > 100)
+    return makeError(ErrorCode::Usage, "export-html: slices must be in 2..255, frames in 1..360, quality in 1..100");
+  const viewer::Asset* page = viewer::findAsset("living.html");
+  if (!page) return makeError(ErrorCode::Format, "export-html: the page template is missing from the build");
+  auto report = [&](double fraction) {
+    if (progress) progress(fraction);
+  };
+  const int width = lightField.ns(), height = lightField.nt();
+
+  // The labels of the all-in-focus photograph say which slice is sharpest at each pixel.
+  AllInFocusOptions focusOptions;
+  focusOptions.maxSlices = options.maxSlices;
+  auto composite = allInFocus(lightField, focusOptions);
+  if (!composite) return composite.error();
+  report(0.4);
+  const std::vector<double>& slopes = composite->slopes;
+  std::string index(std::size_t(width) * height, '\0');
+  const float* labelSlope = composite->slope.plane(0);
+  for (std::size_t i = 0; i < index.size(); ++i) {
+    const auto nearest = std::lower_bound(slopes.begin(), slopes.end(), double(labelSlope[i]) - 1e-6);
+    index[i] = char(std::min<std::ptrdiff_t>(nearest - slopes.begin(), std::ptrdiff_t(slopes.size()) - 1));
+  }
+
+  nlohmann::json data = {{"title", options.title}, {"width", width}, {"height", height},
+                         {"nu", lightField.nu()}, {"nv", lightField.nv()}, {"index", base64Encode(index)}};
+  auto allInFocusUrl = dataUrl(composite->photo, options.jpegQuality);
+  if (!allInFocusUrl) return allInFocusUrl.error();
+  data["allInFocus"] = *allInFocusUrl;
+
+  nlohmann::json slices = nlohmann::json::array();
+  LFCAM_TRY(renderFocalStack(lightField, slopes, SyntheticCamera{}, RenderOptions{},
+                             [&](int i, double slope, Image&& photo) -> Status {
+                               auto url = dataUrl(photo, options.jpegQuality);
+                               if (!url) return url.error();
+                               slices.push_back({{"slope", slope}, {"image", *url}});
+                               report(0.4 + 0.4 * (i + 1) / double(slopes.size()));
+                               return {};
+                             }));
+  data["slices"] = std::move(slices);
+
+  // Pinhole viewpoints on a circle at 80% of the lens radius (Figure 7's multi-perspective
+  // views when the circle leaves the lens's corners).
+  nlohmann::json sweep = nlohmann::json::array();
+  const double ru = 0.4 * (lightField.nu() - 1), rv = 0.4 * (lightField.nv() - 1);
+  for (int k = 0; k < options.sweepFrames; ++k) {
+    const double angle = 2 * std::numbers::pi * k / options.sweepFrames;
+    Observer observer{.u = ru * std::cos(angle), .v = rv * std::sin(angle), .clampToLens = true};
+    auto view = observe(lightField, observer);
+    if (!view) return view.error();
+    auto url = dataUrl(*view, options.jpegQuality);
+    if (!url) return url.error();
+    sweep.push_back({{"u", observer.u}, {"v", observer.v}, {"image", *url}});
+    report(0.8 + 0.2 * (k + 1) / options.sweepFrames);
+  }
+  data["sweep"] = std::move(sweep);
+
+  // JSON inside a <script> element: '<' escaped so that no "</script>" can close it early.
+  std::string json = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  std::string escaped;
+  escaped.reserve(json.size());
+  for (char c : json) {
+    if (c == '<') escaped += "\\u003c";
+    else escaped += c;
+  }
+  std::string html(page->bytes);
+  const auto at = html.find(placeholder);
+  if (at == std::string::npos) return makeError(ErrorCode::Format, "export-html: the page template has no data slot");
+  html.replace(at, placeholder.size(), escaped);
+  return html;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,276 @@
+// ViewerSession: the viewer's state (light field, answer cache, render slots, slow layers).
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <list>
+#include <mutex>
+#include <semaphore>
+#include <unordered_map>
+
+#include <nlohmann/json.hpp>
+
+#include "lfcam/all_in_focus.hpp"
+#include "lfcam/colour_map.hpp"
+#include "lfcam/depth.hpp"
+#include "lfcam/focal_stack.hpp"
+#include "lfcam/image_encode.hpp"
+#include "lfcam/refocus.hpp"
+#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/viewer.hpp"
+
+namespace lfcam {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A slow layer computed once, by the first request that asks for it.
+struct LazyLayer {
+  enum class State { Idle, Running, Ready, Failed };
+  State state = State::Idle;
+  Image image;  // linear RGB, ready to encode
+  std::string error;
+  Clock::time_point started;
+  double expectedSeconds = 1;
+};
+
+const char* stateName(LazyLayer::State state) {
+  switch (state) {
+    case LazyLayer::State::Idle: return "idle";
+    case LazyLayer::State::Running: return "running";
+    case LazyLayer::State::Ready: return "ready";
+    case LazyLayer::State::Failed: return "failed";
+  }
+  return "idle";
+}
+
+// Least recently used JPEG answers, bounded in bytes.
+class AnswerCache {
+ public:
+  explicit AnswerCache(std::size_t capacity) : capacity_(capacity) {}
+  std::optional<std::pair<std::string, double>> find(const std::string& key) {
+    auto it = index_.find(key);
+    if (it == index_.end()) return std::nullopt;
+    entries_.splice(entries_.begin(), entries_, it->second);
+    return std::pair{it->second->jpeg, it->second->slope};
+  }
+  void insert(const std::string& key, const std::string& jpeg, double slope) {
+    if (jpeg.size() + key.size() > capacity_ || index_.count(key)) return;
+    entries_.push_front({key, jpeg, slope});
+    index_[key] = entries_.begin();
+    bytes_ += jpeg.size() + key.size();
+    while (bytes_ > capacity_) {
+      const Entry& last = entries_.back();
+      bytes_ -= last.jpeg.size() + last.key.size();
+      index_.erase(last.key);
+      entries_.pop_back();
+    }
+  }
+  std::size_t bytes() const { return bytes_; }
+
+ private:
+  struct Entry {
+    std::string key, jpeg;
+    double slope;
+  };
+  std::size_t capacity_, bytes_ = 0;
+  std::list<Entry> entries_;
+  std::unordered_map<std::string, std::list<Entry>::iterator> index_;
+};
+
+}  // namespace
+
+struct ViewerSession::State {
+  LightField lightField;
+  ViewerLimits limits;
+  double slopeMin = -4, slopeMax = 4, lensRadius = 1;
+  double refocusSeconds = 0.05;  // measured once, for progress estimates
+  std::counting_semaphore<1024> renderSlots;
+  mutable std::mutex mutex;  // guards cache and layers
+  AnswerCache cache;
+  LazyLayer allInFocus, depth;
+
+  State(LightField lf, ViewerLimits l)
+      : lightField(std::move(lf)),
+        limits(l),
+        renderSlots(std::clamp(l.concurrentRenders, 1, 1024)),
+        cache(l.cacheBytes) {}
+};
+
+ViewerSession::ViewerSession(LightField lightField, ViewerLimits limits)
+    : state_(std::make_unique<State>(std::move(lightField), limits)) {
+  State& s = *state_;
+  const auto& meta = s.lightField.metadata;
+  if (meta.disparityMin && meta.disparityMax && *meta.disparityMin < *meta.disparityMax) {
+    s.slopeMin = *meta.disparityMin;
+    s.slopeMax = *meta.disparityMax;
+  }
+  s.lensRadius = 0.5 * std::max(s.lightField.nu(), s.lightField.nv());
+  if (!s.lightField.empty()) {
+    const auto start = Clock::now();
+    (void)refocus(s.lightField, 0.5 * (s.slopeMin + s.slopeMax));
+    s.refocusSeconds = std::max(1e-3, std::chrono::duration<double>(Clock::now() - start).count());
+  }
+  // Refocus counts of depth.hpp and all_in_focus.hpp, rounded up.
+  s.depth.expectedSeconds = 70 * s.refocusSeconds;
+  s.allInFocus.expectedSeconds = 130 * s.refocusSeconds;
+}
+
+ViewerSession::~ViewerSession() = default;
+
+const LightField& ViewerSession::lightField() const { return state_->lightField; }
+double ViewerSession::slopeMin() const { return state_->slopeMin; }
+double ViewerSession::slopeMax() const { return state_->slopeMax; }
+double ViewerSession::lensRadius() const { return state_->lensRadius; }
+
+std::size_t ViewerSession::cacheBytes() const {
+  std::lock_guard lock(state_->mutex);
+  return state_->cache.bytes();
+}
+
+std::string ViewerSession::infoJson() const {
+  const LightField& lf = state_->lightField;
+  nlohmann::json info = {{"width", lf.ns()},         {"height", lf.nt()},
+                         {"nu", lf.nu()},            {"nv", lf.nv()},
+                         {"channels", lf.channels()}, {"slopeMin", state_->slopeMin},
+                         {"slopeMax", state_->slopeMax}, {"lensRadius", state_->lensRadius},
+                         {"refocusMs", 1000 * state_->refocusSeconds}, {"source", lf.metadata.source}};
+  // The whole lens's f-number, image side: F over the aperture's diameter (nu du).
+  if (const auto& optics = lf.metadata.optics; optics && optics->lensStepMm > 0)
+    info["lensFNumber"] = optics->lensToMicrolensMm / (std::max(lf.nu(), lf.nv()) * optics->lensStepMm);
+  return info.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
+}
+
+std::string ViewerSession::statusJson() const {
+  std::lock_guard lock(state_->mutex);
+  auto describe = [](const LazyLayer& layer) {
+    double progress = layer.state == LazyLayer::State::Ready ? 1.0 : 0.0;
+    if (layer.state == LazyLayer::State::Running)
+      progress = std::min(0.95, std::chrono::duration<double>(Clock::now() - layer.started).count() /
+                                    layer.expectedSeconds);
+    nlohmann::json j = {{"state", stateName(layer.state)}, {"progress", progress}};
+    if (layer.state == LazyLayer::State::Failed) j["error"] = layer.error;
+    return j;
+  };
+  return nlohmann::json{{"allInFocus", describe(state_->allInFocus)}, {"depth", describe(state_->depth)}}.dump(
+      -1, ' ', true, nlohmann::json::error_handler_t::replace);
+}
+
+Result<double> ViewerSession::focusAt(double x, double y) const {
+  const LightField& lf = state_->lightField;
+  if (!(x >= 0 && y >= 0 && x < lf.ns() && y < lf.nt()))
+    return makeError(ErrorCode::Usage, "focus point outside the image");
+  FocusSearch search;
+  search.minSlope = state_->slopeMin;
+  search.maxSlope = state_->slopeMax;
+  return slopeAtPixel(lf, x, y, search);
+}
+
+namespace {
+
+// Computes a slow layer for the caller that finds it idle; others see Running (Resource error).
+Result<const Image*> lazyLayer(std::mutex& mutex, LazyLayer& layer, const std::function<Result<Image>()>& compute) {
+  {
+    std::lock_guard lock(mutex);
+    switch (layer.state) {
+      case LazyLayer::State::Ready: return &layer.image;
+      case LazyLayer::State::Failed: return makeError(ErrorCode::Format, layer.error);
+      case LazyLayer::State::Running: return makeError(ErrorCode::Resource, "running");
+      case LazyLayer::State::Idle:
+        layer.state = LazyLayer::State::Running;
+        layer.started = Clock::now();
+    }
+  }
+  Result<Image> image = compute();
+  std::lock_guard lock(mutex);
+  if (!image) {
+    layer.state = LazyLayer::State::Failed;
+    layer.error = image.error().message;
+    return image.error();
+  }
+  layer.image = std::move(*image);
+  layer.state = LazyLayer::State::Ready;
+  return &layer.image;
+}
+
+std::string cacheKey(const ViewerView& view) {
+  char key[160];
+  std::snprintf(key, sizeof key, "%d|%.4f|%.3f|%.3f|%.3f|%d", int(view.layer), view.slope, view.fNumber, view.u,
+                view.v, view.quality);
+  return key;
+}
+
+}  // namespace
+
+Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
+  State& s = *state_;
+  const LightField& lf = s.lightField;
+  if (lf.empty()) return makeError(ErrorCode::Usage, "empty light field");
+  ViewerView view = request;
+  if (view.layer == ViewerLayer::Photo && view.focusAt) {
+    auto slope = focusAt(view.focusAt->first, view.focusAt->second);
+    if (!slope) return slope.error();
+    view.slope = *slope;
+  }
+  if (view.layer != ViewerLayer::Photo) view.slope = view.fNumber = view.u = view.v = 0;
+  const std::string key = cacheKey(view);
+  {
+    std::lock_guard lock(s.mutex);
+    if (auto hit = s.cache.find(key)) return Photo{std::move(hit->first), hit->second, true};
+  }
+
+  Image computed;
+  const Image* image = nullptr;
+  if (view.layer == ViewerLayer::AllInFocus) {
+    auto layer = lazyLayer(s.mutex, s.allInFocus, [&]() -> Result<Image> {
+      AllInFocusOptions options;
+      options.disparityMin = s.slopeMin;
+      options.disparityMax = s.slopeMax;
+      auto result = allInFocus(lf, options);
+      if (!result) return result.error();
+      return std::move(result->photo);
+    });
+    if (!layer) return layer.error();
+    image = *layer;
+  } else if (view.layer == ViewerLayer::Depth) {
+    auto layer = lazyLayer(s.mutex, s.depth, [&]() -> Result<Image> {
+      DepthOptions options;
+      options.disparityMin = s.slopeMin;
+      options.disparityMax = s.slopeMax;
+      auto result = estimateDepth(lf, options);
+      if (!result) return result.error();
+      return colourMap(result->disparity, result->disparityMin, result->disparityMax);
+    });
+    if (!layer) return layer.error();
+    image = *layer;
+  } else {
+    // A render slot, or 503 after waiting: bounds the memory and CPU of concurrent renders.
+    if (!s.renderSlots.try_acquire_for(std::chrono::duration<double>(s.limits.renderWaitSeconds)))
+      return makeError(ErrorCode::Resource, "busy: too many renders at once");
+    struct Release {
+      std::counting_semaphore<1024>& slots;
+      ~Release() { slots.release(); }
+    } release{s.renderSlots};
+    const double radius = s.lensRadius / view.fNumber;
+    Result<Image> photo = [&]() -> Result<Image> {
+      // A circle narrower than half a view diagonal can fall between the views: below that the
+      // aperture is a pinhole, one ray per pixel interpolated between the views.
+      if (radius < 0.71) return observe(lf, Observer{.u = view.u, .v = view.v, .clampToLens = true});
+      SyntheticCamera camera;
+      camera.slope = view.slope;
+      camera.aperture = Aperture::circle(radius, view.u, view.v);
+      return renderSyntheticPhoto(lf, camera);
+    }();
+    if (!photo) return photo.error();
+    computed = std::move(*photo);
+    image = &computed;
+  }
+  auto jpeg = encodeImage(*image, {.format = EncodedFormat::Jpeg, .jpegQuality = view.quality});
+  if (!jpeg) return jpeg.error();
+  std::lock_guard lock(s.mutex);
+  s.cache.insert(key, *jpeg, view.slope);
+  return Photo{std::move(*jpeg), view.slope, false};
+}
+
+}  // namespace lfcam

@@ -1,0 +1,276 @@
+// Browser test of `lfcam view` and `lfcam export-html`: Debian's chromium, driven by
+// playwright-core, clicks a near and a far point and checks that the photograph changes and that
+// the clicked region becomes sharper. Screenshots go to the output folder.
+//
+//   node viewer_browser_test.mjs LFCAM_EXECUTABLE OUTPUT_DIR [SHARED_DATA_DIR]
+//
+// Exit status 0 when every check passes; each check prints one line.
+import { spawn, execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { chromium } from 'playwright-core';
+
+const [lfcam, outDir, sharedData] = process.argv.slice(2);
+if (!lfcam || !outDir) {
+  console.error('usage: node viewer_browser_test.mjs LFCAM_EXECUTABLE OUTPUT_DIR [SHARED_DATA_DIR]');
+  process.exit(2);
+}
+fs.rmSync(outDir, { recursive: true, force: true });
+fs.mkdirSync(outDir, { recursive: true });
+
+let failures = 0;
+function check(condition, message) {
+  console.log(`${condition ? 'ok  ' : 'FAIL'} ${message}`);
+  if (!condition) failures += 1;
+}
+
+// HCI/lfcam PFM: "Pf", size, scale (negative: little endian), rows bottom to top.
+function readPfm(file) {
+  const bytes = fs.readFileSync(file);
+  let offset = 0;
+  const token = () => {
+    while (/\s/.test(String.fromCharCode(bytes[offset]))) offset++;
+    let s = '';
+    while (!/\s/.test(String.fromCharCode(bytes[offset]))) s += String.fromCharCode(bytes[offset++]);
+    return s;
+  };
+  const kind = token(), width = parseInt(token(), 10), height = parseInt(token(), 10), scale = parseFloat(token());
+  offset++;
+  if (kind !== 'Pf') throw new Error(`${file}: not a one-channel PFM`);
+  const values = new Float32Array(width * height);
+  for (let y = 0; y < height; y++)
+    for (let x = 0; x < width; x++) {
+      const at = offset + 4 * ((height - 1 - y) * width + x);
+      values[y * width + x] = scale < 0 ? bytes.readFloatLE(at) : bytes.readFloatBE(at);
+    }
+  return { width, height, at: (x, y) => values[y * width + x] };
+}
+
+// The nearest and the farthest points whose whole 17x17 window lies on one surface (by the
+// ground truth), away from the borders.
+function nearAndFar(truth) {
+  const r = 8, margin = Math.round(truth.width / 8);
+  const flat = (x, y) => {
+    const d = truth.at(x, y);
+    for (let dy = -r; dy <= r; dy += 2) for (let dx = -r; dx <= r; dx += 2)
+      if (Math.abs(truth.at(x + dx, y + dy) - d) > 0.05) return false;
+    return true;
+  };
+  let near = null, far = null;
+  for (let y = margin; y < truth.height - margin; y += 4)
+    for (let x = margin; x < truth.width - margin; x += 4) {
+      if (!flat(x, y)) continue;
+      const d = truth.at(x, y);
+      if (!near || d > near.d) near = { x, y, d };
+      if (!far || d < far.d) far = { x, y, d };
+    }
+  return { near, far };
+}
+
+// Sharpness of the displayed photograph around image pixel (x, y): variance of the Laplacian of
+// its luminance over a 33x33 window, computed in the page from the <img> through a canvas.
+async function sharpness(page, x, y) {
+  return page.evaluate(([px, py]) => {
+    const img = document.getElementById('photo');
+    const canvas = document.createElement('canvas');
+    canvas.width = img.naturalWidth; canvas.height = img.naturalHeight;
+    const context = canvas.getContext('2d');
+    context.drawImage(img, 0, 0);
+    const r = 16, x0 = Math.max(1, px - r), y0 = Math.max(1, py - r);
+    const x1 = Math.min(canvas.width - 2, px + r), y1 = Math.min(canvas.height - 2, py + r);
+    const data = context.getImageData(0, 0, canvas.width, canvas.height).data;
+    const lum = (x, y) => { const i = 4 * (y * canvas.width + x); return 0.299 * data[i] + 0.587 * data[i + 1] + 0.114 * data[i + 2]; };
+    let sum = 0, sum2 = 0, n = 0;
+    for (let y = y0; y <= y1; y++) for (let x = x0; x <= x1; x++) {
+      const l = 4 * lum(x, y) - lum(x - 1, y) - lum(x + 1, y) - lum(x, y - 1) - lum(x, y + 1);
+      sum += l; sum2 += l * l; n++;
+    }
+    return sum2 / n - (sum / n) ** 2;
+  }, [Math.round(x), Math.round(y)]);
+}
+
+// Where image pixel (x, y) is on the screen.
+async function screenPoint(page, x, y, info) {
+  const box = await page.locator('#photo').boundingBox();
+  return { x: box.x + (x + 0.5) / info.width * box.width, y: box.y + (y + 0.5) / info.height * box.height };
+}
+
+async function photoSource(page) { return page.evaluate(() => document.getElementById('photo').src); }
+async function photoPixels(page) {
+  return page.evaluate(() => {
+    const img = document.getElementById('photo');
+    const canvas = document.createElement('canvas');
+    canvas.width = img.naturalWidth; canvas.height = img.naturalHeight;
+    const context = canvas.getContext('2d');
+    context.drawImage(img, 0, 0);
+    const data = context.getImageData(0, 0, canvas.width, canvas.height).data;
+    let hash = 0;
+    for (let i = 0; i < data.length; i += 7) hash = (hash * 31 + data[i]) >>> 0;
+    return hash;
+  });
+}
+
+function startViewer(input) {
+  return new Promise((resolve, reject) => {
+    const child = spawn(lfcam, ['view', input, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+    let out = '', err = '';
+    const timer = setTimeout(() => reject(new Error(`lfcam view did not start: ${err}`)), 120000);
+    child.stdout.on('data', (chunk) => {
+      out += chunk;
+      const match = out.match(/http:\/\/[^\s]+\//);
+      if (match) { clearTimeout(timer); resolve({ child, url: match[0] }); }
+    });
+    child.stderr.on('data', (chunk) => { err += chunk; });
+    child.on('exit', (code) => { clearTimeout(timer); reject(new Error(`lfcam view exited with ${code}: ${err}`)); });
+  });
+}
+
+async function waitIdle(page, renders) {
+  await page.waitForFunction((n) => window.lfcamViewer && window.lfcamViewer.renders() > n && window.lfcamViewer.idle(),
+    renders, { timeout: 60000 });
+}
+
+// The viewer on one light field: click near, click far, compare; toggle the depth map.
+async function testViewer(context, name, input, truth, { depth = true } = {}) {
+  const { near, far } = nearAndFar(truth);
+  check(near && far && near.d - far.d > 0.5, `${name}: near (${near.x},${near.y}) d=${near.d.toFixed(2)} and far (${far.x},${far.y}) d=${far.d.toFixed(2)} points found`);
+  const { child, url } = await startViewer(input);
+  try {
+    const page = await context.newPage();
+    await page.goto(url);
+    await waitIdle(page, 0);
+    const info = await page.evaluate(() => window.lfcamViewer.state.info);
+    await page.screenshot({ path: path.join(outDir, `${name}-view-start.png`) });
+
+    const focused = {};
+    for (const [label, point] of [['near', near], ['far', far]]) {
+      const before = await page.evaluate(() => window.lfcamViewer.renders());
+      const hashBefore = await photoPixels(page);
+      const started = Date.now();
+      const at = await screenPoint(page, point.x, point.y, info);
+      await page.mouse.click(at.x, at.y);
+      await waitIdle(page, before);
+      const slope = await page.evaluate(() => window.lfcamViewer.state.slope);
+      focused[label] = { slope, hash: await photoPixels(page), nearSharpness: await sharpness(page, near.x, near.y),
+                         farSharpness: await sharpness(page, far.x, far.y) };
+      check(focused[label].hash !== hashBefore, `${name}: clicking the ${label} point changes the photograph (${Date.now() - started} ms in the browser)`);
+      check(Math.abs(slope - point.d) < 0.3, `${name}: the ${label} click focuses at slope ${slope.toFixed(2)} (truth ${point.d.toFixed(2)})`);
+      await page.screenshot({ path: path.join(outDir, `${name}-view-${label}.png`) });
+    }
+    check(focused.near.nearSharpness > 1.2 * focused.far.nearSharpness,
+      `${name}: the near region is sharper focused near (${focused.near.nearSharpness.toFixed(0)}) than far (${focused.far.nearSharpness.toFixed(0)})`);
+    check(focused.far.farSharpness > 1.2 * focused.near.farSharpness,
+      `${name}: the far region is sharper focused far (${focused.far.farSharpness.toFixed(0)}) than near (${focused.near.farSharpness.toFixed(0)})`);
+
+    // Closing the aperture deepens the depth of field: the near region sharpens while focused far.
+    const before = await page.evaluate(() => window.lfcamViewer.renders());
+    await page.locator('#fnumber').fill('1');
+    await waitIdle(page, before);
+    const pinholeNear = await sharpness(page, near.x, near.y);
+    check(pinholeNear > 1.2 * focused.far.nearSharpness,
+      `${name}: a small aperture sharpens the defocused near region (${pinholeNear.toFixed(0)} > ${focused.far.nearSharpness.toFixed(0)})`);
+    await page.screenshot({ path: path.join(outDir, `${name}-view-small-aperture.png`) });
+
+    // Dragging moves the observer: a different photograph.
+    const hashBeforeDrag = await photoPixels(page);
+    const rendersBeforeDrag = await page.evaluate(() => window.lfcamViewer.renders());
+    const centre = await screenPoint(page, info.width / 2, info.height / 2, info);
+    await page.mouse.move(centre.x, centre.y);
+    await page.mouse.down();
+    await page.mouse.move(centre.x + 60, centre.y + 20, { steps: 5 });
+    await page.mouse.up();
+    await waitIdle(page, rendersBeforeDrag);
+    const observer = await page.evaluate(() => [window.lfcamViewer.state.u, window.lfcamViewer.state.v]);
+    check(observer[0] !== 0 && (await photoPixels(page)) !== hashBeforeDrag, `${name}: dragging moves the observer to u ${observer[0].toFixed(2)}, v ${observer[1].toFixed(2)} and changes the photograph`);
+    await page.screenshot({ path: path.join(outDir, `${name}-view-dragged.png`) });
+
+    if (depth) {
+      // The depth map: computed on demand, progress shown, the page answers meanwhile.
+      const rendersBeforeDepth = await page.evaluate(() => window.lfcamViewer.renders());
+      await page.locator('#depth').check();
+      const responsive = await page.evaluate(() => new Promise((resolve) => { const t = performance.now(); setTimeout(() => resolve(performance.now() - t), 10); }));
+      check(responsive < 500, `${name}: the page stays responsive while the depth map is computed (timer fired after ${responsive.toFixed(0)} ms)`);
+      await page.waitForFunction((n) => window.lfcamViewer.renders() > n && window.lfcamViewer.idle(), rendersBeforeDepth, { timeout: 300000 });
+      await page.screenshot({ path: path.join(outDir, `${name}-view-depth.png`) });
+      const shown = await page.evaluate(() => document.getElementById('layerProgress').dataset.shown);
+      check(Number(shown) >= 1, `${name}: the depth map arrived, a progress bar shown meanwhile (${shown} time(s))`);
+    }
+    await page.close();
+  } finally {
+    child.kill('SIGTERM');
+  }
+}
+
+// The exported page from disk: the same clicks, with no server.
+async function testExport(context, name, input, truth) {
+  const { near, far } = nearAndFar(truth);
+  const html = path.join(outDir, `${name}.html`);
+  const started = Date.now();
+  execFileSync(lfcam, ['export-html', input, '-o', html, '--slices', '16', '--frames', '8']);
+  check(fs.existsSync(html), `${name}: export-html wrote ${(fs.statSync(html).size / 1e6).toFixed(1)} MB in ${Date.now() - started} ms`);
+  const page = await context.newPage();
+  const requests = [];
+  page.on('request', (r) => { if (!r.url().startsWith('data:') && !r.url().startsWith('file:')) requests.push(r.url()); });
+  await page.goto(`file://${path.resolve(html)}`);
+  await page.waitForFunction(() => window.lfcamLiving && document.getElementById('photo').complete);
+  const data = await page.evaluate(() => ({ width: window.lfcamLiving.data.width, height: window.lfcamLiving.data.height }));
+  const focused = {};
+  for (const [label, point] of [['near', near], ['far', far]]) {
+    const hashBefore = await photoPixels(page);
+    const at = await screenPoint(page, point.x, point.y, data);
+    await page.mouse.click(at.x, at.y);
+    await page.waitForFunction(() => window.lfcamLiving.idle() && document.getElementById('photo').complete);
+    await page.waitForTimeout(100);
+    focused[label] = { hash: await photoPixels(page), nearSharpness: await sharpness(page, near.x, near.y),
+                       farSharpness: await sharpness(page, far.x, far.y) };
+    check(focused[label].hash !== hashBefore, `${name} (exported): clicking the ${label} point changes the photograph`);
+    await page.screenshot({ path: path.join(outDir, `${name}-export-${label}.png`) });
+  }
+  check(focused.near.nearSharpness > 1.2 * focused.far.nearSharpness,
+    `${name} (exported): near region sharper focused near (${focused.near.nearSharpness.toFixed(0)}) than far (${focused.far.nearSharpness.toFixed(0)})`);
+  check(focused.far.farSharpness > 1.2 * focused.near.farSharpness,
+    `${name} (exported): far region sharper focused far (${focused.far.farSharpness.toFixed(0)}) than near (${focused.near.farSharpness.toFixed(0)})`);
+  // The viewpoint sweep plays.
+  await page.locator('#play').click();
+  const first = await photoSource(page);
+  await page.waitForTimeout(300);
+  check((await photoSource(page)) !== first, `${name} (exported): the viewpoint sweep moves`);
+  await page.screenshot({ path: path.join(outDir, `${name}-export-sweep.png`) });
+  check(requests.length === 0, `${name} (exported): no network request (${requests.join(' ') || 'none'})`);
+  await page.close();
+}
+
+const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'lfcam-chromium-'));
+const context = await chromium.launchPersistentContext(userDataDir, {
+  executablePath: '/usr/bin/chromium',
+  headless: true,
+  viewport: { width: 1280, height: 900 },
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+         '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+try {
+  // The layered planes: exact ground truth.
+  const scene = path.join(outDir, 'planes.lf.h5'), truthFile = path.join(outDir, 'planes-truth.pfm');
+  execFileSync(lfcam, ['synth', '-o', scene, '--views', '9', '--size', '256', '--disparity', truthFile]);
+  const truth = readPfm(truthFile);
+  await testViewer(context, 'planes', scene, truth);
+  await testExport(context, 'planes', scene, truth);
+  // HCI antinous, when the shared data is there.
+  const antinous = sharedData && path.join(sharedData, 'hci-antinous');
+  if (antinous && fs.existsSync(path.join(antinous, 'gt_disp_lowres.pfm'))) {
+    const hciTruth = readPfm(path.join(antinous, 'gt_disp_lowres.pfm'));
+    await testViewer(context, 'antinous', antinous, hciTruth, { depth: false });
+    await testExport(context, 'antinous', antinous, hciTruth);
+  } else {
+    console.log(`skip hci-antinous: ${antinous || 'no shared data folder given'} is absent`);
+  }
+} catch (error) {
+  console.log(`FAIL ${error.stack || error}`);
+  failures += 1;
+} finally {
+  await context.close();
+  fs.rmSync(userDataDir, { recursive: true, force: true });
+}
+console.log(failures ? `${failures} check(s) failed; screenshots in ${outDir}` : `all checks passed; screenshots in ${outDir}`);
+process.exit(failures ? 1 : 0);

@@ -1,0 +1,261 @@
+// The viewer (viewer.hpp, viewer_server.hpp, image_encode.hpp, living_picture.hpp): parsing and
+// routing without sockets, then the real server with malformed, oversized and concurrent requests.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "lfcam/image_encode.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/layered_planes.hpp"
+#include "lfcam/living_picture.hpp"
+#include "lfcam/viewer.hpp"
+#include "lfcam/viewer_server.hpp"
+#include "test_support.hpp"
+
+namespace lfcam {
+namespace {
+
+// 5x5 views of 64x64: small enough for every render here to take milliseconds.
+LayeredPlanesLightField smallScene() { return renderLayeredPlanes(defaultLayeredPlanesScene(5, 64, 3)); }
+
+ViewerSession& session() {
+  static ViewerSession* shared = [] {
+    auto scene = smallScene();
+    return new ViewerSession(std::move(scene.lightField), ViewerLimits{.cacheBytes = 200000});
+  }();
+  return *shared;
+}
+
+ViewerAnswer get(const std::string& path, std::multimap<std::string, std::string> params = {}) {
+  return answerRequest(session(), {"GET", path, std::move(params)});
+}
+
+bool isJpeg(const std::string& bytes) {
+  return bytes.size() > 4 && std::uint8_t(bytes[0]) == 0xFF && std::uint8_t(bytes[1]) == 0xD8;
+}
+
+TEST(ImageEncode, JpegAndPngDecodeBackToTheImage) {
+  Image image(17, 9, 3);
+  for (int c = 0; c < 3; ++c)
+    for (int y = 0; y < 9; ++y)
+      for (int x = 0; x < 17; ++x) image.at(x, y, c) = float(x + y + c) / 30.0f;
+  test::TempDir dir;
+  for (auto format : {EncodedFormat::Png, EncodedFormat::Jpeg}) {
+    auto bytes = encodeImage(image, {.format = format, .jpegQuality = 95});
+    ASSERT_TRUE(bytes.ok());
+    const auto path = dir.path() / (format == EncodedFormat::Png ? "a.png" : "a.jpg");
+    test::writeBytes(path, *bytes);
+    auto back = readImage(path);
+    ASSERT_TRUE(back.ok()) << back.error().message;
+    ASSERT_EQ(back->width(), 17);
+    ASSERT_EQ(back->height(), 9);
+    double worst = 0;
+    for (int c = 0; c < 3; ++c)
+      for (int y = 0; y < 9; ++y)
+        for (int x = 0; x < 17; ++x)
+          worst = std::max(worst, std::abs(double(back->at(x, y, c)) - image.at(x, y, c)));
+    EXPECT_LT(worst, format == EncodedFormat::Png ? 0.005 : 0.05);
+  }
+  EXPECT_TRUE(encodeImage(Image(4, 4, 2)).ok());  // grey from the first channel
+  EXPECT_TRUE(encodeImage(Image(4, 4, 5)).ok());  // RGB from the first three
+  EXPECT_FALSE(encodeImage(Image()).ok());
+}
+
+TEST(ImageEncode, Base64MatchesRfc4648) {
+  EXPECT_EQ(base64Encode(""), "");
+  EXPECT_EQ(base64Encode("f"), "Zg==");
+  EXPECT_EQ(base64Encode("fo"), "Zm8=");
+  EXPECT_EQ(base64Encode("foo"), "Zm9v");
+  EXPECT_EQ(base64Encode("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(base64Encode(std::string("\xff\x00\x10", 3)), "/wAQ");
+}
+
+TEST(ViewerRoutes, ServesTheEmbeddedPageAndNothingElse) {
+  auto page = get("/");
+  EXPECT_EQ(page.status, 200);
+  EXPECT_NE(page.body.find("viewer.js"), std::string::npos);
+  EXPECT_EQ(get("/viewer.js").status, 200);
+  EXPECT_EQ(get("/viewer.css").contentType.rfind("text/css", 0), 0u);
+  // The export template and anything that looks like a path stay out of reach.
+  for (const char* path : {"/living.html", "/../etc/passwd", "/viewer.js/../../etc/passwd", "/etc/passwd",
+                           "//etc/passwd", "/api/../viewer.js", "/api", "", "/viewer.jsx", "/VIEWER.JS"})
+    EXPECT_EQ(get(path).status, 404) << path;
+  EXPECT_EQ(answerRequest(session(), {"POST", "/api/image", {}}).status, 405);
+  EXPECT_EQ(answerRequest(session(), {"DELETE", "/", {}}).status, 405);
+}
+
+TEST(ViewerRoutes, RefusesBadParameters) {
+  using P = std::multimap<std::string, std::string>;
+  for (const P& params : std::vector<P>{{{"slope", "abc"}},
+                                        {{"slope", "nan"}},
+                                        {{"slope", "1e300"}},
+                                        {{"slope", "1x"}},
+                                        {{"slope", ""}},
+                                        {{"slope", "1"}, {"slope", "2"}},
+                                        {{"f", "0.5"}},
+                                        {{"q", "101"}},
+                                        {{"layer", "secret"}},
+                                        {{"focus", "3"}},
+                                        {{"focus", "64,3"}},
+                                        {{"focus", "-1,3"}},
+                                        {{"path", "/etc/passwd"}}})
+    EXPECT_EQ(get("/api/image", params).status, 400) << params.begin()->first << "=" << params.begin()->second;
+  EXPECT_EQ(get("/api/focus", {{"x", "3"}}).status, 400);
+  EXPECT_EQ(get("/api/focus", {{"x", "300"}, {"y", "3"}}).status, 400);
+  EXPECT_EQ(get("/api/info", {{"x", "1"}}).status, 400);
+}
+
+TEST(ViewerRoutes, ClampsTheObserverToTheLens) {
+  auto view = parseViewerView({{"u", "100"}, {"v", "-100"}}, session());
+  ASSERT_TRUE(view.ok());
+  EXPECT_EQ(view->u, 2.0);
+  EXPECT_EQ(view->v, -2.0);
+}
+
+TEST(ViewerSession, ClickFocusesThePlaneUnderThePointer) {
+  auto scene = smallScene();
+  ViewerSession local(std::move(scene.lightField));
+  // The nearest and the farthest surfaces of the scene, by the ground truth.
+  const Image& truth = scene.disparity;
+  // Points whose whole focus window (7x7, and a margin) lies on one surface.
+  auto flat = [&](int x, int y) {
+    for (int dy = -5; dy <= 5; ++dy)
+      for (int dx = -5; dx <= 5; ++dx)
+        if (std::abs(truth.at(x + dx, y + dy, 0) - truth.at(x, y, 0)) > 0.01f) return false;
+    return true;
+  };
+  int nearX = -1, nearY = -1, farX = -1, farY = -1;
+  for (int y = 8; y < 56; ++y)
+    for (int x = 8; x < 56; ++x) {
+      if (!flat(x, y)) continue;
+      if (nearX < 0 || truth.at(x, y, 0) > truth.at(nearX, nearY, 0)) nearX = x, nearY = y;
+      if (farX < 0 || truth.at(x, y, 0) < truth.at(farX, farY, 0)) farX = x, farY = y;
+    }
+  ASSERT_GE(nearX, 0);
+  ASSERT_GT(truth.at(nearX, nearY, 0) - truth.at(farX, farY, 0), 0.5f);
+  for (auto [x, y] : {std::pair{nearX, nearY}, std::pair{farX, farY}}) {
+    auto answer = answerRequest(local, {"GET", "/api/image", {{"focus", std::to_string(x) + "," + std::to_string(y)}}});
+    ASSERT_EQ(answer.status, 200) << answer.body;
+    EXPECT_TRUE(isJpeg(answer.body));
+    EXPECT_NEAR(std::stod(answer.headers["X-Lfcam-Slope"]), truth.at(x, y, 0), 0.25) << x << "," << y;
+  }
+}
+
+TEST(ViewerSession, RendersEveryControlAndKeepsTheCacheBounded) {
+  for (int i = 0; i < 40; ++i) {
+    auto answer = get("/api/image", {{"slope", std::to_string(-1 + 0.05 * i)}, {"f", std::to_string(1 + i % 12)},
+                                     {"u", std::to_string((i % 5) - 2.0)}, {"v", "0.5"}, {"q", "90"}});
+    ASSERT_EQ(answer.status, 200) << answer.body;
+    ASSERT_TRUE(isJpeg(answer.body));
+    EXPECT_LE(session().cacheBytes(), 200000u);
+  }
+  auto again = get("/api/image", {{"slope", "0.5"}});
+  auto cached = get("/api/image", {{"slope", "0.5"}});
+  EXPECT_EQ(cached.headers["X-Lfcam-Cached"], "1");
+  EXPECT_EQ(again.body, cached.body);
+}
+
+TEST(ViewerSession, SlowLayersAreComputedOnceAndReportProgress) {
+  EXPECT_NE(session().statusJson().find("\"depth\""), std::string::npos);
+  auto depth = get("/api/image", {{"layer", "depth"}});
+  ASSERT_EQ(depth.status, 200) << depth.body;
+  EXPECT_TRUE(isJpeg(depth.body));
+  EXPECT_NE(session().statusJson().find("\"ready\""), std::string::npos);
+}
+
+// --- The server on a socket ---
+
+class ViewerServerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    server_ = std::make_unique<ViewerServer>(session());
+    ASSERT_TRUE(server_->bind({.host = "127.0.0.1", .port = 0, .threads = 4, .timeoutSeconds = 2}).ok());
+    thread_ = std::thread([this] { (void)server_->run(); });
+  }
+  void TearDown() override {
+    server_->stop();
+    thread_.join();
+  }
+  // Sends raw bytes, returns the status line's code (0 when the server closed without one).
+  int raw(const std::string& bytes) {
+    const int fd = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(std::uint16_t(server_->port()));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) return -1;
+    timeval timeout{5, 0};
+    setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    (void)!send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+    // Only the status line matters (a half-closed socket would make the server drop the request).
+    std::string reply;
+    char buffer[4096];
+    for (ssize_t n; reply.find("\r\n") == std::string::npos && (n = read(fd, buffer, sizeof buffer)) > 0;)
+      reply.append(buffer, std::size_t(n));
+    close(fd);
+    return reply.rfind("HTTP/1.1 ", 0) == 0 ? std::stoi(reply.substr(9, 3)) : 0;
+  }
+  httplib::Client client() { return httplib::Client("127.0.0.1", server_->port()); }
+
+  std::unique_ptr<ViewerServer> server_;
+  std::thread thread_;
+};
+
+TEST_F(ViewerServerTest, MalformedAndOversizedRequestsGet4xxAndServingGoesOn) {
+  EXPECT_EQ(raw("GARBAGE\r\n\r\n") / 100, 4);
+  EXPECT_EQ(raw("GET / HTTP/9.9\r\n\r\n") / 100, 4);
+  EXPECT_EQ(raw("GET /api/info?" + std::string(20000, 'a') + " HTTP/1.1\r\nHost: x\r\n\r\n"), 414);
+  EXPECT_EQ(raw("GET / HTTP/1.1\r\nHost: x\r\nX-Big: " + std::string(20000, 'b') + "\r\n\r\n") / 100, 4);
+  EXPECT_EQ(raw("POST /api/image HTTP/1.1\r\nHost: x\r\nContent-Length: 100000\r\n\r\n" + std::string(5000, 'c')), 413);
+  EXPECT_EQ(raw("GET /%2e%2e/%2e%2e/etc/passwd HTTP/1.1\r\nHost: x\r\n\r\n"), 404);
+  EXPECT_EQ(raw("GET /api/image?slope=%ff%00 HTTP/1.1\r\nHost: x\r\n\r\n"), 400);
+  auto info = client().Get("/api/info");
+  ASSERT_TRUE(info);
+  EXPECT_EQ(info->status, 200);
+  EXPECT_NE(info->body.find("\"nu\":5"), std::string::npos);
+}
+
+TEST_F(ViewerServerTest, ServesSeveralClientsAtOnce) {
+  std::atomic<int> ok = 0, busy = 0, other = 0;
+  std::vector<std::thread> clients;
+  for (int k = 0; k < 6; ++k)
+    clients.emplace_back([&, k] {
+      auto c = client();
+      for (int i = 0; i < 5; ++i) {
+        auto answer = c.Get("/api/image?slope=" + std::to_string(0.1 * k + 0.013 * i) + "&f=2");
+        if (answer && answer->status == 200 && isJpeg(answer->body)) ++ok;
+        else if (answer && answer->status == 503) ++busy;
+        else ++other;
+      }
+    });
+  for (auto& t : clients) t.join();
+  EXPECT_EQ(other, 0);
+  EXPECT_EQ(ok + busy, 30);
+  EXPECT_GT(ok, 0);
+}
+
+TEST(LivingPicture, EmbedsTheStackTheIndexAndTheSweep) {
+  auto scene = smallScene();
+  auto html = makeLivingPicture(scene.lightField, {.maxSlices = 8, .sweepFrames = 4, .jpegQuality = 70});
+  ASSERT_TRUE(html.ok()) << html.error().message;
+  EXPECT_EQ(html->find("{{LFCAM_DATA}}"), std::string::npos);
+  EXPECT_NE(html->find("\"index\":\""), std::string::npos);
+  int images = 0;
+  for (std::size_t at = 0; (at = html->find("data:image/jpeg;base64,", at)) != std::string::npos; ++at) ++images;
+  EXPECT_GE(images, 1 + 2 + 4);  // all in focus, at least two slices, four viewpoints
+  // Self-contained: no reference to anything outside the file.
+  EXPECT_EQ(html->find("src=\"http"), std::string::npos);
+  EXPECT_EQ(html->find("<script src"), std::string::npos);
+  EXPECT_FALSE(makeLivingPicture(LightField()).ok());
+}
+
+}  // namespace
+}  // namespace lfcam

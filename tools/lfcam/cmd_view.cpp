@@ -1,0 +1,48 @@
+// lfcam view INPUT [--port N] [--host ADDR]: the interactive viewer, a local web server whose page
+// refocuses where it is clicked (viewer.hpp, viewer_server.hpp).
+#include <cstdio>
+#include <memory>
+
+#include "commands.hpp"
+#include "lfcam/viewer.hpp"
+#include "lfcam/viewer_server.hpp"
+
+namespace lfcam::cli {
+
+void addViewCommand(CLI::App& app, Job& job) {
+  struct Options {
+    InputOptions input;
+    ViewerServerOptions server;
+    int cacheMb = 64;
+    int renders = 2;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand(
+      "view", "serve an interactive viewer (click to focus, aperture, viewpoint) on a local web page");
+  addInputOptions(*command, options->input);
+  command->add_option("--port", options->server.port, "TCP port (0: any free port; the address is printed)")
+      ->check(CLI::Range(0, 65535));
+  command->add_option("--host", options->server.host,
+                      "address to listen on (default 127.0.0.1: this machine only; 0.0.0.0 exposes it to the network)");
+  command->add_option("--cache-mb", options->cacheMb, "memory for already rendered photographs, MB")
+      ->check(CLI::Range(0, 4096));
+  command->add_option("--max-renders", options->renders, "photographs rendered at once")->check(CLI::Range(1, 64));
+  command->callback([options, &job] {
+    job = [options]() -> Status {
+      auto lightField = loadInput(options->input);
+      if (!lightField) return lightField.error();
+      ViewerLimits limits;
+      limits.cacheBytes = std::size_t(options->cacheMb) << 20;
+      limits.concurrentRenders = options->renders;
+      ViewerSession session(std::move(*lightField), limits);
+      ViewerServer server(session);
+      LFCAM_TRY(server.bind(options->server));
+      std::printf("lfcam view: serving %s on http://%s:%d/ (Ctrl-C to stop)\n", options->input.path.c_str(),
+                  options->server.host.c_str(), server.port());
+      std::fflush(stdout);
+      return server.run();
+    };
+  });
+}
+
+}  // namespace lfcam::cli
