@@ -14,8 +14,13 @@ packages=(
   libhwy-dev           # SIMD with run-time dispatch
   libraw-dev           # camera raw files
   libfftw3-dev         # Fourier slice refocusing
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev  # MP4 animations (H.264 by libx264)
   libssl-dev           # SHA-1 of Lytro container sections
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang-14 libclang-rt-14-dev  # sanitizer build and libFuzzer targets (scripts/test_sanitized.sh, scripts/fuzz.sh)
+  libcpp-httplib-dev   # the viewer's local web server (header-only)
+  chromium             # browser tests of the viewer (driven by playwright-core, tests/browser)
+  wrk                  # load test of the viewer (bench/viewer_load.sh)
 )
 
 missing=()
@@ -27,4 +32,15 @@ if [ ${#missing[@]} -gt 0 ]; then
   [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# playwright-core for the browser tests (tests/browser), pinned by its package-lock.json; it
+# drives Debian's chromium above and downloads no browser. Node and npm come from the machine
+# (NodeSource); Debian's npm package is not used, as it conflicts with NodeSource's.
+browser_tests="$(cd "$(dirname "$0")/.." && pwd)/tests/browser"
+if ! command -v npm >/dev/null; then
+  echo "setup.sh: npm is missing, so the browser tests (label browser) cannot be installed" >&2
+elif [ ! -f "$browser_tests/node_modules/.package-lock.json" ] ||
+     [ "$browser_tests/package-lock.json" -nt "$browser_tests/node_modules/.package-lock.json" ]; then
+  (cd "$browser_tests" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
 fi

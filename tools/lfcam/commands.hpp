@@ -31,6 +31,13 @@ void addDemoCommand(CLI::App& app, Job& job);
 void addSimulateCommand(CLI::App& app, Job& job);
 void addDepthCommand(CLI::App& app, Job& job);
 void addEdofCommand(CLI::App& app, Job& job);
+void addExtractCommand(CLI::App& app, Job& job);
+void addViewCommand(CLI::App& app, Job& job);
+void addExportHtmlCommand(CLI::App& app, Job& job);
+void addExperimentCommand(CLI::App& app, Job& job);
+void addDecodeCommand(CLI::App& app, Job& job);
+void addCalibrateCommand(CLI::App& app, Job& job);
+void addMemoryLimitOption(CLI::App& app);  // global: --memory-limit / LFCAM_MEMORY_LIMIT
 
 // A light-field input as every command takes it: a path, recognised by content, and the few
 // options needed for inputs that do not describe themselves.
@@ -38,6 +45,7 @@ struct InputOptions {
   std::string path;
   std::optional<int> lensletViews;
   ViewNumberOrder viewOrder = ViewNumberOrder::Auto;
+  std::string white, dark, grid;  // a raw lenslet image, decoded on the way when --white is given
   LightFieldReadOptions readOptions() const { return {.lensletViews = lensletViews, .viewNumberOrder = viewOrder}; }
 };
 void addInputOptions(CLI::App& command, InputOptions& input);

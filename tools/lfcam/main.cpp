@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "lfcam 0.1.0");
   int threads = 0;
   app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  cli::addMemoryLimitOption(app);
 
   cli::Job job;
   cli::addInfoCommand(app, job);
@@ -31,6 +32,12 @@ int main(int argc, char** argv) {
   cli::addSimulateCommand(app, job);
   cli::addDepthCommand(app, job);
   cli::addEdofCommand(app, job);
+  cli::addExtractCommand(app, job);
+  cli::addViewCommand(app, job);
+  cli::addExportHtmlCommand(app, job);
+  cli::addExperimentCommand(app, job);
+  cli::addDecodeCommand(app, job);
+  cli::addCalibrateCommand(app, job);
 
   try {
     app.parse(argc, argv);
