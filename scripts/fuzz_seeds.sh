@@ -28,7 +28,7 @@ pack() {
 "$lfcam" convert "$scratch/lf.lf.h5" -o "$scratch/lenslet.png"
 "$lfcam" convert "$scratch/lf3.lf.h5" -o "$scratch/lenslet16.tif" --16bit
 "$lfcam" convert "$scratch/lf.lf.h5" -o "$scratch/hci"
-"$lfcam" convert "$scratch/lf3.lf.h5" -o "$scratch/rc" --layout rowcolumn
+"$lfcam" convert "$scratch/lf3.lf.h5" -o "$scratch/rc" --layout rowcol
 "$lfcam" simulate pinhole -o "$scratch/sim" --size 64 --samples 1 --no-ground-truth --no-white >/dev/null
 seed hdf5_light_field "$scratch/lf.lf.h5"
 seed hdf5_light_field "$scratch/lf3.lf.h5"
@@ -101,7 +101,8 @@ if [ -d "$data" ]; then
   # Small real view folders: four views of each set.
   if [ -d "$data/lytro-f01-flower" ]; then
     mkdir -p "$scratch/flower"
-    ls "$data/lytro-f01-flower"/*.png 2>/dev/null | head -4 | xargs -r -I{} cp {} "$scratch/flower/"
+    views=("$data/lytro-f01-flower/views"/*.png)  # a few views are enough for a seed
+    cp "${views[@]:0:4}" "$scratch/flower/"
     pack "$scratch/flower" view_folder lytro-flower
   fi
 fi

@@ -74,7 +74,7 @@ Rgb Texture::evaluate(double x, double y, double width, double height) const {
     case TextureKind::Checkerboard: {
       const long long i = cellIndex((x - 0.5 * width) / periodMm);
       const long long j = cellIndex((y - 0.5 * height) / periodMm);
-      return ((i + j) & 1) ? dark : light;
+      return ((i ^ j) & 1) ? dark : light;  // the parity of i + j, without a sum that can overflow
     }
     case TextureKind::Chart: {
       // Group k in the k-th column; vertical bars (frequency along x) on top, horizontal below;
@@ -103,7 +103,7 @@ Rgb Texture::evaluate(double x, double y, double width, double height) const {
       const double inLine = y - line * 1.5 * periodMm;
       if (inLine >= periodMm) return light;
       const long long glyph = cellIndex(x / (4 * cell));
-      const double inGlyph = x - glyph * 4 * cell;
+      const double inGlyph = x - double(glyph) * 4 * cell;  // glyph may be saturated: no integer product
       if (inGlyph >= 3 * cell) return light;
       // Hash keys in unsigned arithmetic: it wraps where signed would overflow.
       if (hashUnit(seed, line, (long long)(std::uint64_t(glyph) * 7 + 3)) < 0.18) return light;  // a space between words
