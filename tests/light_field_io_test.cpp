@@ -183,6 +183,13 @@ TEST(LightFieldIoHdf5, FileLayoutIsTheDocumentedOne) {
 
   for (const char* name : {"lfcam_format", "lfcam_version", "axes", "source"})
     EXPECT_GT(H5Aexists(file, name), 0) << name;
+  for (const char* name : {"lfcam_format", "axes", "source"}) {  // fixed-length: see the reader
+    hid_t attribute = H5Aopen(file, name, H5P_DEFAULT);
+    hid_t type = H5Aget_type(attribute);
+    EXPECT_EQ(H5Tget_class(type), H5T_STRING) << name;
+    EXPECT_EQ(H5Tis_variable_str(type), 0) << name;
+    H5Tclose(type), H5Aclose(attribute);
+  }
   int version = 0;
   hid_t versionAttribute = H5Aopen(file, "lfcam_version", H5P_DEFAULT);
   H5Aread(versionAttribute, H5T_NATIVE_INT, &version);
@@ -194,7 +201,7 @@ TEST(LightFieldIoHdf5, FileLayoutIsTheDocumentedOne) {
 
 // Writes an HDF5 file holding one dataset `name` of `type` and `dims`, as another tool would.
 void writeForeignHdf5(const fs::path& path, const char* name, hid_t type, std::vector<hsize_t> dims,
-                      const char* formatTag = nullptr) {
+                      const char* formatTag = nullptr, bool variableLengthTag = false) {
   hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   hid_t space = H5Screate_simple(int(dims.size()), dims.data(), nullptr);
   hid_t data = H5Dcreate2(file, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -204,10 +211,13 @@ void writeForeignHdf5(const fs::path& path, const char* name, hid_t type, std::v
   H5Dwrite(data, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
   if (formatTag) {
     hid_t stringType = H5Tcopy(H5T_C_S1);
-    H5Tset_size(stringType, std::strlen(formatTag) + 1);
+    H5Tset_size(stringType, variableLengthTag ? H5T_VARIABLE : std::strlen(formatTag) + 1);
     hid_t scalar = H5Screate(H5S_SCALAR);
     hid_t attribute = H5Acreate2(file, "lfcam_format", stringType, scalar, H5P_DEFAULT, H5P_DEFAULT);
-    H5Awrite(attribute, stringType, formatTag);
+    if (variableLengthTag)
+      H5Awrite(attribute, stringType, &formatTag);
+    else
+      H5Awrite(attribute, stringType, formatTag);
     H5Aclose(attribute), H5Sclose(scalar), H5Tclose(stringType);
   }
   H5Dclose(data), H5Sclose(space), H5Fclose(file);
@@ -239,6 +249,17 @@ TEST(LightFieldIoHdf5, OtherLayoutsAreCleanFormatErrors) {
     EXPECT_EQ(read.error().code, ErrorCode::Format);
     expectErrorMentioning(probeLightField(dir / bad.file), bad.file);
   }
+}
+
+TEST(LightFieldIoHdf5, VariableLengthStringAttributesAreRefusedBeforeLibhdf5ReadsThem) {
+  // libhdf5 1.10 overflows the heap on a corrupt one (fuzz/regressions/hdf5_light_field).
+  test::TempDir dir;
+  writeForeignHdf5(dir / "vlen.h5", "/lightfield", H5T_NATIVE_FLOAT, {1, 1, 1, 4, 4}, "lfcam-lightfield",
+                   /*variableLengthTag=*/true);
+  auto read = readLightField(dir / "vlen.h5");
+  expectErrorMentioning(read, "vlen.h5");
+  expectErrorMentioning(read, "variable-length");
+  EXPECT_EQ(read.error().code, ErrorCode::Unsupported);
 }
 
 TEST(LightFieldIoHdf5, AcceptsAnUntaggedFileOfTheRightLayout) {

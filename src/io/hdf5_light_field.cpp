@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <cstring>
@@ -101,17 +102,13 @@ Result<std::optional<std::string>> readStringAttribute(const fs::path& path, hid
   if (!attribute.valid() || !type.valid() || H5Tget_class(type.get()) != H5T_STRING ||
       H5Sget_simple_extent_npoints(space.get()) != 1)
     return fileError(ErrorCode::Format, path, std::string("attribute '") + name + "' is not a string");
-  if (H5Tis_variable_str(type.get()) > 0) {
-    Handle memoryType(H5Tcopy(H5T_C_S1), H5Tclose);
-    H5Tset_size(memoryType.get(), H5T_VARIABLE);
-    H5Tset_cset(memoryType.get(), H5Tget_cset(type.get()));
-    char* text = nullptr;
-    if (H5Aread(attribute.get(), memoryType.get(), &text) < 0)
-      return hdf5Error(ErrorCode::Format, path, std::string("cannot read attribute '") + name + "'");
-    std::string value = text ? text : "";
-    H5free_memory(text);
-    return std::optional<std::string>(value);
-  }
+  // libhdf5 1.10 copies a variable-length string's global-heap object into a buffer sized by the
+  // attribute's own length field, so a file whose two disagree overflows the heap inside H5Aread
+  // (fuzz/regressions/hdf5_light_field). lfcam writes fixed-length strings and refuses the others.
+  if (H5Tis_variable_str(type.get()) != 0)
+    return fileError(ErrorCode::Unsupported, path,
+                     std::string("attribute '") + name +
+                         "' is a variable-length string; lfcam reads fixed-length string attributes only");
   const std::size_t size = H5Tget_size(type.get());
   if (size == 0 || size > (1u << 20))
     return fileError(ErrorCode::Format, path, std::string("attribute '") + name + "' has a bad size");
@@ -137,14 +134,17 @@ Result<std::optional<double>> readNumberAttribute(const fs::path& path, hid_t ob
 }
 
 bool writeStringAttribute(hid_t object, const char* name, const std::string& value) {
-  // Variable-length UTF-8: h5py reads it as str, MATLAB's h5readatt as char.
+  // Fixed-length UTF-8, NUL-padded (see readStringAttribute for why not variable-length): h5py
+  // reads it as bytes, MATLAB's h5readatt as char.
   Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.get(), H5T_VARIABLE);
+  H5Tset_size(type.get(), std::max<std::size_t>(value.size(), 1));
+  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
   H5Tset_cset(type.get(), H5T_CSET_UTF8);
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   Handle attribute(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  const char* text = value.c_str();
-  return attribute.valid() && H5Awrite(attribute.get(), type.get(), &text) >= 0;
+  std::string padded = value;
+  padded.resize(std::max<std::size_t>(value.size(), 1), '\0');
+  return attribute.valid() && H5Awrite(attribute.get(), type.get(), padded.data()) >= 0;
 }
 
 template <class T>
