@@ -71,12 +71,18 @@ Image forDisplay(const Image& photo, int scale, double peak = 0);
 // ---- refocusing -------------------------------------------------------------------------------
 
 struct BestFocus {
+  // Shift-and-add of the views (no supersampling, no blending of views): lfcam's photograph.
   double slope = 0;
   double cutoff = 0;  // cycles per pixel, 75% energy
   Image photo;
+  // The quadrature method of section 5.2 (aperture supersampled, views blended quadrilinearly):
+  // the paper's refocusing, kept to show what its filter costs.
+  double quadratureSlope = 0, quadratureCutoff = 0;
+  Image quadraturePhoto;
 };
-// Refocuses (quadrature method) over slopes across the light field's whole refocus range and
-// keeps the one whose photograph has the highest 75%-energy cutoff, refined around the best.
+// Finds the focus over the light field's whole refocus range (quadrature method, coarse to fine)
+// by how tightly the point's light is gathered, then within +-0.5 pixel per view step of it the
+// slope of highest 75%-energy cutoff, once by quadrature and once by shift-and-add of the views.
 Result<BestFocus> refocusToSharpest(const LightField& lightField);
 // The 75%-energy cutoff of a point-source photograph (cycles per pixel).
 Result<double> cutoffOf(const Image& photo);
