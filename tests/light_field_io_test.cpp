@@ -185,10 +185,10 @@ TEST(LightFieldIoHdf5, FileLayoutIsTheDocumentedOne) {
     EXPECT_GT(H5Aexists(file, name), 0) << name;
   for (const char* name : {"lfcam_format", "axes", "source"}) {  // fixed-length: see the reader
     hid_t attribute = H5Aopen(file, name, H5P_DEFAULT);
-    hid_t type = H5Aget_type(attribute);
-    EXPECT_EQ(H5Tget_class(type), H5T_STRING) << name;
-    EXPECT_EQ(H5Tis_variable_str(type), 0) << name;
-    H5Tclose(type), H5Aclose(attribute);
+    hid_t stringType = H5Aget_type(attribute);
+    EXPECT_EQ(H5Tget_class(stringType), H5T_STRING) << name;
+    EXPECT_EQ(H5Tis_variable_str(stringType), 0) << name;
+    H5Tclose(stringType), H5Aclose(attribute);
   }
   int version = 0;
   hid_t versionAttribute = H5Aopen(file, "lfcam_version", H5P_DEFAULT);

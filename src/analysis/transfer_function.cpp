@@ -1,6 +1,4 @@
 // Transfer function of a point-source photograph (the paper's section 6.1) and its 75% cutoff.
-#include <fftw3.h>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -10,17 +8,14 @@
 #include <numbers>
 #include <utility>
 
+#include "core/fftw_planner.hpp"
 #include "lfcam/analysis.hpp"
 
 namespace lfcam {
 
 namespace {
 
-// FFTW's planner is not thread-safe.
-std::mutex& plannerMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
+using fftw::plannerMutex;  // FFTW's planner is not thread-safe.
 
 Status checkPhoto(const Image& photo) {
   if (photo.empty() || photo.width() < 1 || photo.height() < 1)

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <climits>
 #include <cstring>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "io/io_support.hpp"
+#include "io/survives_in_child.hpp"
 
 namespace lfcam::io {
 
@@ -393,8 +395,68 @@ bool startsLikeHdf5(const fs::path& path) {
   return false;
 }
 
+namespace {
+
+// The samples (and weights) of an opened file, read view by view.
+Result<LightField> readOpened(const fs::path& path, const OpenedFile& opened, const ProgressCallback& progress) {
+  const LightFieldShape& shape = opened.info.shape;
+  LightField lightField(shape);
+  lightField.metadata = opened.info.metadata;
+
+  const std::size_t views = shape.views();
+  const std::size_t steps = views * (opened.info.hasWeight ? 2 : 1);
+  std::size_t done = 0;
+  const auto viewDone = [&] {
+    ++done;
+    if (progress) progress(double(done) / double(steps));
+  };
+  LFCAM_TRY(readViews(path, opened.samples->get(), 5, views, shape.viewPixels() * std::size_t(shape.channels),
+                      lightField.samples().data(), viewDone));
+  if (opened.info.hasWeight) {
+    lightField.enableWeight();
+    LFCAM_TRY(readViews(path, opened.weight->get(), 4, views, shape.viewPixels(), lightField.weights().data(),
+                        viewDone));
+  }
+  return lightField;
+}
+
+// What the reader will ask of libhdf5, asked first in a throwaway process (survives_in_child.hpp):
+// the metadata, every chunk's entry in the chunk index, and, when the samples are small enough to
+// read twice without notice, every sample. A crash or hang there refuses the file. Larger files
+// are read once, after the child has walked their metadata and chunk index; what it does not
+// exercise for them is the decompression of the chunks' payloads (zlib's, which is hardened).
+Status refuseWhatCrashesLibhdf5(const fs::path& path) {
+  constexpr std::size_t kReadTwiceBytes = std::size_t(64) << 20;
+  const ChildOutcome outcome = survivesInChild(
+      [&] {
+        auto opened = openLightFieldFile(path);
+        if (!opened) return;  // a clean error: the parent will find and report it itself
+        for (const auto* dataset : {opened->samples.get(), opened->weight.get()}) {
+          hsize_t chunks = 0;
+          if (!dataset || H5Dget_num_chunks(dataset->get(), H5S_ALL, &chunks) < 0) continue;
+          for (hsize_t i = 0; i < std::min<hsize_t>(chunks, 4096); ++i) {
+            hsize_t offset[5] = {}, size = 0;
+            unsigned filterMask = 0;
+            haddr_t address = 0;
+            H5Dget_chunk_info(dataset->get(), H5S_ALL, i, offset, &filterMask, &address, &size);
+          }
+        }
+        const LightFieldShape& shape = opened->info.shape;
+        if (shape.samples() * sizeof(float) <= kReadTwiceBytes) (void)readOpened(path, *opened, {});
+      },
+      std::chrono::seconds(30));
+  if (outcome == ChildOutcome::Crashed)
+    return fileError(ErrorCode::Format, path, "a corrupt HDF5 file: libhdf5 crashed reading it (in a throwaway process)");
+  if (outcome == ChildOutcome::TimedOut)
+    return fileError(ErrorCode::Format, path, "a corrupt HDF5 file: libhdf5 did not finish reading it within 30 s");
+  return {};
+}
+
+}  // namespace
+
 Result<LightFieldInfo> probeHdf5(const fs::path& path) {
   Hdf5Session session;
+  LFCAM_TRY(refuseWhatCrashesLibhdf5(path));
   auto opened = openLightFieldFile(path);
   if (!opened) return opened.error();
   return opened->info;
@@ -402,27 +464,10 @@ Result<LightFieldInfo> probeHdf5(const fs::path& path) {
 
 Result<LightField> readHdf5(const fs::path& path, const ProgressCallback& progress) {
   Hdf5Session session;
+  LFCAM_TRY(refuseWhatCrashesLibhdf5(path));
   auto opened = openLightFieldFile(path);
   if (!opened) return opened.error();
-  const LightFieldShape& shape = opened->info.shape;
-  LightField lightField(shape);
-  lightField.metadata = opened->info.metadata;
-
-  const std::size_t views = shape.views();
-  const std::size_t steps = views * (opened->info.hasWeight ? 2 : 1);
-  std::size_t done = 0;
-  const auto viewDone = [&] {
-    ++done;
-    if (progress) progress(double(done) / double(steps));
-  };
-  LFCAM_TRY(readViews(path, opened->samples->get(), 5, views, shape.viewPixels() * std::size_t(shape.channels),
-                      lightField.samples().data(), viewDone));
-  if (opened->info.hasWeight) {
-    lightField.enableWeight();
-    LFCAM_TRY(readViews(path, opened->weight->get(), 4, views, shape.viewPixels(), lightField.weights().data(),
-                        viewDone));
-  }
-  return lightField;
+  return readOpened(path, *opened, progress);
 }
 
 Status writeHdf5(const fs::path& file, const LightField& lightField, const ProgressCallback& progress,

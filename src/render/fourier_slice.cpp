@@ -1,8 +1,6 @@
 // Fourier slice refocusing: fourier_slice.hpp.
 #include "lfcam/fourier_slice.hpp"
 
-#include <fftw3.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -10,21 +8,16 @@
 #include <mutex>
 #include <numbers>
 
+#include "core/fftw_planner.hpp"
+
 namespace lfcam {
 
 namespace {
 
-// FFTW's planner is not thread-safe; its executors are.
-std::mutex& plannerMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
+using fftw::plannerMutex;  // FFTW's planner is not thread-safe; its executors are.
 
-struct FftwFree {
-  void operator()(void* p) const { fftwf_free(p); }
-};
 template <class T>
-using FftwBuffer = std::unique_ptr<T[], FftwFree>;
+using FftwBuffer = std::unique_ptr<T[], fftw::Free>;
 template <class T>
 FftwBuffer<T> fftwAlloc(std::size_t count) {
   return FftwBuffer<T>(static_cast<T*>(fftwf_malloc(sizeof(T) * std::max<std::size_t>(count, 1))));

@@ -22,7 +22,11 @@ function describeAperture() {
   const f = state.fNumber;
   const lens = state.info.lensFNumber;
   if (state.info.lensRadius / f < 0.71) return 'pinhole (one ray per pixel)';
-  return lens ? `f/${(lens * f).toFixed(1)}` : `f/${f.toFixed(1)} × the lens's`;
+  // Two significant figures: a camera array's synthetic aperture is wider than its focal length
+  // (HCI's 9 x 100 mm baseline behind a 100 mm lens is f/0.11).
+  const n = lens ? lens * f : f;
+  const text = n < 10 ? n.toPrecision(2) : n.toFixed(0);
+  return lens ? `f/${text}` : `f/${text} × the lens's`;
 }
 
 function showControls() {
