@@ -2,6 +2,9 @@
 // the scores of the depth map against its ground truth printed first.
 //   BM_Refocus      one full-colour refocus: the floor, the unit of work of both operations.
 //   BM_Depth        estimateDepth with default options. Counter ratio = time / refocus time.
+//   BM_DepthWithoutFill  the same without the edge-aware fill (fillLambda = 0); counter
+//                   fill_cost = default time / this time - 1, CPU time of both in this run
+//                   (the time shown is of both runs).
 //   BM_AllInFocus   allInFocus given the depth map (focal stack + blending). Same counter.
 //   BM_DepthAndAllInFocus  both, as `lfcam edof` without --depth does: the goal is < 5 s on 2 cores.
 //
@@ -10,6 +13,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/depth.hpp"
@@ -64,6 +68,27 @@ void BM_Depth(benchmark::State& state) {
   reportRatio(state, total / double(state.iterations()));
 }
 
+// CPU time of the process (every thread): on a shared machine closer to the work done than wall time.
+double processCpuSeconds() {
+  return double(std::clock()) / CLOCKS_PER_SEC;
+}
+
+void BM_DepthWithoutFill(benchmark::State& state) {
+  const LightField& lightField = antinous();
+  auto timeDepth = [&](double fill) {
+    const double start = processCpuSeconds();
+    auto depth = lfcam::estimateDepth(lightField, {.fillLambda = fill});
+    if (!depth) state.SkipWithError(depth.error().message.c_str());
+    return processCpuSeconds() - start;
+  };
+  double with = 0, without = 0;
+  for (auto _ : state) {
+    with += timeDepth(lfcam::DepthOptions{}.fillLambda);
+    without += timeDepth(0.0);
+  }
+  if (without > 0) state.counters["fill_cost"] = with / without - 1;
+}
+
 void BM_AllInFocus(benchmark::State& state) {
   const LightField& lightField = antinous();
   auto depth = lfcam::estimateDepth(lightField);
@@ -90,6 +115,7 @@ void BM_DepthAndAllInFocus(benchmark::State& state) {
 
 BENCHMARK(BM_Refocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
 BENCHMARK(BM_Depth)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+BENCHMARK(BM_DepthWithoutFill)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_AllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_DepthAndAllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 

@@ -56,8 +56,8 @@ TEST(DepthLayeredPlanes, MeetsTheBenchmarkScoresWithExactTruth) {
   auto scores = scoreDisparity(depth->disparity, scene.disparity);
   ASSERT_TRUE(scores);
   std::printf("layered planes 9x9x128x128: BadPix(0.07) %.2f %%, MSE x100 %.3f\n", scores->badPix, scores->mse100);
-  EXPECT_LT(scores->badPix, 13.0);  // measured 9.0 %
-  EXPECT_LT(scores->mse100, 18.0);   // measured 10.0
+  EXPECT_LT(scores->badPix, 13.0);  // measured 11.2 % (9.0 % without the fill, tuned on HCI)
+  EXPECT_LT(scores->mse100, 14.0);   // measured 9.3
   // Confidence is a fraction, and higher on the textured planes than nowhere.
   for (float c : depth->confidence.pixels()) ASSERT_TRUE(c >= 0 && c <= 1);
 }

@@ -31,10 +31,17 @@
 //     filter (`refineRadius`) over slices that follow the map, and a parabola at the lowest. The
 //     labels of steps 1-5 leave steps on slanted and curved surfaces, and the interpolation of
 //     views biases the cost towards disparities of whole-pixel shifts; this removes both.
-//  7. Weighted median (`medianRadius`, `medianSigma`): each disparity becomes the median of its
+//  7. Edge-aware fill (`fillLambda`, `fillSigma`): each disparity is weighted by the curvature of
+//     its fine-search cost at the minimum (flat without texture) over the cost left there (high
+//     where no disparity makes the views agree, as at occlusions), and the map replaced by its
+//     confidence-weighted edge-aware average, neighbours linked by the likeness of their colours
+//     in the centre view (the fast global smoother of Min et al. 2014): unsure pixels take
+//     the disparity of sure ones on the same surface (on antinous it helps the wall; the floor,
+//     slanted steeply, is beyond a fit that favours constant disparity).
+//  8. Weighted median (`medianRadius`, `medianSigma`): each disparity becomes the median of its
 //     window weighted by likeness in the centre view (Ma et al. 2013), which removes isolated
 //     mistakes and pulls occlusion edges back onto intensity edges.
-//  8. Confidence in [0, 1]: 1 - exp(-(mean cost - chosen cost) / m), the aggregated costs of the
+//  9. Confidence in [0, 1]: 1 - exp(-(mean cost - chosen cost) / m), the aggregated costs of the
 //     pixel, m the mean of (mean cost - lowest cost) over the image: 0 where every label is as
 //     good (no texture), near 1 at a clear minimum.
 //
@@ -47,14 +54,16 @@
 // own disparity-to-depth conversion (hci_parameters.hpp).
 //
 // Measured (tests/depth_layered_planes_test.cpp, tests/realdata/hci_depth_test.cpp): BadPix(0.07)
-// 9.0 %, BadPix(0.03) 10.3 %, MSE x100 10.0 on the layered-planes default scene (9x9 views of
-// 128x128); 17.6 %, 37.4 % and 31.2 on HCI antinous (the goal of 7 % is not reached: the floor,
+// 11.2 %, BadPix(0.03) 13.9 %, MSE x100 9.3 on the layered-planes default scene (9x9 views of
+// 128x128); 15.8 %, 35.5 % and 28.1 on HCI antinous (the goal of 7 % is not reached: the floor,
 // the dark wall whose texture is below the views' 8-bit quantisation, and occlusion edges a pixel
-// or two fat); 15.8 %, 27.2 %, 3.4 on the simulator's `people` scene (ideal light field, 9x9 views
-// of 200x200, exact disparity from idealDepth).
+// or two fat); 16.6 %, 28.2 %, 3.38 on the simulator's `people` scene (ideal light field, 9x9
+// views of 200x200, exact disparity from idealDepth). Without the fill (fillLambda = 0): 9.0 %,
+// 10.3 %, 10.0; 17.6 %, 37.4 %, 31.2; 15.8 %, 27.2 %, 3.40.
 // Cost: labels x (33 views + one luminance refocus) bilinear passes over ns x nt, 8 passes of
 // labels x ns x nt for the optimisation, (2 refineSteps + 1) x 33 bilinear passes for the fine
-// search and a (2 medianRadius + 1)^2 sort per pixel for the median; memory 2 x labels x ns x nt
+// search, 6 tridiagonal solves per row and per column for the fill (about 70 ms of CPU at
+// 512x512) and a (2 medianRadius + 1)^2 sort per pixel for the median; memory 2 x labels x ns x nt
 // floats (bench/depth_bench.cpp: ratio to one refocus).
 #pragma once
 
@@ -77,6 +86,8 @@ struct DepthOptions {
   int refineRadius = 8;           // guided filter window of the fine search: (2 r + 1)^2 pixels
   int medianRadius = 4;           // weighted median window; 0 disables it
   double medianSigma = 0.05;      // guide (sRGB luminance) difference that weighs a neighbour 0.6
+  double fillLambda = 1.0;        // edge-aware fill (needs refineSteps > 0); 0 disables it
+  double fillSigma = 0.02;        // centre-view (sRGB) colour difference that weakens a link to 1/e
 };
 
 struct DepthMap {

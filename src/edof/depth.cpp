@@ -172,7 +172,7 @@ float bilinear(const float* plane, int ns, int nt, double x, double y) {
 // costs of neighbouring pixels at the same offset from their own disparities: a slanted surface
 // stays sharp where fixed labels would step.
 void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
-                     int steps) {
+                     int steps, float* curvatureOut, float* residualOut) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
@@ -217,14 +217,16 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
       int best = 0;
       for (int k = 1; k < slices; ++k)
         if (cost[std::size_t(k) * n + p] < cost[std::size_t(best) * n + p]) best = k;
-      double offset = 0;
+      double offset = 0, curvature = 0;
       if (best > 0 && best + 1 < slices) {
         const double left = cost[std::size_t(best - 1) * n + p], centre = cost[std::size_t(best) * n + p],
                      right = cost[std::size_t(best + 1) * n + p];
-        const double curvature = left - 2 * centre + right;
+        curvature = left - 2 * centre + right;
         if (curvature > 0) offset = std::clamp(0.5 * (left - right) / curvature, -0.5, 0.5);
       }
       disparity[p] += float((best - steps + offset) * delta);
+      curvatureOut[p] = float(std::max(curvature, 0.0));
+      residualOut[p] = cost[std::size_t(best) * n + p];
     }
   });
 }
@@ -274,6 +276,27 @@ void weightedMedian(const float* guide, int ns, int nt, int radius, float sigma,
         }
       }
   });
+}
+
+// Edge-aware fill of the pixels whose fine search was unsure (depth.hpp, step 7): each disparity
+// weighted by the curvature of its fine-search cost at the minimum (flat where there is no
+// texture) over the cost left there (high where no disparity makes the views agree, as at
+// occlusions), both relative to their means; the fast global smoother guided by the centre view
+// in colour, so that edges of hue separate surfaces as well as edges of brightness.
+void fillUncertain(const LightField& lightField, const std::vector<float>& curvature,
+                   const std::vector<float>& residual, const DepthOptions& options, float* disparity) {
+  const std::size_t n = lightField.shape().viewPixels();
+  double meanCurvature = 0, meanResidual = 0;
+  for (std::size_t p = 0; p < n; ++p) meanCurvature += curvature[p], meanResidual += std::max(residual[p], 0.0f);
+  meanCurvature = std::max(meanCurvature / double(n), 1e-20);
+  meanResidual = std::max(meanResidual / double(n), 1e-20);
+  std::vector<float> confidence(n);
+  for (std::size_t p = 0; p < n; ++p)
+    confidence[p] = float(curvature[p] / meanCurvature / (std::max(residual[p], 0.0f) / meanResidual + 0.5));
+  Image guide = lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2);
+  for (float& v : guide.pixels()) v = linearToSrgb(std::max(v, 0.0f));
+  edof::globalSmooth(guide.plane(0), guide.channels(), lightField.ns(), lightField.nt(), confidence.data(), disparity,
+                     float(options.fillLambda), float(std::max(options.fillSigma, 1e-6)), /*iterations=*/3);
 }
 
 }  // namespace
@@ -387,14 +410,18 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
   DepthMap result{Image(ns, nt, 1), Image(ns, nt, 1), dmin, dmax, labels};
   for (std::size_t p = 0; p < n; ++p) result.disparity.plane(0)[p] = float(dmin + label[p] * step);
   // 6. Fine search around the optimised map, then 7. the weighted median (depth.hpp).
+  std::vector<float> curvature(n, 1.0f), residual(n, 0.0f);
   if (options.refineSteps > 0) {
     const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.refineRadius, 0),
                                     std::max(options.filterEpsilon, 1e-12));
-    refineDisparity(grey, filter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps);
+    refineDisparity(grey, filter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps,
+                    curvature.data(), residual.data());
     // The fine search may step past the ends of the range searched; the map stays inside it.
     for (std::size_t p = 0; p < n; ++p)
       result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
   }
+  if (options.fillLambda > 0 && options.refineSteps > 0)
+    fillUncertain(lightField, curvature, residual, options, result.disparity.plane(0));
   if (options.medianRadius > 0)
     weightedMedian(guide.plane(0), ns, nt, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
                    result.disparity.plane(0));

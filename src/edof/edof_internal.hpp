@@ -33,6 +33,14 @@ class GuidedFilter {
   std::vector<float> guide_, meanGuide_, inverseVariance_;  // 1 / (var + eps)
 };
 
+// Confidence-weighted fast global smoother (Min et al. 2014): `values` replaced by
+// S(confidence x values) / S(confidence), S the edge-aware weighted least-squares smoother with
+// neighbours linked by exp(-|I_p - I_q| / sigma) of the guide (guideChannels planes of
+// width x height, L2 over channels) and overall smoothness `lambda`; `iterations` row + column
+// passes. Pixels of low confidence take the values of confident ones on their side of an edge.
+void globalSmooth(const float* guide, int guideChannels, int width, int height, const float* confidence,
+                  float* values, float lambda, float sigma, int iterations);
+
 // Semi-global optimisation (Hirschmueller 2008) of a cost volume stored pixel-major:
 // cost[(y * width + x) * labels + l]. Sums, over 8 path directions, the path costs
 //   Lr(p, l) = C(p, l) + min(Lr(p-r, l), Lr(p-r, l+-1) + P1, min_k Lr(p-r, k) + P2(p)) - min_k Lr(p-r, k)
