@@ -77,9 +77,9 @@ GridErrors compare(const LensletGrid& found, const LensletGrid& truth) {
   return e;
 }
 
-// pitchTolerance: the goal is 1e-4; hexagonal white images show a systematic inward bias
-// of the centres near 1e-4 of the distance from the image centre (also with 16 samples per
-// pixel), so their test allows 1.5e-4.
+// pitchTolerance: the goal is 1e-4, met except by the hexagonal white image below (about
+// 1.2e-4 of the distance from the image centre, inward; docs/design.md, "Calibration", lists what
+// was ruled out), whose test allows 1.5e-4.
 void expectAccurate(const LensletGrid& found, const LensletGrid& truth, const char* label,
                     double pitchTolerance = 1e-4) {
   const GridErrors e = compare(found, truth);
@@ -137,6 +137,25 @@ TEST(Calibrate, SquareMonochromeWhiteImageRotatedOneDegree) {
   expectAccurate(*grid, gridFromCamera(camera), "square mono, hot and dead pixels");
 }
 
+// The fit on an even subset of the centres (what large grids use) against the fit on all of them.
+TEST(Calibrate, SubsetFitAgreesWithTheFullFit) {
+  const CameraModel camera = testCamera(Packing::Hexagonal, 13.37, 0.3, {2.1, 1.3}, ColorFilter::Mono);
+  const Image white = simulateWhite(camera, 16);
+  CalibrationOptions options;
+  options.fitCentres = 0;
+  auto all = calibrateGrid(white, options);
+  options.fitCentres = 500;  // every second microlens each way
+  auto subset = calibrateGrid(white, options);
+  ASSERT_TRUE(all.ok() && subset.ok());
+  EXPECT_LT(subset->fit.lensletsFound, all->fit.lensletsFound / 3);
+  EXPECT_GT(subset->fit.lensletsFound, 100);
+  EXPECT_EQ(subset->columns, all->columns);
+  EXPECT_EQ(subset->rows, all->rows);
+  EXPECT_EQ(subset->hexParity, all->hexParity);
+  EXPECT_LT(compare(*subset, *all).centreRms, 0.02);
+  expectAccurate(*subset, gridFromCamera(camera), "hexagonal, subset fit");
+}
+
 TEST(Calibrate, PinholeSourceImage) {
   // The main lens stopped down to a pinhole (section 5.1): a sharp spot under each microlens.
   CameraModel camera = testCamera(Packing::Hexagonal, 13.37, 0.4, {1.5, 0.5}, ColorFilter::Mono);
@@ -162,6 +181,20 @@ TEST(Calibrate, HintGivesTheSameGrid) {
   EXPECT_NEAR(hinted->origin[0], blind->origin[0], 0.01);
   EXPECT_EQ(hinted->columns, blind->columns);
   expectAccurate(*hinted, gridFromCamera(camera), "square with hint");
+}
+
+// A tiny image (about 12 x 13 microlenses) without a hint: found, or refused with a clear message.
+TEST(Calibrate, TinyHexagonalImageWithoutHint) {
+  CameraModel camera = testCamera(Packing::Hexagonal, 13.37, 0.5, {1.1, -0.7}, ColorFilter::Mono);
+  camera.sensor.width = camera.sensor.height = 160;
+  const Image white = simulateWhite(camera);
+  auto grid = calibrateGrid(white, {});
+  ASSERT_TRUE(grid.ok()) << grid.error().message;
+  const GridErrors e = compare(*grid, gridFromCamera(camera));
+  std::printf("[tiny hex] %dx%d, centre RMS error %.4f px, pitch error %.2e\n", grid->columns, grid->rows, e.centreRms, e.pitchX);
+  EXPECT_EQ(grid->packing, Packing::Hexagonal);
+  EXPECT_LE(e.centreRms, 0.1);
+  EXPECT_LE(e.pitchX, 2e-3);
 }
 
 TEST(Calibrate, RefusesImagesWithoutALattice) {

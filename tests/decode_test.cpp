@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
+#include <algorithm>
 
 #include <cstdint>
 
@@ -90,6 +92,33 @@ TEST(Decode, HotPixelsAreRepaired) {
   EXPECT_EQ(repairHotPixels(mosaic, ColorFilter::RGGB, 0.25f), 1);
   EXPECT_LT(mosaic.at(9, 10, 0), 0.5f);
   EXPECT_GE(mosaic.at(9, 10, 0), 0.4f);
+}
+
+// The screened fast path against a plain reading of the rule, on spikes everywhere (borders too).
+TEST(Decode, HotPixelRepairMatchesThePlainRule) {
+  for (ColorFilter filter : {ColorFilter::RGGB, ColorFilter::Mono}) {
+    Image mosaic = randomImage(41, 23, 1, 5, 0.3f, 0.6f);
+    std::mt19937 rng(9);
+    for (int k = 0; k < 60; ++k) mosaic.at(int(rng() % 41), int(rng() % 23), 0) = 0.95f;
+    Image expected = mosaic.copy();
+    const int step = filter == ColorFilter::Mono ? 1 : 2;
+    int count = 0;
+    for (int y = 0; y < 23; ++y)
+      for (int x = 0; x < 41; ++x) {
+        std::vector<float> around;
+        for (int dy = -step; dy <= step; dy += step)
+          for (int dx = -step; dx <= step; dx += step)
+            if ((dx || dy) && x + dx >= 0 && y + dy >= 0 && x + dx < 41 && y + dy < 23)
+              around.push_back(mosaic.at(x + dx, y + dy, 0));
+        if (around.size() < 3 || mosaic.at(x, y, 0) <= *std::max_element(around.begin(), around.end()) + 0.25f) continue;
+        std::nth_element(around.begin(), around.begin() + std::ptrdiff_t(around.size() / 2), around.end());
+        expected.at(x, y, 0) = around[around.size() / 2];
+        ++count;
+      }
+    ASSERT_GT(count, 10);
+    EXPECT_EQ(repairHotPixels(mosaic, filter, 0.25f), count);
+    EXPECT_EQ(maxDifference(mosaic.pixels(), expected.pixels()), 0.0);
+  }
 }
 
 TEST(Decode, HexagonalRowsMoveOntoTheOtherRows) {
@@ -271,6 +300,30 @@ Score score(const LightField& decoded, const LightField& ideal) {
   return result;
 }
 
+// The box-filtered ideal light field: one sample is the point-sampled field; on a uniform scene the
+// footprint's mean is the point value.
+TEST(IdealLightFieldBoxFiltered, AgreesWithThePointSampledFieldWhereItMust) {
+  const SimulatedCase c{"square", Packing::Square, 13.37, 0.5, {0.01, 0.0}, ColorFilter::RGGB, 120};
+  const CameraModel camera = caseCamera(c);
+  for (const char* name : {"people", "white"}) {
+    auto scene = builtinScene(name, camera);
+    ASSERT_TRUE(scene.ok());
+    auto point = idealLightField(*scene, camera);
+    auto one = idealLightFieldBoxFiltered(*scene, camera, 1);
+    auto four = idealLightFieldBoxFiltered(*scene, camera, 4);
+    ASSERT_TRUE(point.ok() && one.ok() && four.ok());
+    EXPECT_EQ(maxDifference(one->samples(), point->samples()), 0.0) << name;
+    EXPECT_EQ(maxDifference(four->weights(), point->weights()), 0.0) << name;
+    const double filtered = maxDifference(four->samples(), point->samples());
+    if (std::string(name) == "white") EXPECT_LT(filtered, 1e-5);
+    else EXPECT_GT(filtered, 0.01);  // textured: the footprint's mean differs from its centre
+  }
+}
+
+// Asserted PSNR floors against the box-filtered ideal (docs/design.md, "Decoding", has the figures:
+// 31.9 dB mono, 24.7 and 25.6 dB with a Bayer mosaic, where demosaicing costs the most).
+constexpr double kMonoPsnr = 30.5, kColourPsnr = 23.5;
+
 class DecodeSimulated : public ::testing::TestWithParam<SimulatedCase> {};
 
 TEST_P(DecodeSimulated, MatchesTheIdealLightField) {
@@ -278,8 +331,12 @@ TEST_P(DecodeSimulated, MatchesTheIdealLightField) {
   const Capture capture = simulate(c, "smooth");
   auto scene = testScene("smooth", capture.camera);
   ASSERT_TRUE(scene.ok());
-  auto ideal = idealLightField(*scene, capture.camera);
-  ASSERT_TRUE(ideal.ok());
+  // The fair reference: the ideal light field box-filtered over each sample's footprint (one
+  // pixel in (u, v), one microlens in (s, t)), as the sensor integrates it; the point-sampled one
+  // is scored too, for comparison.
+  auto ideal = idealLightFieldBoxFiltered(*scene, capture.camera, 6);
+  auto pointIdeal = idealLightField(*scene, capture.camera);
+  ASSERT_TRUE(ideal.ok() && pointIdeal.ok());
   DecodeOptions options;
   options.white = &capture.white;
   options.views = ideal->nu();
@@ -287,16 +344,20 @@ TEST_P(DecodeSimulated, MatchesTheIdealLightField) {
   auto decoded = decodeLightField(capture.raw, capture.grid, options);
   ASSERT_TRUE(decoded.ok()) << decoded.error().message;
   const Score subPixel = score(*decoded, *ideal);
+  const Score pointSampled = score(*decoded, *pointIdeal);
   options.sampling = Sampling::IntegralPitch;
   auto integral = decodeLightField(capture.raw, capture.grid, options);
   ASSERT_TRUE(integral.ok());
   const Score paper = score(*integral, *ideal);
-  std::printf("[ decode  ] %s: PSNR %.2f dB sub-pixel (%.0f%% of the aperture's samples), %.2f dB integral pitch\n",
-              c.name, subPixel.psnr, 100 * subPixel.coverage, paper.psnr);
-  // See docs/design.md, "Decoding", for why not 35 dB.
-  EXPECT_GT(subPixel.psnr, c.filter == ColorFilter::Mono ? 25.0 : 21.0);
+  std::printf("[ decode  ] %s: PSNR %.2f dB sub-pixel against the box-filtered ideal (%.0f%% of the aperture's "
+              "samples), %.2f dB against the point-sampled ideal; %.2f dB integral pitch\n",
+              c.name, subPixel.psnr, 100 * subPixel.coverage, pointSampled.psnr, paper.psnr);
+  EXPECT_GT(subPixel.psnr, c.filter == ColorFilter::Mono ? kMonoPsnr : kColourPsnr);
+  EXPECT_GT(subPixel.psnr, pointSampled.psnr);
   EXPECT_GT(subPixel.coverage, 0.8);
-  EXPECT_GE(subPixel.psnr, paper.psnr - 0.2);
+  // Against the box-filtered ideal the paper's bilinear resampling gains a little on colour (its
+  // extra smoothing hides some demosaicing error); sub-pixel sampling stays within 0.5 dB.
+  EXPECT_GE(subPixel.psnr, paper.psnr - 0.5);
   if (c.packing == Packing::Hexagonal) {
     // Rectangular resampling: the same interpolation applied to the ideal light field.
     options.sampling = Sampling::SubPixel;

@@ -38,6 +38,10 @@ struct CalibrationOptions {
   ColorFilter colorFilter = ColorFilter::Mono;
   // Subtracted from every value first (a raw's black level, in the image's units).
   double blackLevel = 0;
+  // The lattice has five parameters: on a larger grid the sub-pixel centres (the costly step) are
+  // measured on an even subset of about this many microlenses, spread over the whole image, and
+  // the fit report counts that subset; the extent still comes from every microlens. 0: all.
+  int fitCentres = 30000;
 };
 
 // One measured microlens centre, in the fitted grid's (i, j).

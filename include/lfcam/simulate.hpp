@@ -64,6 +64,14 @@ int colorFilterChannel(ColorFilter filter, int x, int y);
 // (RGB), or 1 (luminance) for a monochrome sensor. metadata.optics is set.
 // Requires a microlens array (Usage error otherwise).
 Result<LightField> idealLightField(const Scene& scene, const CameraModel& camera);
+
+// The ideal light field filtered as the sensor samples it, what a decoded capture can be fairly
+// scored against: each sample is the mean radiance over the lens square one view step wide around
+// (u, v) (the footprint of one pixel) and over the refracting part of the microlens's cell (the
+// footprint of one (s, t) sample), from boxSamples^2 stratified points of each, paired; rays the
+// aperture stops are left out (as devignetting by the white image leaves them out). Otherwise as
+// idealLightField; boxSamples <= 1 gives the point-sampled field.
+Result<LightField> idealLightFieldBoxFiltered(const Scene& scene, const CameraModel& camera, int boxSamples);
 // Depth (mm along z to the first surface hit; +infinity when nothing is hit) of the central ray
 // through each microlens centre, in the (s, t) layout of idealLightField.
 Result<Image> idealDepth(const Scene& scene, const CameraModel& camera);

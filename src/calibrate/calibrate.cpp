@@ -140,39 +140,25 @@ double median(std::vector<double> values) {
 }
 
 // [1 2 1] along each axis (borders clamped): symmetric, takes the remaining pixel noise off the
-// centre estimates.
+// centre estimates. One pass: the vertical sum of three rows, then the horizontal one, per row.
 Image smoothBinomial(const Image& work) {
   const int width = work.width(), height = work.height();
   Image smooth(width, height, 1);
-  auto at = [&](int x, int y) { return work.at(std::clamp(x, 0, width - 1), std::clamp(y, 0, height - 1), 0); };
   parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
-    for (int y = int(begin); y < int(end); ++y)
-      for (int x = 0; x < width; ++x)
-        smooth.at(x, y, 0) = (at(x - 1, y - 1) + 2 * at(x, y - 1) + at(x + 1, y - 1) + 2 * at(x - 1, y) + 4 * at(x, y) +
-                              2 * at(x + 1, y) + at(x - 1, y + 1) + 2 * at(x, y + 1) + at(x + 1, y + 1)) /
-                             16.0f;
-  });
-  return smooth;
-}
-
-// Central differences along x and y.
-std::pair<Image, Image> gradients(const Image& image) {
-  const int w = image.width(), h = image.height();
-  std::pair<Image, Image> out{Image(w, h, 1), Image(w, h, 1)};
-  parallelFor(0, std::size_t(h), 32, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> column(std::size_t(width) + 2);
     for (int y = int(begin); y < int(end); ++y) {
-      const float* row = image.row(y, 0);
-      const float* above = image.row(std::max(y - 1, 0), 0);
-      const float* below = image.row(std::min(y + 1, h - 1), 0);
-      float* gx = out.first.row(y, 0);
-      float* gy = out.second.row(y, 0);
-      for (int x = 0; x < w; ++x) {
-        gx[x] = 0.5f * (row[std::min(x + 1, w - 1)] - row[std::max(x - 1, 0)]);
-        gy[x] = 0.5f * (below[x] - above[x]);
-      }
+      const float* above = work.row(std::max(y - 1, 0), 0);
+      const float* middle = work.row(y, 0);
+      const float* below = work.row(std::min(y + 1, height - 1), 0);
+      float* c = column.data() + 1;
+      for (int x = 0; x < width; ++x) c[x] = above[x] + 2 * middle[x] + below[x];
+      c[-1] = c[0];
+      c[width] = c[width - 1];
+      float* out = smooth.row(y, 0);
+      for (int x = 0; x < width; ++x) out[x] = (c[x - 1] + 2 * c[x] + c[x + 1]) * (1.0f / 16);
     }
   });
-  return out;
+  return smooth;
 }
 
 // The start of the growth: the microlens nearest the image's centre (highest contrast of a few
@@ -206,10 +192,6 @@ Result<Calibration> calibrateFrom(Image work, Lattice lattice, const Calibration
   const bool pinhole = options.target == CalibrationTarget::Pinhole;
   const Image smooth = smoothBinomial(work);
   work = Image();
-  // Named pair members, not structured bindings: clang 14 cannot capture those in a lambda.
-  const std::pair<Image, Image> grads = pinhole ? std::pair<Image, Image>() : gradients(smooth);
-  const Image& gradX = grads.first;
-  const Image& gradY = grads.second;
   const double spacing = lattice.neighbourDistance();
   const double centroidRadius = 0.5 * spacing, symmetricRadius = 0.75 * spacing;
   const double relax = pinhole ? 1.0 : 1.5;  // a flat disc's centroid moves half-way per step
@@ -235,18 +217,27 @@ Result<Calibration> calibrateFrom(Image work, Lattice lattice, const Calibration
           continue;
         predicted.push_back({k, n, c[0], c[1]});
       }
+    // When there are many more microlenses than the fit needs, every stride-th one each way only:
+    // before the last step, those alone (they only predict further out); at the last step all are
+    // found (the extent), but only those get the costly sub-pixel centre.
+    const int stride = options.fitCentres > 0
+                           ? std::max(1, int(std::floor(std::sqrt(double(predicted.size()) / options.fitCentres))))
+                           : 1;
     std::vector<CentreEstimate> rough(predicted.size()), fine(predicted.size());
     parallelFor(0, predicted.size(), 64, [&](std::size_t begin, std::size_t end) {
       for (std::size_t m = begin; m < end; ++m) {
+        const bool sampled = stride == 1 || (predicted[m].k % stride == 0 && predicted[m].n % stride == 0);
+        if (!last && !sampled) continue;
         // Until the last step the centroid alone is enough to predict further out.
         rough[m] = calibrate_detail::refineCentre(smooth, predicted[m].x, predicted[m].y, centroidRadius, 20, relax,
                                                   pinhole ? 1e-3 : 0.01);
         if (!rough[m].ok) continue;
+        if (!sampled) continue;  // fine[m] stays not ok
         if (pinhole || !last) {
           fine[m] = rough[m];
           continue;
         }
-        fine[m] = calibrate_detail::refineSymmetric(smooth, gradX, gradY, rough[m].x, rough[m].y, symmetricRadius, 6);
+        fine[m] = calibrate_detail::refineSymmetric(smooth, rough[m].x, rough[m].y, symmetricRadius, 6);
         if (std::hypot(fine[m].x - rough[m].x, fine[m].y - rough[m].y) > 1) fine[m].ok = false;
       }
     });

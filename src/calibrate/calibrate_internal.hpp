@@ -60,10 +60,10 @@ CentreEstimate refineCentre(const Image& image, double x, double y, double radiu
                             double relax = 1.0, double tolerance = 1e-3);
 
 // The centre of symmetry of `image` near (x, y): Gauss-Newton on the sum over offsets d within
-// `radius` of [I(c + d) - I(c - d)]^2, bilinear samples; gradX, gradY: the image's gradient.
-// Unbiased for any centrally symmetric microlens image, whatever its shape.
-CentreEstimate refineSymmetric(const Image& image, const Image& gradX, const Image& gradY, double x, double y,
-                               double radius, int iterations);
+// `radius` of [I(c + d) - I(c - d) - (g . d)(I(c + d) + I(c - d) - 2 floor)]^2 over the centre c
+// and a tilt g, bilinear samples. Unbiased for any centrally symmetric microlens image, whatever
+// its shape, also under a linear ramp of brightness across it (vignetting off the axis).
+CentreEstimate refineSymmetric(const Image& image, double x, double y, double radius, int iterations);
 
 // The JSON in a file; errors name it. expected: what the file should be, for the message.
 Result<nlohmann::json> readJsonFile(const std::filesystem::path& path, const char* expected);

@@ -164,8 +164,7 @@ inline float bilinear(const float* data, int width, double x, double y) {
 
 }  // namespace
 
-CentreEstimate refineSymmetric(const Image& image, const Image& gradX, const Image& gradY, double x, double y,
-                               double radius, int iterations) {
+CentreEstimate refineSymmetric(const Image& image, double x, double y, double radius, int iterations) {
   CentreEstimate estimate;
   const int width = image.width(), height = image.height();
   const int reach = int(std::ceil(radius));
@@ -181,33 +180,62 @@ CentreEstimate refineSymmetric(const Image& image, const Image& gradX, const Ima
         if (!(dy == 0 && dx <= 0) && dx * dx + dy * dy <= radius * radius) offsets.push_back({dx, dy});
     offsetsRadius = radius;
   }
-  // Gauss-Newton on the sum over offsets d of [I(g + d) - I(g - d)]^2, zero at a centre of
-  // symmetry; the Jacobian is taken once at the start (the start is within a pixel or so).
+  // Gauss-Newton on the sum over offsets d of [I(c + d) - I(c - d) - (g . d)(I(c + d) + I(c - d))]^2
+  // over the centre c and a tilt g: a centrally symmetric image S times a linear ramp (1 + g . d),
+  // such as a microlens image under the cos^4 fall-off of the rays of an off-axis microlens, has
+  // this residual zero at its true centre, where without g the ramp pulls the centre towards the
+  // bright side (inwards). The Jacobian in c is taken once at the start (within a pixel or so).
   const float* data = image.plane(0);
-  std::vector<double> jx(offsets.size()), jy(offsets.size());
-  double jxx = 0, jxy = 0, jyy = 0;
+  thread_local std::vector<double> jx, jy, plus, minus;
+  jx.resize(offsets.size());
+  jy.resize(offsets.size());
+  plus.resize(offsets.size());
+  minus.resize(offsets.size());
+  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
   for (std::size_t k = 0; k < offsets.size(); ++k) {
     const double px = x + offsets[k][0], py = y + offsets[k][1], qx = x - offsets[k][0], qy = y - offsets[k][1];
-    jx[k] = bilinear(gradX.plane(0), width, px, py) - bilinear(gradX.plane(0), width, qx, qy);
-    jy[k] = bilinear(gradY.plane(0), width, px, py) - bilinear(gradY.plane(0), width, qx, qy);
-    jxx += jx[k] * jx[k];
-    jxy += jx[k] * jy[k];
-    jyy += jy[k] * jy[k];
+    // The bilinear interpolation of the central differences, which is the central difference of
+    // the bilinear interpolation (both linear): no gradient images needed.
+    jx[k] = 0.5 * (bilinear(data, width, px + 1, py) - bilinear(data, width, px - 1, py) -
+                   bilinear(data, width, qx + 1, qy) + bilinear(data, width, qx - 1, qy));
+    jy[k] = 0.5 * (bilinear(data, width, px, py + 1) - bilinear(data, width, px, py - 1) -
+                   bilinear(data, width, qx, qy + 1) + bilinear(data, width, qx, qy - 1));
+    normal(0, 0) += jx[k] * jx[k];
+    normal(0, 1) += jx[k] * jy[k];
+    normal(1, 1) += jy[k] * jy[k];
   }
-  const double det = jxx * jyy - jxy * jxy;
-  if (!(det > 0)) return estimate;
+  if (!(normal(0, 0) * normal(1, 1) - normal(0, 1) * normal(0, 1) > 0)) return estimate;
+  double gx = 0, gy = 0;
   double lastStep = INFINITY;
   for (int iteration = 0; iteration < iterations; ++iteration) {
     if (!inside()) return estimate;
-    double bx = 0, by = 0;
     for (std::size_t k = 0; k < offsets.size(); ++k) {
-      const double r = bilinear(data, width, x + offsets[k][0], y + offsets[k][1]) -
-                       bilinear(data, width, x - offsets[k][0], y - offsets[k][1]);
-      bx += jx[k] * r;
-      by += jy[k] * r;
+      plus[k] = bilinear(data, width, x + offsets[k][0], y + offsets[k][1]);
+      minus[k] = bilinear(data, width, x - offsets[k][0], y - offsets[k][1]);
     }
-    // d r / d g = grad I(g + d) - grad I(g - d) = (jx, jy): the step solves J h = -r in least squares.
-    double stepX = -(jyy * bx - jxy * by) / det, stepY = -(-jxy * bx + jxx * by) / det;
+    // d r / d c = grad I(c + d) - grad I(c - d) = (jx, jy) (the tilt's share neglected: g is
+    // small); d r / d g = -d (I(c + d) + I(c - d)).
+    normal.block<2, 2>(0, 2).setZero();
+    normal.block<2, 2>(2, 2).setZero();
+    Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+    for (std::size_t k = 0; k < offsets.size(); ++k) {
+      const double dx = offsets[k][0], dy = offsets[k][1];
+      const double level = plus[k] + minus[k];
+      const double r = plus[k] - minus[k] - (gx * dx + gy * dy) * level;
+      const double ggx = -dx * level, ggy = -dy * level;
+      normal(0, 2) += jx[k] * ggx;
+      normal(0, 3) += jx[k] * ggy;
+      normal(1, 2) += jy[k] * ggx;
+      normal(1, 3) += jy[k] * ggy;
+      normal(2, 2) += ggx * ggx;
+      normal(2, 3) += ggx * ggy;
+      normal(3, 3) += ggy * ggy;
+      rhs += Eigen::Vector4d(jx[k], jy[k], ggx, ggy) * r;
+    }
+    const Eigen::Matrix4d full = normal.selfadjointView<Eigen::Upper>();
+    const Eigen::Vector4d step = -full.ldlt().solve(rhs);
+    if (!step.allFinite()) return estimate;
+    double stepX = step[0], stepY = step[1];
     const double length = std::hypot(stepX, stepY);
     if (length > 1.0) {
       stepX /= length;
@@ -215,6 +243,8 @@ CentreEstimate refineSymmetric(const Image& image, const Image& gradX, const Ima
     }
     x += stepX;
     y += stepY;
+    gx += step[2];
+    gy += step[3];
     lastStep = std::hypot(stepX, stepY);
     if (lastStep < 1e-3) break;
   }

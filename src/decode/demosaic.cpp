@@ -295,8 +295,28 @@ int repairHotPixels(Image& mosaic, ColorFilter filter, float threshold) {
   std::vector<std::vector<std::pair<std::size_t, float>>> found{std::size_t(h)};
   parallelFor(0, std::size_t(h), 32, [&](std::size_t begin, std::size_t end) {
     std::array<float, 8> around;
-    for (int y = int(begin); y < int(end); ++y)
-      for (int x = 0; x < w; ++x) {
+    std::vector<int> candidates;
+    for (int y = int(begin); y < int(end); ++y) {
+      // Inside the image, a branch-free screen (above all 8 neighbours by the threshold) that the
+      // compiler vectorises; the rare candidates and the border pixels take the general path.
+      candidates.clear();
+      const bool innerRow = y >= step && y < h - step;
+      if (innerRow && w > 2 * step) {
+        const float* above = p + std::size_t(y - step) * w;
+        const float* row = p + std::size_t(y) * w;
+        const float* below = p + std::size_t(y + step) * w;
+        for (int x = 0; x < step; ++x) candidates.push_back(x);
+        for (int x = step; x < w - step; ++x) {
+          const float highest =
+              std::max(std::max(std::max(above[x - step], above[x]), std::max(above[x + step], row[x - step])),
+                       std::max(std::max(row[x + step], below[x - step]), std::max(below[x], below[x + step])));
+          if (row[x] > highest + threshold) candidates.push_back(x);
+        }
+        for (int x = w - step; x < w; ++x) candidates.push_back(x);
+      } else {
+        for (int x = 0; x < w; ++x) candidates.push_back(x);
+      }
+      for (const int x : candidates) {
         const float value = p[std::size_t(y) * w + x];
         int n = 0;
         float highest = -1e30f;
@@ -312,6 +332,7 @@ int repairHotPixels(Image& mosaic, ColorFilter filter, float threshold) {
         std::nth_element(around.begin(), around.begin() + n / 2, around.begin() + n);
         found[std::size_t(y)].push_back({std::size_t(y) * w + x, around[n / 2]});
       }
+    }
   });
   int repaired = 0;
   float* q = mosaic.plane(0);

@@ -1,5 +1,9 @@
 // Ground truth (ideal light field, depth) and the output folder of `lfcam simulate`.
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -34,7 +38,12 @@ ViewGrid viewGrid(const CameraModel& camera) {
 }  // namespace
 
 Result<LightField> idealLightField(const Scene& scene, const CameraModel& camera) {
+  return idealLightFieldBoxFiltered(scene, camera, 1);
+}
+
+Result<LightField> idealLightFieldBoxFiltered(const Scene& scene, const CameraModel& camera, int boxSamples) {
   if (!camera.microlenses) return makeError(ErrorCode::Usage, "ideal light field: the camera has no microlens array");
+  const int box = std::clamp(boxSamples, 1, 16);
   const auto counts = camera.microlensCounts();  // named, not bound: lambdas capture them (clang)
   const int columns = counts[0], rows = counts[1];
   const ViewGrid grid = viewGrid(camera);
@@ -49,6 +58,30 @@ Result<LightField> idealLightField(const Scene& scene, const CameraModel& camera
   lf.enableWeight(0);
   const PreparedScene prepared(scene, camera);
   const double radius = 0.5 * camera.mainLens.apertureDiameterMm();
+  // Box filter: lens offsets (fractions of a view step) paired with microlens-cell offsets (mm,
+  // in the array's turned frame), box x box strata each, paired by a fixed shuffle.
+  const MicrolensArray& array = *camera.microlenses;
+  const bool hex = array.packing == Packing::Hexagonal;
+  const double shrink = std::sqrt(array.fillFactor);
+  const double halfA = 0.5 * array.pitchMm * shrink, halfB = (hex ? array.pitchMm / std::sqrt(3.0) : 0.5 * array.pitchMm) * shrink;
+  const double cosR = std::cos(array.rotationDeg * M_PI / 180), sinR = std::sin(array.rotationDeg * M_PI / 180);
+  struct BoxPoint {
+    double lensX, lensY, cellX, cellY;
+  };
+  std::vector<BoxPoint> points;
+  const int count = box * box;
+  std::vector<int> pairing(static_cast<std::size_t>(count));
+  std::iota(pairing.begin(), pairing.end(), 0);
+  std::mt19937 shuffle(12345);  // fixed: the same field every run
+  for (int k = count - 1; k > 0; --k) std::swap(pairing[std::size_t(k)], pairing[shuffle() % unsigned(k + 1)]);
+  for (int k = 0; k < count; ++k) {
+    const int m = pairing[std::size_t(k)];
+    const double fx = ((k % box) + 0.5) / box - 0.5, fy = ((k / box) + 0.5) / box - 0.5;
+    const double a = box == 1 ? 0 : (2 * (((m % box) + 0.5) / box) - 1) * halfA;
+    const double b = box == 1 ? 0 : (2 * (((m / box) + 0.5) / box) - 1) * halfB;
+    if (hex && std::abs(a) * 0.5 + std::abs(b) * 0.8660254037844386 > 0.5 * array.pitchMm * shrink) continue;
+    points.push_back({box == 1 ? 0 : fx, box == 1 ? 0 : fy, cosR * a - sinR * b, sinR * a + cosR * b});
+  }
   parallelFor(0, std::size_t(grid.views) * grid.views, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t view = begin; view < end; ++view) {
       const int u = int(view % grid.views), v = int(view / grid.views);
@@ -58,12 +91,28 @@ Result<LightField> idealLightField(const Scene& scene, const CameraModel& camera
       for (int j = 0; j < rows; ++j) {
         for (int i = 0; i < columns; ++i) {
           const auto centre = camera.microlensCentreMm(i, j);
-          const Hit hit = prepared.traceThroughLens(lensX, lensY, centre[0], centre[1]);
+          Rgb sum{0, 0, 0};
+          int hits = 0;
+          for (const BoxPoint& p : points) {
+            // A ray through the cell point d off the microlens's centre meets the lens d further
+            // on (the microlens images the lens onto the sensor).
+            const double x = lensX + p.lensX * grid.stepMm + p.cellX, y = lensY + p.lensY * grid.stepMm + p.cellY;
+            if (points.size() > 1 && x * x + y * y > radius * radius) continue;  // stopped by the aperture
+            const Hit hit = prepared.traceThroughLens(x, y, centre[0] + p.cellX, centre[1] + p.cellY);
+            for (int c = 0; c < 3; ++c) sum[c] += hit.radiance[c];
+            ++hits;
+          }
+          if (hits == 0) {  // the whole footprint outside the aperture: the centre ray, as unfiltered
+            const Hit hit = prepared.traceThroughLens(lensX, lensY, centre[0], centre[1]);
+            sum = hit.radiance;
+            hits = 1;
+          }
+          for (int c = 0; c < 3; ++c) sum[c] /= float(hits);
           const int s = columns - 1 - i, t = rows - 1 - j;  // turned the right way up
           if (channels == 1)
-            lf.at(u, v, s, t, 0) = 0.2126f * hit.radiance[0] + 0.7152f * hit.radiance[1] + 0.0722f * hit.radiance[2];
+            lf.at(u, v, s, t, 0) = 0.2126f * sum[0] + 0.7152f * sum[1] + 0.0722f * sum[2];
           else
-            for (int c = 0; c < 3; ++c) lf.at(u, v, s, t, c) = hit.radiance[c];
+            for (int c = 0; c < 3; ++c) lf.at(u, v, s, t, c) = sum[c];
           weight[std::size_t(t) * columns + s] = inside;
         }
       }

@@ -37,6 +37,29 @@ TEST(DecodeCommand, DecodesASimulatorCapture) {
                           dir.path());
   EXPECT_EQ(refocus.exitStatus, 0) << refocus.err;
   EXPECT_TRUE(std::filesystem::exists(dir / "photo.png"));
+  // ... with the decoder's method options, as `lfcam decode` takes them.
+  auto views = runLfcam({"refocus", sim + "/raw.png", "--white", sim + "/white.png", "--demosaic", "lenslet",
+                         "--sampling", "integral", "--slope", "0", "-o", (dir / "photo2.png").string()},
+                        dir.path());
+  EXPECT_EQ(views.exitStatus, 0) << views.err;
+  auto bad = runLfcam({"refocus", sim + "/raw.png", "--white", sim + "/white.png", "--demosaic", "nearest", "--slope",
+                       "0", "-o", (dir / "photo3.png").string()},
+                      dir.path());
+  EXPECT_EQ(bad.exitStatus, 2);
+  EXPECT_NE(bad.err.find("--demosaic"), std::string::npos) << bad.err;
+}
+
+TEST(DecodeCommand, NamesAWhiteImageOfAnotherSize) {
+  TempDir dir;
+  const std::string sim = (dir / "sim").string(), other = (dir / "other").string();
+  ASSERT_EQ(runLfcam({"simulate", "white", "--size", "64", "--samples", "1", "--no-white", "-o", sim}, dir.path()).exitStatus, 0);
+  ASSERT_EQ(runLfcam({"simulate", "white", "--size", "48", "--samples", "1", "--no-white", "-o", other}, dir.path()).exitStatus, 0);
+  auto decode = runLfcam({"decode", sim + "/raw.png", "--white", other + "/raw.png", "-o", (dir / "out.lf.h5").string()},
+                         dir.path());
+  EXPECT_EQ(decode.exitStatus, 2);
+  EXPECT_NE(decode.err.find("lfcam: " + other + "/raw.png: white image of 48x48 pixels does not match"), std::string::npos)
+      << decode.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.lf.h5"));
 }
 
 TEST(DecodeCommand, NeedsAGridOrAWhiteImage) {

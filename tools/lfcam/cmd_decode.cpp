@@ -1,6 +1,5 @@
 // lfcam decode RAW [--white W] [--dark D] [--grid grid.json] [--bayer P] [--demosaic M]
 //                  [--sampling S] [--views N] -o OUT.lf.h5: a raw lenslet image -> L(u, v, s, t).
-#include <map>
 #include <memory>
 
 #include "commands.hpp"
@@ -21,12 +20,7 @@ void addDecodeCommand(CLI::App& app, Job& job) {
   command->add_option("--dark", options->input.dark, "dark frame, subtracted instead of the black level");
   command->add_option("--grid", options->input.grid, "grid.json from lfcam calibrate (default: calibrate the white image)");
   command->add_option("--bayer", options->bayer, "colour filter of a PNG/TIFF raw: RGGB, BGGR, GRBG, GBRG or mono");
-  command->add_option("--demosaic", options->input.decode.demosaic, "mhc (default), ha (Hamilton-Adams) or lenslet")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, DemosaicMethod>{
-          {"mhc", DemosaicMethod::MalvarHeCutler}, {"ha", DemosaicMethod::HamiltonAdams}, {"lenslet", DemosaicMethod::LensletAware}}));
-  command->add_option("--sampling", options->input.decode.sampling, "subpixel (default) or integral (the paper's)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, Sampling>{{"subpixel", Sampling::SubPixel}, {"integral", Sampling::IntegralPitch}}));
+  addDecodeMethodOptions(*command, options->input.decode);
   command->add_option("--views", options->input.decode.views, "views across (default: the microlens pitch, rounded)")
       ->check(CLI::Range(1, 256));
   command->add_option("-o,--output", options->output, "output light field (.lf.h5)")->required();

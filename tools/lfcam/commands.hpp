@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "lfcam/decode.hpp"
 #include "lfcam/light_field.hpp"
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/result.hpp"
@@ -46,6 +47,7 @@ struct InputOptions {
   std::optional<int> lensletViews;
   ViewNumberOrder viewOrder = ViewNumberOrder::Auto;
   std::string white, dark, grid;  // a raw lenslet image, decoded on the way when --white is given
+  DecodeOptions decode;           // its --demosaic and --sampling (the rest is filled in on the way)
   LightFieldReadOptions readOptions() const { return {.lensletViews = lensletViews, .viewNumberOrder = viewOrder}; }
 };
 void addInputOptions(CLI::App& command, InputOptions& input);

@@ -1,5 +1,8 @@
 #include "raw_input.hpp"
 
+#include <map>
+#include <tuple>
+
 #include <nlohmann/json.hpp>
 
 #include "lfcam/calibrate.hpp"
@@ -28,6 +31,15 @@ std::optional<Optics> opticsFromMetadata(const nlohmann::json& metadata) {
 
 }  // namespace
 
+void addDecodeMethodOptions(CLI::App& command, DecodeOptions& decode) {
+  command.add_option("--demosaic", decode.demosaic, "mhc (default), ha (Hamilton-Adams) or lenslet")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, DemosaicMethod>{
+          {"mhc", DemosaicMethod::MalvarHeCutler}, {"ha", DemosaicMethod::HamiltonAdams}, {"lenslet", DemosaicMethod::LensletAware}}));
+  command.add_option("--sampling", decode.sampling, "subpixel (default) or integral (the paper's)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, Sampling>{{"subpixel", Sampling::SubPixel}, {"integral", Sampling::IntegralPitch}}));
+}
+
 Result<ColorFilter> parseBayerOption(const std::string& text) {
   if (auto filter = parseColorFilterName(text)) return *filter;
   return makeError(ErrorCode::Usage, "--bayer: " + text + " is not one of RGGB, BGGR, GRBG, GBRG, mono");
@@ -52,6 +64,15 @@ Result<LightField> decodeRawInput(RawDecodeInput input) {
     if (!read) return read.error();
     white = std::move(*read);
     input.decode.white = &white;
+  }
+  // Checked here as well as in decodeLightField, so that the message names the file that is wrong.
+  for (const auto& [file, image, what] : {std::tuple{&input.dark, &dark, "dark frame"}, std::tuple{&input.white, &white, "white image"}}) {
+    const Image& mosaic = image->mosaic;
+    if (file->empty() || (mosaic.width() == raw->mosaic.width() && mosaic.height() == raw->mosaic.height())) continue;
+    return makeError(ErrorCode::Usage, *file + ": " + what + " of " + std::to_string(mosaic.width()) + "x" +
+                                           std::to_string(mosaic.height()) + " pixels does not match the raw's " +
+                                           std::to_string(raw->mosaic.width()) + "x" + std::to_string(raw->mosaic.height()) +
+                                           " (" + input.raw + ")");
   }
   bar(0.2);
   LensletGrid grid;

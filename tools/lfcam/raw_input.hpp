@@ -1,6 +1,8 @@
 // A raw lenslet image decoded on the way: what `lfcam decode` and every command's --white take.
 #pragma once
 
+#include <CLI/CLI.hpp>
+
 #include <optional>
 #include <string>
 
@@ -16,6 +18,10 @@ struct RawDecodeInput {
   std::optional<ColorFilter> bayer;    // overrides what the raw says
   DecodeOptions decode;                // its white and dark are filled from the files
 };
+
+// --demosaic and --sampling, the decoder's method choices, on `command` (lfcam decode and every
+// command that decodes a raw on the way).
+void addDecodeMethodOptions(CLI::App& command, DecodeOptions& decode);
 
 // "RGGB", "mono", ... (any case); Usage error naming the option otherwise.
 Result<ColorFilter> parseBayerOption(const std::string& text);
