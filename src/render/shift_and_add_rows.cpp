@@ -23,36 +23,41 @@ void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, c
   const hn::ScalableTag<float> d;
   const int lanes = int(hn::Lanes(d));
   const int interiorBegin = std::max(0, -whole), interiorEnd = std::min(ns, ns - 1 - whole);
-  // Single-tap edges: the right tap alone at source column 0, the left tap alone at ns - 1.
-  if (const int x = -1 - whole; x >= 0 && x < ns) accumulator[x] += c01 * row0[0] + c11 * row1[0];
-  if (const int x = ns - 1 - whole; x >= 0 && x < ns && x >= interiorEnd)
-    accumulator[x] += c00 * row0[ns - 1] + c10 * row1[ns - 1];
-  if (interiorBegin >= interiorEnd) return;
+  // Single-tap edges: the right tap alone at source column 0, the left tap alone at ns - 1. They
+  // come after the interior, when the rows are in L1: read first, a row's last element is a miss
+  // at full memory latency, ahead of the prefetcher (measured: a quarter of this kernel's time).
+  const auto edges = [&] {
+    if (const int x = -1 - whole; x >= 0 && x < ns) accumulator[x] += c01 * row0[0] + c11 * row1[0];
+    if (const int x = ns - 1 - whole; x >= 0 && x < ns && x >= interiorEnd)
+      accumulator[x] += c00 * row0[ns - 1] + c10 * row1[ns - 1];
+  };
+  if (interiorBegin >= interiorEnd) return edges();
 
   // From here on, pointers start at the first interior column's source.
   const float* source0 = row0 + (interiorBegin + whole);
   const float* source1 = row1 + (interiorBegin + whole);
-  accumulator += interiorBegin;
+  float* interior = accumulator + interiorBegin;
   const int count = interiorEnd - interiorBegin;
   int x = 0;
   const auto k00 = hn::Set(d, c00), k01 = hn::Set(d, c01);
   if (c10 == 0.0f && c11 == 0.0f) {
     // One source row (integer vertical shift, or the other row outside the view): half the loads.
     for (; x + lanes <= count; x += lanes) {
-      auto sum = hn::MulAdd(k01, hn::LoadU(d, source0 + x + 1), hn::LoadU(d, accumulator + x));
-      hn::StoreU(hn::MulAdd(k00, hn::LoadU(d, source0 + x), sum), d, accumulator + x);
+      auto sum = hn::MulAdd(k01, hn::LoadU(d, source0 + x + 1), hn::LoadU(d, interior + x));
+      hn::StoreU(hn::MulAdd(k00, hn::LoadU(d, source0 + x), sum), d, interior + x);
     }
-    for (; x < count; ++x) accumulator[x] += c00 * source0[x] + c01 * source0[x + 1];
-    return;
+    for (; x < count; ++x) interior[x] += c00 * source0[x] + c01 * source0[x + 1];
+    return edges();
   }
   const auto k10 = hn::Set(d, c10), k11 = hn::Set(d, c11);
   for (; x + lanes <= count; x += lanes) {
     auto top = hn::MulAdd(k01, hn::LoadU(d, source0 + x + 1), hn::Mul(k00, hn::LoadU(d, source0 + x)));
     auto bottom = hn::MulAdd(k11, hn::LoadU(d, source1 + x + 1), hn::Mul(k10, hn::LoadU(d, source1 + x)));
-    hn::StoreU(hn::Add(hn::LoadU(d, accumulator + x), hn::Add(top, bottom)), d, accumulator + x);
+    hn::StoreU(hn::Add(hn::LoadU(d, interior + x), hn::Add(top, bottom)), d, interior + x);
   }
   for (; x < count; ++x)
-    accumulator[x] += (c00 * source0[x] + c01 * source0[x + 1]) + (c10 * source1[x] + c11 * source1[x + 1]);
+    interior[x] += (c00 * source0[x] + c01 * source0[x + 1]) + (c10 * source1[x] + c11 * source1[x + 1]);
+  edges();
 }
 
 void MultiplyRows(float* HWY_RESTRICT out, const float* HWY_RESTRICT a, const float* HWY_RESTRICT b, int count) {
