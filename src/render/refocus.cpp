@@ -164,8 +164,10 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
       if (ay0 == 0.0f) ay0 = ay1, ay1 = 0.0f;
       if (ay1 == 0.0f) offset1 = offset0;
       const float c00 = ay0 * ax0, c01 = ay0 * ax1, c10 = ay1 * ax0, c11 = ay1 * ax1;
-      const auto accumulate = [&](int plane, const float* first, const float* second) {
-        accumulateBilinearRow(accumulatorRow(plane, y), first, second, sx.whole, c00, c01, c10, c11, ns);
+      // The source row after the lower tap, which output row y + 1 reads: prefetched meanwhile.
+      const bool nextRowInside = offset1 / ns + 1 < std::size_t(nt);
+      const auto accumulate = [&](int plane, const float* first, const float* second, const float* next = nullptr) {
+        accumulateBilinearRow(accumulatorRow(plane, y), first, second, sx.whole, c00, c01, c10, c11, ns, next);
       };
 
       if (lightFieldWeighted) {
@@ -183,7 +185,7 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
         if (weighted) accumulate(channels, ones.data(), ones.data());
         for (int c = 0; c < channels; ++c) {
           const float* plane = lightField.plane(u, v, c);
-          accumulate(c, plane + offset0, plane + offset1);
+          accumulate(c, plane + offset0, plane + offset1, nextRowInside ? plane + offset1 + ns : nullptr);
         }
       }
     }

@@ -8,6 +8,7 @@
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "render/shift_and_add_rows.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/cache_control.h>
 #include <hwy/highway.h>
 
 HWY_BEFORE_NAMESPACE();
@@ -19,7 +20,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 // Columns x with both horizontal taps inside the view are the vector loop; at most one column on
 // either side has a single tap, and the last partial vector is done one lane at a time.
 void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, const float* row1, int whole,
-                           float c00, float c01, float c10, float c11, int ns) {
+                           float c00, float c01, float c10, float c11, int ns, const float* nextRow) {
   const hn::ScalableTag<float> d;
   const int lanes = int(hn::Lanes(d));
   const int interiorBegin = std::max(0, -whole), interiorEnd = std::min(ns, ns - 1 - whole);
@@ -38,11 +39,16 @@ void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, c
   const float* source1 = row1 + (interiorBegin + whole);
   float* interior = accumulator + interiorBegin;
   const int count = interiorEnd - interiorBegin;
+  // The row the next call will read, fetched while this one computes (hardware prefetchers lose
+  // these short row runs: measured, a third fewer samples in this kernel). Without one, a
+  // harmless prefetch of a row already in cache.
+  const float* ahead = nextRow ? nextRow + (interiorBegin + whole) : source0;
   int x = 0;
   const auto k00 = hn::Set(d, c00), k01 = hn::Set(d, c01);
   if (c10 == 0.0f && c11 == 0.0f) {
     // One source row (integer vertical shift, or the other row outside the view): half the loads.
     for (; x + lanes <= count; x += lanes) {
+      hwy::Prefetch(ahead + x);
       auto sum = hn::MulAdd(k01, hn::LoadU(d, source0 + x + 1), hn::LoadU(d, interior + x));
       hn::StoreU(hn::MulAdd(k00, hn::LoadU(d, source0 + x), sum), d, interior + x);
     }
@@ -51,6 +57,7 @@ void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, c
   }
   const auto k10 = hn::Set(d, c10), k11 = hn::Set(d, c11);
   for (; x + lanes <= count; x += lanes) {
+    hwy::Prefetch(ahead + x);
     auto top = hn::MulAdd(k01, hn::LoadU(d, source0 + x + 1), hn::Mul(k00, hn::LoadU(d, source0 + x)));
     auto bottom = hn::MulAdd(k11, hn::LoadU(d, source1 + x + 1), hn::Mul(k10, hn::LoadU(d, source1 + x)));
     hn::StoreU(hn::Add(hn::LoadU(d, interior + x), hn::Add(top, bottom)), d, interior + x);
@@ -93,8 +100,8 @@ HWY_EXPORT(MultiplyRows);
 HWY_EXPORT(NormaliseRow);
 
 void accumulateBilinearRow(float* accumulator, const float* row0, const float* row1, int whole, float c00, float c01,
-                           float c10, float c11, int ns) {
-  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRow)(accumulator, row0, row1, whole, c00, c01, c10, c11, ns);
+                           float c10, float c11, int ns, const float* nextRow) {
+  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRow)(accumulator, row0, row1, whole, c00, c01, c10, c11, ns, nextRow);
 }
 
 void multiplyRows(float* out, const float* a, const float* b, int count) {

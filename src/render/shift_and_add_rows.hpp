@@ -10,8 +10,9 @@ namespace lfcam {
 //   accumulator[x] += c00 row0[s] + c01 row0[s + 1] + c10 row1[s] + c11 row1[s + 1]
 // where a tap whose column lies outside [0, ns) counts as 0 (the view ends there). row0 and row1
 // are the two source rows of the vertical taps (they may be the same row when c10 = c11 = 0).
+// nextRow, when not null, is the source row the next call will read: it is prefetched.
 void accumulateBilinearRow(float* accumulator, const float* row0, const float* row1, int whole, float c00, float c01,
-                           float c10, float c11, int ns);
+                           float c10, float c11, int ns, const float* nextRow = nullptr);
 
 // out[i] = a[i] * b[i].
 void multiplyRows(float* out, const float* a, const float* b, int count);
