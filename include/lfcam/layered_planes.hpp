@@ -39,8 +39,9 @@ struct LayeredPlanesScene {
 };
 
 // The built-in default: a background and three cards at different depths, with views x views
-// views of size x size pixels (the layout scales with the size; disparities do not).
-LayeredPlanesScene defaultLayeredPlanesScene(int views = 9, int size = 256, std::uint64_t seed = 1);
+// views of width x height pixels (height 0: square; the layout scales with the size, disparities
+// do not).
+LayeredPlanesScene defaultLayeredPlanesScene(int views = 9, int width = 256, std::uint64_t seed = 1, int height = 0);
 
 struct LayeredPlanesLightField {
   LightField lightField;

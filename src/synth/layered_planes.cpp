@@ -103,7 +103,8 @@ float shade(float tint, double t) { return float(tint * (0.1 + 0.8 * t)); }
 
 }  // namespace
 
-LayeredPlanesScene defaultLayeredPlanesScene(int views, int size, std::uint64_t seed) {
+LayeredPlanesScene defaultLayeredPlanesScene(int views, int width, std::uint64_t seed, int height) {
+  if (height <= 0) height = width;
   LayeredPlanesScene scene;  // laid out for 9x9 views of 256x256, 3x3 samples per pixel
   // Disparities -1.0 .. +1.6 px per view step: the nearest card moves 12.8 px between the
   // outermost views, enough to see occlusion change, small enough for shift-and-add to focus.
@@ -122,13 +123,14 @@ LayeredPlanesScene defaultLayeredPlanesScene(int views, int size, std::uint64_t 
                           .colour = {1.0f, 0.45f, 0.4f}, .x0 = 60, .y0 = 160, .x1 = 152, .y1 = 232});
 
   // Scale the layout to the size asked for.
-  const double scale = size / double(scene.ns);
+  const double scaleX = width / double(scene.ns), scaleY = height / double(scene.nt);
   for (TexturedPlane& plane : scene.planes) {
-    plane.x0 *= scale, plane.y0 *= scale, plane.x1 *= scale, plane.y1 *= scale;
-    plane.period *= scale;
+    plane.x0 *= scaleX, plane.y0 *= scaleY, plane.x1 *= scaleX, plane.y1 *= scaleY;
+    plane.period *= std::min(scaleX, scaleY);
   }
   scene.nu = scene.nv = views;
-  scene.ns = scene.nt = size;
+  scene.ns = width;
+  scene.nt = height;
   scene.seed = seed;
 
   // Optics of a plausible plenoptic camera (paper, section 3.2): a lens 100 mm from the

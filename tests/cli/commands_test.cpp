@@ -61,6 +61,17 @@ TEST(Cli, InfoJsonDescribesTheLightField) {
   EXPECT_NE(text.out.find("5 x 5 views"), std::string::npos) << text.out;
 }
 
+TEST(Cli, SynthTakesOneSizeOrWidthAndHeight) {
+  test::TempDir dir;
+  const std::string output = (dir / "wide.lf.h5").string();
+  const auto made = runLfcam({"synth", "--views", "3", "--size", "40", "24", "-o", output}, dir.path());
+  ASSERT_EQ(made.exitStatus, 0) << made.err;
+  const auto json = nlohmann::json::parse(runLfcam({"info", output, "--json"}, dir.path()).out);
+  EXPECT_EQ(json["spatial"], nlohmann::json::array({40, 24}));
+  const auto tooMany = runLfcam({"synth", "--size", "40", "24", "8", "-o", output}, dir.path());
+  EXPECT_EQ(tooMany.exitStatus, 2) << tooMany.err;
+}
+
 TEST(Cli, ConvertThroughEveryFormatKeepsTheShape) {
   test::TempDir dir;
   const fs::path input = test::makeSynthLightField(dir);

@@ -1,5 +1,6 @@
 // lfcam synth -o OUT: the layered-planes light field, with its exact ground-truth disparity.
 #include <memory>
+#include <vector>
 
 #include "commands.hpp"
 #include "lfcam/image_io.hpp"
@@ -11,7 +12,8 @@ namespace lfcam::cli {
 void addSynthCommand(CLI::App& app, Job& job) {
   struct Options {
     std::string output, disparity;
-    int views = 9, size = 256;
+    int views = 9;
+    std::vector<int> size = {256};  // width [height]
     std::uint64_t seed = 1;
   };
   auto options = std::make_shared<Options>();
@@ -20,12 +22,15 @@ void addSynthCommand(CLI::App& app, Job& job) {
   command->add_option("-o,--output", options->output, "output light field (.lf.h5, folder, lenslet image)")
       ->required();
   command->add_option("--views", options->views, "views across and down")->check(CLI::Range(1, 64));
-  command->add_option("--size", options->size, "pixels across and down each view")->check(CLI::Range(8, 8192));
+  command->add_option("--size", options->size, "pixels across and down each view: W (square) or W H")
+      ->expected(1, 2)
+      ->check(CLI::Range(8, 8192));
   command->add_option("--seed", options->seed, "seed of the textures");
   command->add_option("--disparity", options->disparity, "also write the ground-truth disparity (.pfm)");
   command->callback([options, &job] {
     job = [options]() -> Status {
-      const LayeredPlanesScene scene = defaultLayeredPlanesScene(options->views, options->size, options->seed);
+      const LayeredPlanesScene scene = defaultLayeredPlanesScene(options->views, options->size.front(), options->seed,
+                                                                          options->size.back());
       LayeredPlanesLightField result = [&] {
         ProgressBar bar("making the light field");
         return renderLayeredPlanes(scene, [&](double f) { bar(f); });
