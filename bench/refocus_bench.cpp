@@ -1,6 +1,9 @@
 // Refocus speed, as ratios to floors measured in the same run (style.md, point 8):
 //   BM_MemoryCopy         a large memcpy of the light field's size, threaded like refocus: the
 //                         bandwidth that sets the floor.
+//   BM_MemoryRead         the antinous light field's samples read once by a threaded reduction
+//                         (XOR of their bits, which the compiler vectorises), alternating with the
+//                         copy: ratio = read time / floor, what reading alone reaches here.
 //   BM_Refocus            refocus of the HCI "antinous" light field (9x9 views, 512x512 RGB), or
 //                         a layered-planes field of the same size when the data is absent.
 //                         Counters: output megapixels per second, floor_ms = the light field's
@@ -8,20 +11,27 @@
 //   BM_RefocusIllum       the same for a light field of a Lytro Illum's size (15x15 views of
 //                         625x434 RGB, 732 MB), synthesised as layered planes, with its own floor.
 //   BM_RefocusThreads     refocus of the antinous field on 1 and on 2 threads: the scaling.
+//   BM_RefocusPages       refocus of the antinous field on huge pages (as LightField allocates it)
+//                         and of a copy on 4 KiB pages (ratio = time / huge-page time, alternately).
 //   BM_RefocusReference   the float64 oracle against the fast kernel on a smaller field
 //                         (ratio = reference time / fast time).
 //
 // Run: build-*/bench/refocus_bench [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
+#include <sys/prctl.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <map>
 #include <memory>
+#include <span>
 #include <vector>
 
+#include "lfcam/huge_page_allocator.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/parallel.hpp"
@@ -31,18 +41,9 @@ namespace {
 
 using lfcam::LightField;
 
-// A layered-planes field of the given size: the default scene with its layout scaled.
+// A layered-planes field of the given size.
 LightField layeredPlanes(int views, int width, int height = 0, int supersampling = 3) {
-  if (height == 0) height = width;
-  lfcam::LayeredPlanesScene scene = lfcam::defaultLayeredPlanesScene();
-  const double scaleX = width / double(scene.ns), scaleY = height / double(scene.nt);
-  for (lfcam::TexturedPlane& plane : scene.planes) {
-    plane.x0 *= scaleX, plane.y0 *= scaleY, plane.x1 *= scaleX, plane.y1 *= scaleY;
-    plane.period *= std::min(scaleX, scaleY);
-  }
-  scene.nu = scene.nv = views;
-  scene.ns = width;
-  scene.nt = height;
+  lfcam::LayeredPlanesScene scene = lfcam::defaultLayeredPlanesScene(views, width, 1, height);
   scene.supersampling = supersampling;
   return std::move(lfcam::renderLayeredPlanes(scene).lightField);
 }
@@ -85,8 +86,9 @@ void parallelCopy(char* destination, const char* source, std::size_t bytes) {
 
 // Seconds of one copy of `bytes`, best of `copies` (the floor should be the machine's best).
 double bestCopySeconds(std::size_t bytes, int copies) {
-  // Both buffers written first, so page faults stay out of the timing.
-  std::vector<char> source(bytes, 1), destination(bytes, 0);
+  // Both buffers written first, so page faults stay out of the timing; on huge pages, like the
+  // light field's samples.
+  std::vector<char, lfcam::HugePageAllocator<char>> source(bytes, 1), destination(bytes, 0);
   double best = 1e30;
   for (int i = 0; i < copies; ++i) {
     const auto start = std::chrono::steady_clock::now();
@@ -121,6 +123,43 @@ void BM_MemoryCopy(benchmark::State& state) {
   state.counters["floor_ms"] = floorSeconds(antinous()) * 1e3;
 }
 BENCHMARK(BM_MemoryCopy)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Reads every sample of the light field once, over parallelFor's threads.
+std::uint32_t readAll(const LightField& lightField) {
+  const std::span<const float> samples = lightField.samples();
+  const std::size_t slice = 1 << 20;
+  std::vector<std::uint32_t> partial((samples.size() + slice - 1) / slice);
+  lfcam::parallelFor(0, partial.size(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      std::uint32_t bits = 0;
+      for (std::size_t k = i * slice; k < std::min(samples.size(), (i + 1) * slice); ++k)
+        bits ^= std::bit_cast<std::uint32_t>(samples[k]);
+      partial[i] = bits;
+    }
+  });
+  std::uint32_t bits = 0;
+  for (std::uint32_t p : partial) bits ^= p;
+  return bits;
+}
+
+void BM_MemoryRead(benchmark::State& state) {
+  const LightField& lightField = antinous();
+  const std::size_t bytes = bytesOf(lightField);
+  std::vector<char, lfcam::HugePageAllocator<char>> source(bytes, 1), destination(bytes, 0);
+  double readSeconds = 0, copySeconds = 0;
+  for (auto _ : state) {
+    auto start = std::chrono::steady_clock::now();
+    parallelCopy(destination.data(), source.data(), bytes);
+    copySeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    benchmark::ClobberMemory();
+    start = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(readAll(lightField));
+    readSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  // The copy moves the bytes twice (read and write): the floor is half its time.
+  state.counters["ratio"] = readSeconds / (0.5 * copySeconds);
+}
+BENCHMARK(BM_MemoryRead)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Runs `work` once per benchmark iteration and returns the mean seconds per run.
 template <class Work>
@@ -171,6 +210,38 @@ void BM_RefocusThreads(benchmark::State& state) {
   state.counters["ratio"] = perRun / floor;
 }
 BENCHMARK(BM_RefocusThreads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A copy of the antinous field on 4 KiB pages: made while the process refuses transparent huge
+// pages, which overrides the allocator's advice.
+const LightField& antinousOnSmallPages() {
+  static const LightField lightField = [] {
+    prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
+    LightField copy = antinous().copy();
+    prctl(PR_SET_THP_DISABLE, 0, 0, 0, 0);
+    return copy;
+  }();
+  return lightField;
+}
+
+// Argument 1: the field on huge pages, 0: on small pages. Each iteration times both, so the
+// ratio compares the two under the same conditions.
+void BM_RefocusPages(benchmark::State& state) {
+  const LightField& timed = state.range(0) ? antinous() : antinousOnSmallPages();
+  const LightField& other = state.range(0) ? antinousOnSmallPages() : antinous();
+  double timedSeconds = 0, otherSeconds = 0;
+  for (auto _ : state) {
+    for (const LightField* lightField : {&timed, &other}) {
+      const auto start = std::chrono::steady_clock::now();
+      lfcam::Image photo = lfcam::refocus(*lightField, 0.63);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      (lightField == &timed ? timedSeconds : otherSeconds) += seconds;
+      benchmark::DoNotOptimize(photo.pixels().data());
+    }
+  }
+  state.counters["ratio"] = state.range(0) ? 1.0 : timedSeconds / otherSeconds;
+  state.SetLabel(state.range(0) ? "huge pages" : "4 KiB pages");
+}
+BENCHMARK(BM_RefocusPages)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The fast kernel against the reference on one smaller light field (5x5 views, 128x128 RGB).
 const LightField& small() {

@@ -17,7 +17,8 @@
 //   centre (u, v measured from the centre), which is the HCI benchmark's convention: positive d
 //   is nearer than the plane in focus at capture.
 //
-// Memory: one contiguous float32 buffer, views outermost:
+// Memory: one contiguous float32 buffer (on huge pages when large: huge_page_allocator.hpp), views
+// outermost:
 //   index(u, v, s, t, c) = (((v * nu + u) * channels + c) * nt + t) * ns + s
 // so each (view, channel) is a row-major image plane, which a refocus streams through whole.
 // The weight (when present) has one plane per view: weightIndex(u, v, s, t) = ((v * nu + u) * nt
@@ -35,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "lfcam/huge_page_allocator.hpp"
 #include "lfcam/image.hpp"
 
 namespace lfcam {
@@ -125,8 +127,8 @@ class LightField {
   }
 
   LightFieldShape shape_;
-  std::vector<float> data_;
-  std::vector<float> weight_;
+  std::vector<float, HugePageAllocator<float>> data_;
+  std::vector<float, HugePageAllocator<float>> weight_;
 };
 
 }  // namespace lfcam

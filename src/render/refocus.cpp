@@ -125,8 +125,9 @@ std::vector<float> separableWeight(const std::vector<AxisShift>& shifts, int siz
 
 // Output rows [y0, y1) of the refocused photograph: the whole algorithm for one block of rows.
 // Views are the outer loop: each source row is read from memory once and reused, from cache, by
-// the two output rows it is a tap of, while the block's accumulators stay in L2. The four
-// bilinear taps of a row are one SIMD pass (shift_and_add_rows.hpp).
+// the two output rows it is a tap of, while the block's accumulators stay in L2. One call per
+// view and channel runs down the block's rows; the four bilinear taps of a row are one SIMD pass
+// (shift_and_add_rows.hpp).
 void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
   const LightField& lightField = *plan.lightField;
   const int ns = lightField.ns(), nt = lightField.nt(), channels = lightField.channels();
@@ -151,42 +152,38 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
     // No output column has a tap in the view.
     if (sx.whole <= -ns - 1 || sx.whole >= ns) continue;
     const float ax0 = float(1 - sx.fraction), ax1 = float(sx.fraction);
+    // The term's weight rides on the vertical coefficients (exactly 1 for plain refocus).
+    const float top = float(1 - sy.fraction) * termWeight, bottom = float(sy.fraction) * termWeight;
 
+    if (!lightFieldWeighted) {
+      // The common case: each channel's rows in one call.
+      for (int c = 0; c < channels; ++c)
+        accumulateBilinearRows(accumulatorRow(c, y0), lightField.plane(u, v, c), ns, nt, y0, y1, sx.whole, ax0, ax1,
+                               sy.whole, top, bottom);
+      if (!weighted) continue;
+    }
+    // Row by row: the weight sum, and (with a weight plane) the channels as w * L.
     for (int y = y0; y < y1; ++y) {
-      // Vertical taps: rows y + whole and y + whole + 1, each kept only if inside the view.
-      const int row0 = y + sy.whole, row1 = row0 + 1;
-      // The term's weight rides on the vertical coefficients (exactly 1 for plain refocus).
-      float ay0 = inside(row0, nt) ? float(1 - sy.fraction) * termWeight : 0.0f;
-      float ay1 = inside(row1, nt) ? float(sy.fraction) * termWeight : 0.0f;
-      if (ay0 == 0.0f && ay1 == 0.0f) continue;
-      // A tap of coefficient 0 is not read: with one live row, it is passed as row0 alone.
-      std::size_t offset0 = std::size_t(ay0 != 0.0f ? row0 : row1) * ns, offset1 = std::size_t(row1) * ns;
-      if (ay0 == 0.0f) ay0 = ay1, ay1 = 0.0f;
-      if (ay1 == 0.0f) offset1 = offset0;
-      const float c00 = ay0 * ax0, c01 = ay0 * ax1, c10 = ay1 * ax0, c11 = ay1 * ax1;
-      // The source row after the lower tap, which output row y + 1 reads: prefetched meanwhile.
-      const bool nextRowInside = offset1 / ns + 1 < std::size_t(nt);
-      const auto accumulate = [&](int plane, const float* first, const float* second, const float* next = nullptr) {
-        accumulateBilinearRow(accumulatorRow(plane, y), first, second, sx.whole, c00, c01, c10, c11, ns, next);
+      const VerticalTaps taps = verticalTaps(y, sy.whole, top, bottom, nt);
+      if (taps.c0 == 0.0f) continue;
+      const std::size_t offset0 = std::size_t(taps.row0) * ns, offset1 = std::size_t(taps.row1) * ns;
+      const auto accumulate = [&](int plane, const float* first, const float* second) {
+        accumulateBilinearRow(accumulatorRow(plane, y), first, second, sx.whole, taps.c0 * ax0, taps.c0 * ax1,
+                              taps.c1 * ax0, taps.c1 * ax1, ns);
       };
-
-      if (lightFieldWeighted) {
-        // Each tap's weight is the bilinear coefficient times the light field's weight
-        // (refocus.hpp), accumulated as one more channel.
-        const float* weightPlane = lightField.weightPlane(u, v);
-        accumulate(channels, weightPlane + offset0, weightPlane + offset1);
-        for (int c = 0; c < channels; ++c) {
-          const float* plane = lightField.plane(u, v, c);
-          multiplyRows(product0.data(), weightPlane + offset0, plane + offset0, ns);
-          multiplyRows(product1.data(), weightPlane + offset1, plane + offset1, ns);
-          accumulate(c, product0.data(), product1.data());
-        }
-      } else {
-        if (weighted) accumulate(channels, ones.data(), ones.data());
-        for (int c = 0; c < channels; ++c) {
-          const float* plane = lightField.plane(u, v, c);
-          accumulate(c, plane + offset0, plane + offset1, nextRowInside ? plane + offset1 + ns : nullptr);
-        }
+      if (!lightFieldWeighted) {
+        accumulate(channels, ones.data(), ones.data());
+        continue;
+      }
+      // Each tap's weight is the bilinear coefficient times the light field's weight
+      // (refocus.hpp), accumulated as one more channel.
+      const float* weightPlane = lightField.weightPlane(u, v);
+      accumulate(channels, weightPlane + offset0, weightPlane + offset1);
+      for (int c = 0; c < channels; ++c) {
+        const float* plane = lightField.plane(u, v, c);
+        multiplyRows(product0.data(), weightPlane + offset0, plane + offset0, ns);
+        multiplyRows(product1.data(), weightPlane + offset1, plane + offset1, ns);
+        accumulate(c, product0.data(), product1.data());
       }
     }
   }

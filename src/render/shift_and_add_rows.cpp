@@ -67,6 +67,18 @@ void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, c
   edges();
 }
 
+void AccumulateBilinearRows(float* HWY_RESTRICT accumulator, const float* plane, int ns, int nt, int y0, int y1,
+                            int wholeX, float ax0, float ax1, int wholeY, float top, float bottom) {
+  for (int y = y0; y < y1; ++y) {
+    const VerticalTaps taps = verticalTaps(y, wholeY, top, bottom, nt);
+    if (taps.c0 == 0.0f) continue;
+    const float* next = taps.row1 + 1 < nt ? plane + std::size_t(taps.row1 + 1) * ns : nullptr;
+    AccumulateBilinearRow(accumulator + std::size_t(y - y0) * ns, plane + std::size_t(taps.row0) * ns,
+                          plane + std::size_t(taps.row1) * ns, wholeX, taps.c0 * ax0, taps.c0 * ax1, taps.c1 * ax0,
+                          taps.c1 * ax1, ns, next);
+  }
+}
+
 void MultiplyRows(float* HWY_RESTRICT out, const float* HWY_RESTRICT a, const float* HWY_RESTRICT b, int count) {
   const hn::ScalableTag<float> d;
   const int lanes = int(hn::Lanes(d));
@@ -96,12 +108,18 @@ HWY_AFTER_NAMESPACE();
 namespace lfcam {
 
 HWY_EXPORT(AccumulateBilinearRow);
+HWY_EXPORT(AccumulateBilinearRows);
 HWY_EXPORT(MultiplyRows);
 HWY_EXPORT(NormaliseRow);
 
 void accumulateBilinearRow(float* accumulator, const float* row0, const float* row1, int whole, float c00, float c01,
                            float c10, float c11, int ns, const float* nextRow) {
   HWY_DYNAMIC_DISPATCH(AccumulateBilinearRow)(accumulator, row0, row1, whole, c00, c01, c10, c11, ns, nextRow);
+}
+
+void accumulateBilinearRows(float* accumulator, const float* plane, int ns, int nt, int y0, int y1, int wholeX,
+                            float ax0, float ax1, int wholeY, float top, float bottom) {
+  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRows)(accumulator, plane, ns, nt, y0, y1, wholeX, ax0, ax1, wholeY, top, bottom);
 }
 
 void multiplyRows(float* out, const float* a, const float* b, int count) {

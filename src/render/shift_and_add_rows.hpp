@@ -14,6 +14,31 @@ namespace lfcam {
 void accumulateBilinearRow(float* accumulator, const float* row0, const float* row1, int whole, float c00, float c01,
                            float c10, float c11, int ns, const float* nextRow = nullptr);
 
+// The vertical taps of output row y for a view shifted by `whole` rows plus a fraction: rows
+// y + whole and y + whole + 1 with coefficients top and bottom ((1 - fraction) and fraction, times
+// any weight), a tap outside [0, nt) or of coefficient 0 dropped. A single live tap is always
+// row0 (with row1 = row0 and c1 = 0), so that it is read once; none live: c0 = c1 = 0.
+struct VerticalTaps {
+  int row0 = 0, row1 = 0;
+  float c0 = 0, c1 = 0;
+};
+
+inline VerticalTaps verticalTaps(int y, int whole, float top, float bottom, int nt) {
+  const int upper = y + whole, lower = upper + 1;
+  const float c0 = upper >= 0 && upper < nt ? top : 0.0f, c1 = lower >= 0 && lower < nt ? bottom : 0.0f;
+  if (c0 == 0.0f) return {lower, lower, c1, 0.0f};
+  if (c1 == 0.0f) return {upper, upper, c0, 0.0f};
+  return {upper, lower, c0, c1};
+}
+
+// One view's channel over output rows [y0, y1): accumulator row (y - y0) (rows of ns floats)
+// gains accumulateBilinearRow's taps of `plane` (nt rows of ns floats) at the view's constant
+// shift, whole columns wholeX with coefficients ax0, ax1, whole rows wholeY with top and bottom
+// as in verticalTaps. One call per block and channel, so that the row loop is inside the SIMD
+// code (no dispatch per row), and each row prefetches the source row the next one reads.
+void accumulateBilinearRows(float* accumulator, const float* plane, int ns, int nt, int y0, int y1, int wholeX,
+                            float ax0, float ax1, int wholeY, float top, float bottom);
+
 // out[i] = a[i] * b[i].
 void multiplyRows(float* out, const float* a, const float* b, int count);
 

@@ -1,9 +1,10 @@
 // lfcam bench INPUT [--repeat N] [--json]: the renderers side by side on one light field, in the
-// manner of `zstd -b`. Loads the light field once, measures the machine's memory-copy bandwidth
-// in the same run (bytes read plus bytes written per second, over buffers far larger than the
-// caches), then times each renderer N times after a warm-up and prints the median seconds per
-// photograph and its ratio to the floor: the light field's bytes as stored, read once at that
-// bandwidth. Last, the fast method again on one thread, for the scaling over threads; with
+// manner of `zstd -b`. Loads the light field once, then times each renderer N times after a
+// warm-up, each time just after measuring the machine's memory-copy bandwidth (bytes read plus
+// bytes written per second, over buffers far larger than the caches), and prints the median
+// seconds per photograph, the median floor (the light field's bytes as stored, read once at that
+// bandwidth) and the median ratio of a photo's time to the floor measured just before it. Last, the fast method on one thread and on all, alternately, for
+// the scaling over threads; with
 // --stack N, a focal stack of N slices per method first (fast, quadrature, fourier), timed whole
 // and reported per slice (fourier's 4D FFT included).
 #include <algorithm>
@@ -20,6 +21,7 @@
 #include "commands.hpp"
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/fourier_slice.hpp"
+#include "lfcam/huge_page_allocator.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/synthetic_camera.hpp"
@@ -38,21 +40,69 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-// Bytes read plus bytes written per second by a threaded memcpy of 256 MiB, best of `repeat`.
-double copyBandwidth(int repeat) {
-  const std::size_t bytes = std::size_t(256) << 20, slice = std::size_t(4) << 20;
-  std::vector<char> source(bytes, 1), destination(bytes, 0);  // written first: no page faults timed
-  double best = 1e30;
-  for (int i = 0; i < std::max(2, repeat); ++i) {
+// The floor, measured again before every timed photo: a machine shared with others (a virtual one
+// above all) changes speed from one second to the next, so a floor taken once would compare each
+// photo with the machine of another moment. One measurement: a threaded memcpy of 256 MiB, whose
+// bytes read plus bytes written per second are the bandwidth at which the light field's bytes are
+// read once. The buffers are on huge pages like a light field's samples, so that the floor is not
+// one slowed by TLB misses the light field does not have.
+class MemoryFloor {
+ public:
+  explicit MemoryFloor(double lightFieldBytes) : lightFieldBytes_(lightFieldBytes) {}
+
+  // Seconds the light field's bytes take at the bandwidth of one copy made now.
+  double measure() {
+    const std::size_t slice = std::size_t(4) << 20;
     const auto start = std::chrono::steady_clock::now();
-    parallelFor(0, bytes / slice, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) std::memcpy(destination.data() + k * slice, source.data() + k * slice, slice);
+    parallelFor(0, copyBytes / slice, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
+        std::memcpy(destination_.data() + k * slice, source_.data() + k * slice, slice);
     });
-    best = std::min(best, secondsSince(start));
+    const double bandwidth = 2.0 * double(copyBytes) / secondsSince(start);
+    volatile char sink = destination_[copyBytes / 2];
+    (void)sink;
+    bandwidths_.push_back(bandwidth);
+    return lightFieldBytes_ / bandwidth;
   }
-  volatile char sink = destination[bytes / 2];
-  (void)sink;
-  return 2.0 * double(bytes) / best;
+  double medianBandwidth() const { return median(bandwidths_); }
+
+ private:
+  static constexpr std::size_t copyBytes = std::size_t(256) << 20;
+  double lightFieldBytes_;
+  // Written first: no page faults timed.
+  std::vector<char, HugePageAllocator<char>> source_ = std::vector<char, HugePageAllocator<char>>(copyBytes, 1);
+  std::vector<char, HugePageAllocator<char>> destination_ = std::vector<char, HugePageAllocator<char>>(copyBytes, 0);
+  std::vector<double> bandwidths_;
+};
+
+// Timed runs, each just after a measurement of the floor: medians of the times, of the floors,
+// and of the ratio of each run to its own floor (the figure that the machine's changes of speed
+// disturb least: the two of a pair are some 20 ms apart).
+struct Timing {
+  double seconds = 0, floorSeconds = 0, ratio = 0;
+};
+
+struct TimedRuns {
+  std::vector<double> times, floors;
+  void add(double seconds, double floorSeconds) { times.push_back(seconds), floors.push_back(floorSeconds); }
+  Timing summary() const {
+    std::vector<double> ratios;
+    for (std::size_t i = 0; i < times.size(); ++i) ratios.push_back(times[i] / floors[i]);
+    return {median(times), median(floors), median(ratios)};
+  }
+};
+
+// `repeat` timed runs of `render` after one warm-up.
+Result<Timing> timeAgainstFloor(int repeat, MemoryFloor& floor, const std::function<Status()>& render) {
+  LFCAM_TRY(render());
+  TimedRuns runs;
+  for (int i = 0; i < repeat; ++i) {
+    const double floorSeconds = floor.measure();
+    const auto start = std::chrono::steady_clock::now();
+    LFCAM_TRY(render());
+    runs.add(secondsSince(start), floorSeconds);
+  }
+  return runs.summary();
 }
 
 }  // namespace
@@ -79,9 +129,9 @@ void addBenchCommand(CLI::App& app, Job& job) {
       auto loaded = loadInput(options->input);
       if (!loaded) return loaded.error();
       const LightField& lightField = *loaded;
-      const double bandwidth = copyBandwidth(options->repeat);
       const double bytes = double(lightField.samples().size() + lightField.weights().size()) * sizeof(float);
-      const double floorSeconds = bytes / bandwidth;
+      MemoryFloor floor(bytes);
+      for (int i = 0; i < 3; ++i) floor.measure();  // warm-up, and the bandwidth of the header line
 
       // A fractional slope, so that every view is interpolated.
       const double slope = 0.63;
@@ -101,26 +151,27 @@ void addBenchCommand(CLI::App& app, Job& job) {
           {"observer", [&]() { return observe(lightField, {.u = 0.5, .v = 0.5}); }},
       };
       nlohmann::json results = nlohmann::json::array();
-      if (!options->json)
-        std::printf("%s: %.1f MB, memory copy %.2f GB/s (read + write), floor %.2f ms per photo\n",
-                    options->input.path.c_str(), bytes / 1e6, bandwidth / 1e9, floorSeconds * 1e3);
-      for (const Method& method : methods) {
-        auto warm = method.render();
-        if (!warm) return warm.error();
-        std::vector<double> times;
-        for (int i = 0; i < options->repeat; ++i) {
-          const auto start = std::chrono::steady_clock::now();
-          auto photo = method.render();
-          times.push_back(secondsSince(start));
-          if (!photo) return photo.error();
-        }
-        const double seconds = median(times);
-        results.push_back({{"method", method.name},
-                           {"seconds_per_photo", seconds},
-                           {"floor_seconds", floorSeconds},
-                           {"ratio_to_floor", seconds / floorSeconds}});
+      const auto report = [&](const std::string& name, const Timing& timing, const char* unit) -> nlohmann::json& {
+        results.push_back({{"method", name},
+                           {"seconds_per_photo", timing.seconds},
+                           {"floor_seconds", timing.floorSeconds},
+                           {"ratio_to_floor", timing.ratio}});
         if (!options->json)
-          std::printf("%-14s %10.2f ms per photo  %6.2fx floor\n", method.name, seconds * 1e3, seconds / floorSeconds);
+          std::printf("%-16s %9.2f ms per %-5s  floor %7.2f ms  %6.2fx floor\n", name.c_str(), timing.seconds * 1e3, unit,
+                      timing.floorSeconds * 1e3, timing.ratio);
+        return results.back();
+      };
+      if (!options->json)
+        std::printf("%s: %.1f MB, memory copy %.2f GB/s (read + write, median), floor measured before each photo\n",
+                    options->input.path.c_str(), bytes / 1e6, floor.medianBandwidth() / 1e9);
+      for (const Method& method : methods) {
+        auto timing = timeAgainstFloor(options->repeat, floor, [&]() -> Status {
+          auto photo = method.render();
+          if (!photo) return photo.error();
+          return {};
+        });
+        if (!timing) return timing.error();
+        report(method.name, *timing, "photo");
       }
       // Fourier slice: the 4D FFT once (reported apart), then per photo a slice and a 2D FFT.
       if (!options->noFourier) {
@@ -128,73 +179,69 @@ void addBenchCommand(CLI::App& app, Job& job) {
         auto refocuser = FourierRefocuser::create(lightField);
         if (!refocuser) return refocuser.error();
         const double setup = secondsSince(start);
-        { Image warm = refocuser->refocus(slope); }
-        std::vector<double> times;
-        for (int i = 0; i < options->repeat; ++i) {
-          const auto begin = std::chrono::steady_clock::now();
+        auto timing = timeAgainstFloor(options->repeat, floor, [&]() -> Status {
           Image photo = refocuser->refocus(slope);
-          times.push_back(secondsSince(begin));
-        }
-        const double seconds = median(times);
-        results.push_back({{"method", "fourier"},
-                           {"seconds_per_photo", seconds},
-                           {"floor_seconds", floorSeconds},
-                           {"ratio_to_floor", seconds / floorSeconds},
-                           {"setup_seconds", setup},
-                           {"spectrum_bytes", refocuser->spectrumBytes()}});
+          return {};
+        });
+        if (!timing) return timing.error();
+        nlohmann::json& entry = report("fourier", *timing, "photo");
+        entry["setup_seconds"] = setup;
+        entry["spectrum_bytes"] = refocuser->spectrumBytes();
         if (!options->json) {
-          std::printf("%-14s %10.2f ms per photo  %6.2fx floor  (4D FFT once: %.2f s, %.0f MB)\n", "fourier",
-                      seconds * 1e3, seconds / floorSeconds, setup, refocuser->spectrumBytes() / 1e6);
+          std::printf("%-16s 4D FFT once: %.2f s, %.0f MB\n", "", setup, refocuser->spectrumBytes() / 1e6);
           const double fast = results[0]["seconds_per_photo"];
-          if (seconds < fast)
-            std::printf("fourier beats fast from %.0f photos on\n", std::ceil(setup / (fast - seconds)));
+          if (timing->seconds < fast)
+            std::printf("fourier beats fast from %.0f photos on\n", std::ceil(setup / (fast - timing->seconds)));
           else
             std::printf("fourier is never faster than fast here\n");
         }
       }
-      const auto report = [&](const std::string& name, double seconds, const char* unit) {
-        results.push_back({{"method", name},
-                           {"seconds_per_photo", seconds},
-                           {"floor_seconds", floorSeconds},
-                           {"ratio_to_floor", seconds / floorSeconds}});
-        if (!options->json)
-          std::printf("%-14s %10.2f ms per %-5s %6.2fx floor\n", name.c_str(), seconds * 1e3, unit, seconds / floorSeconds);
-      };
       // Focal stacks over the scene's disparity range: the time of the whole stack per slice.
       if (options->stack > 0) {
         const std::vector<double> slopes = evenlySpaced(lightField.metadata.disparityMin.value_or(-2.0),
                                                         lightField.metadata.disparityMax.value_or(2.0), options->stack);
         const auto discard = [](int, double, Image&&) -> Status { return {}; };
-        const auto timeStack = [&](const std::string& name, const RenderOptions& render) -> Status {
+        const auto timeStack = [&](const std::string& name, const std::function<Status()>& stack) -> Status {
+          const double floorSeconds = floor.measure();
           const auto start = std::chrono::steady_clock::now();
-          LFCAM_TRY(renderFocalStack(lightField, slopes, {}, render, discard));
-          report(name, secondsSince(start) / double(slopes.size()), "slice");
+          LFCAM_TRY(stack());
+          TimedRuns run;
+          run.add(secondsSince(start) / double(slopes.size()), floorSeconds);
+          report(name, run.summary(), "slice");
           return {};
         };
-        LFCAM_TRY(timeStack("stack-fast", {}));
-        LFCAM_TRY(timeStack("stack-quadrature", {.method = RenderMethod::Quadrature, .supersampling = 2}));
-        if (!options->noFourier) {
-          const auto start = std::chrono::steady_clock::now();
-          auto refocuser = FourierRefocuser::create(lightField);
-          if (!refocuser) return refocuser.error();
-          for (double sliceSlope : slopes) Image photo = refocuser->refocus(sliceSlope);
-          report("stack-fourier", secondsSince(start) / double(slopes.size()), "slice");
-        }
+        LFCAM_TRY(timeStack("stack-fast", [&] { return renderFocalStack(lightField, slopes, {}, {}, discard); }));
+        LFCAM_TRY(timeStack("stack-quadrature", [&] {
+          return renderFocalStack(lightField, slopes, {}, {.method = RenderMethod::Quadrature, .supersampling = 2},
+                                  discard);
+        }));
+        if (!options->noFourier)
+          LFCAM_TRY(timeStack("stack-fourier", [&]() -> Status {
+            auto refocuser = FourierRefocuser::create(lightField);
+            if (!refocuser) return refocuser.error();
+            for (double sliceSlope : slopes) Image photo = refocuser->refocus(sliceSlope);
+            return {};
+          }));
       }
-      // Scaling: the fast method on one thread (last, since the limit stays for the process).
+      // Scaling: the fast method on one thread and on all, alternately, each against its floors.
       {
-        setThreadCount(1);
-        { Image warm = refocus(lightField, slope); }
-        std::vector<double> times;
-        for (int i = 0; i < options->repeat; ++i) {
+        TimedRuns one, all;
+        const auto timeOn = [&](int threads, TimedRuns& runs, double floorSeconds) {
+          setThreadCount(threads);
           const auto start = std::chrono::steady_clock::now();
           Image photo = refocus(lightField, slope);
-          times.push_back(secondsSince(start));
+          runs.add(secondsSince(start), floorSeconds);
+          setThreadCount(0);
+        };
+        for (int i = 0; i < options->repeat; ++i) {
+          const double floorSeconds = floor.measure();  // on all threads: the machine's floor
+          timeOn(1, one, floorSeconds);
+          timeOn(0, all, floorSeconds);
         }
-        const double oneThread = median(times);
-        report("fast-1-thread", oneThread, "photo");
+        report("fast-1-thread", one.summary(), "photo");
         if (!options->json)
-          std::printf("fast: %.2fx faster on all threads than on one\n", oneThread / double(results[0]["seconds_per_photo"]));
+          std::printf("fast: %.2fx faster on all threads than on one (the two alternately, median)\n",
+                      one.summary().seconds / all.summary().seconds);
       }
       if (options->json) std::printf("%s\n", results.dump(2).c_str());
       return {};

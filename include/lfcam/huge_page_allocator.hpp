@@ -1,0 +1,30 @@
+// HugePageAllocator: the allocator of the large sample buffers (LightField). Buffers of 4 MiB or
+// more are aligned to 2 MiB and marked for transparent huge pages (madvise), because a refocus
+// reads hundreds of short row runs scattered over the whole light field: with 4 KiB pages nearly
+// every run begins with a TLB miss, with 2 MiB pages a few hundred entries cover it all. Smaller
+// buffers come from operator new as usual. Where the kernel refuses huge pages, memory is the
+// same as before, only aligned.
+#pragma once
+
+#include <cstddef>
+
+namespace lfcam {
+
+namespace huge_pages {
+void* allocate(std::size_t bytes);  // throws std::bad_alloc like operator new
+void deallocate(void* pointer, std::size_t bytes) noexcept;
+}  // namespace huge_pages
+
+template <typename T>
+struct HugePageAllocator {
+  using value_type = T;
+  HugePageAllocator() = default;
+  template <typename U>
+  HugePageAllocator(const HugePageAllocator<U>&) noexcept {}
+  T* allocate(std::size_t count) { return static_cast<T*>(huge_pages::allocate(count * sizeof(T))); }
+  void deallocate(T* pointer, std::size_t count) noexcept { huge_pages::deallocate(pointer, count * sizeof(T)); }
+  template <typename U>
+  bool operator==(const HugePageAllocator<U>&) const noexcept { return true; }
+};
+
+}  // namespace lfcam
