@@ -156,10 +156,18 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
     const float top = float(1 - sy.fraction) * termWeight, bottom = float(sy.fraction) * termWeight;
 
     if (!lightFieldWeighted) {
-      // The common case: each channel's rows in one call.
-      for (int c = 0; c < channels; ++c)
+      // The common case: each channel's rows in one call, which also prefetches the first
+      // source row of the call after it.
+      const auto firstRow = [&](std::size_t t, int c) {
+        const int row = std::clamp(y0 + plan.termRowShift[t].whole, 0, nt - 1);
+        return lightField.plane(plan.terms[t].u, plan.terms[t].v, c) + std::size_t(row) * ns;
+      };
+      for (int c = 0; c < channels; ++c) {
+        const float* nextPass = c + 1 < channels ? firstRow(term, c + 1)
+                                : term + 1 < plan.terms.size() ? firstRow(term + 1, 0) : nullptr;
         accumulateBilinearRows(accumulatorRow(c, y0), lightField.plane(u, v, c), ns, nt, y0, y1, sx.whole, ax0, ax1,
-                               sy.whole, top, bottom);
+                               sy.whole, top, bottom, nextPass);
+      }
       if (!weighted) continue;
     }
     // Row by row: the weight sum, and (with a weight plane) the channels as w * L.

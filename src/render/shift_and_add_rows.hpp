@@ -35,9 +35,10 @@ inline VerticalTaps verticalTaps(int y, int whole, float top, float bottom, int 
 // gains accumulateBilinearRow's taps of `plane` (nt rows of ns floats) at the view's constant
 // shift, whole columns wholeX with coefficients ax0, ax1, whole rows wholeY with top and bottom
 // as in verticalTaps. One call per block and channel, so that the row loop is inside the SIMD
-// code (no dispatch per row), and each row prefetches the source row the next one reads.
+// code (no dispatch per row), and each row prefetches the source row the next one reads; the last
+// row prefetches nextPass (if not null), the first source row of the call that comes next.
 void accumulateBilinearRows(float* accumulator, const float* plane, int ns, int nt, int y0, int y1, int wholeX,
-                            float ax0, float ax1, int wholeY, float top, float bottom);
+                            float ax0, float ax1, int wholeY, float top, float bottom, const float* nextPass);
 
 // out[i] = a[i] * b[i].
 void multiplyRows(float* out, const float* a, const float* b, int count);
