@@ -32,7 +32,7 @@ void reduceBasis(std::array<double, 2>& a, std::array<double, 2>& b) {
 
 }  // namespace
 
-Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::string& where) {
+Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::string& where, double minPeak) {
   const int size = std::min({prepared.width(), prepared.height(), 1024}) & ~1;
   if (size < 32) return makeError(ErrorCode::Format, where + ": too small to find a microlens lattice in");
   const int x0 = (prepared.width() - size) / 2, y0 = (prepared.height() - size) / 2;
@@ -99,10 +99,9 @@ Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::str
   if (peaks.empty()) return makeError(ErrorCode::Format, where + ": no periodic microlens pattern found");
   double strongest = 0;
   for (const Peak& p : peaks) strongest = std::max(strongest, p.value);
-  // The lattice vectors nearest the origin are all about as strong as the strongest peak; a
-  // hexagonal pattern of flat-topped images also correlates at a third of its cells' diagonal
-  // (gaps onto gaps, about 0.55 of it, measured on a 160-pixel white image): not a lattice vector.
-  std::erase_if(peaks, [&](const Peak& p) { return p.value < 0.7 * strongest; });
+  // The lattice vectors nearest the origin are all about as strong as the strongest peak (the
+  // caller's minPeak: see calibrate.cpp).
+  std::erase_if(peaks, [&](const Peak& p) { return p.value < minPeak * strongest; });
   std::sort(peaks.begin(), peaks.end(), [](const Peak& a, const Peak& b) { return std::hypot(a.x, a.y) < std::hypot(b.x, b.y); });
   std::array<double, 2> a{peaks[0].x, peaks[0].y}, b{0, 0};
   bool found = false;

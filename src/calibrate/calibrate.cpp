@@ -224,6 +224,11 @@ Result<Calibration> calibrateFrom(Image work, Lattice lattice, const Calibration
                            ? std::max(1, int(std::floor(std::sqrt(double(predicted.size()) / options.fitCentres))))
                            : 1;
     std::vector<CentreEstimate> rough(predicted.size()), fine(predicted.size());
+    // Hexagonal images fill most of the symmetric window with their six neighbours, whose ramps
+    // about their own centres bias a single ramp (about 1e-4 in pitch); square ones less, and the
+    // real square lfm-guv images agree better with napari-LF under the single ramp (docs/design.md).
+    const std::vector<std::array<double, 2>> neighbours =
+        lattice.packing == Packing::Hexagonal ? lattice.neighbourOffsets() : std::vector<std::array<double, 2>>{};
     parallelFor(0, predicted.size(), 64, [&](std::size_t begin, std::size_t end) {
       for (std::size_t m = begin; m < end; ++m) {
         const bool sampled = stride == 1 || (predicted[m].k % stride == 0 && predicted[m].n % stride == 0);
@@ -237,7 +242,7 @@ Result<Calibration> calibrateFrom(Image work, Lattice lattice, const Calibration
           fine[m] = rough[m];
           continue;
         }
-        fine[m] = calibrate_detail::refineSymmetric(smooth, rough[m].x, rough[m].y, symmetricRadius, 6);
+        fine[m] = calibrate_detail::refineSymmetric(smooth, rough[m].x, rough[m].y, symmetricRadius, 6, neighbours);
         if (std::hypot(fine[m].x - rough[m].x, fine[m].y - rough[m].y) > 1) fine[m].ok = false;
       }
     });
@@ -309,7 +314,12 @@ Result<Calibration> calibrateGridDetailed(const Image& image, const CalibrationO
   // autocorrelation can be fooled on a small image: when the two disagree (packing, or pitch by
   // more than 5%), both are fitted and the lattice that fits its centres better (relative to its
   // pitch) wins; the hint serves where the autocorrelation finds nothing.
-  auto measured = calibrate_detail::latticeFromAutocorrelation(work, where);
+  // Lattice vectors' peaks, against the strongest, measured on 160-pixel hexagonal images: white,
+  // 0.95, but flat-topped images also correlate a third of a cell's diagonal away (gaps onto gaps,
+  // 0.68 to 0.70: not a lattice vector); pinhole spots, sharp, lose much more between the integer
+  // lags (the half-pitch row offset: under 0.78), and have no gaps to match.
+  const double minPeak = options.target == CalibrationTarget::White ? 0.78 : 0.7;
+  auto measured = calibrate_detail::latticeFromAutocorrelation(work, where, minPeak);
   if (!options.hint) {
     if (!measured) return measured.error();
     return calibrateFrom(std::move(work), *measured, options, where);

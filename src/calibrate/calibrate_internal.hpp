@@ -20,6 +20,8 @@ struct Lattice {
   std::array<double, 2> centre(int k, int n) const;
   // Centre-to-centre distance of nearest neighbours.
   double neighbourDistance() const;
+  // Pixel offsets from a microlens to its nearest neighbours (6 when hexagonal, 8 when square).
+  std::vector<std::array<double, 2>> neighbourOffsets() const;
 };
 
 // A measured centre with its lattice indices.
@@ -41,8 +43,9 @@ struct LatticeFit {
 LatticeFit fitLattice(const std::vector<Sample>& samples, const Lattice& start);
 
 // A first lattice (packing, pitches, rotation; no origin) from the autocorrelation of the central
-// part of a prepared image. Fails when no two independent periodic peaks are found.
-Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::string& where);
+// part of a prepared image. Fails when no two independent periodic peaks are found. minPeak:
+// the share of the strongest peak a lattice vector's peak must reach.
+Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::string& where, double minPeak = 0.7);
 
 struct CentreEstimate {
   double x = 0, y = 0;
@@ -60,10 +63,13 @@ CentreEstimate refineCentre(const Image& image, double x, double y, double radiu
                             double relax = 1.0, double tolerance = 1e-3);
 
 // The centre of symmetry of `image` near (x, y): Gauss-Newton on the sum over offsets d within
-// `radius` of [I(c + d) - I(c - d) - (g . d)(I(c + d) + I(c - d) - 2 floor)]^2 over the centre c
-// and a tilt g, bilinear samples. Unbiased for any centrally symmetric microlens image, whatever
-// its shape, also under a linear ramp of brightness across it (vignetting off the axis).
-CentreEstimate refineSymmetric(const Image& image, double x, double y, double radius, int iterations);
+// `radius` of [I(c + d) - I(c - d) - (g . e(d))(I(c + d) + I(c - d))]^2 over the centre c and a
+// tilt g, bilinear samples, where e(d) is d taken from the nearest of c and c + `neighbours`: each
+// microlens image in the window carries the ramp about its own centre. Unbiased for any centrally
+// symmetric microlens image, whatever its shape, also under a linear ramp of brightness across
+// each image (vignetting off the axis), with its neighbours' images inside the window.
+CentreEstimate refineSymmetric(const Image& image, double x, double y, double radius, int iterations,
+                               const std::vector<std::array<double, 2>>& neighbours = {});
 
 // The JSON in a file; errors name it. expected: what the file should be, for the message.
 Result<nlohmann::json> readJsonFile(const std::filesystem::path& path, const char* expected);

@@ -19,6 +19,23 @@ double Lattice::neighbourDistance() const {
   return std::min(pitchX, pitchY);
 }
 
+std::vector<std::array<double, 2>> Lattice::neighbourOffsets() const {
+  const double c = std::cos(theta), s = std::sin(theta);
+  std::vector<std::array<double, 2>> offsets;
+  const auto add = [&](double a, double b) { offsets.push_back({c * a - s * b, s * a + c * b}); };
+  for (int n = -1; n <= 1; ++n)
+    for (int k = -1; k <= 1; ++k) {
+      if (packing == Packing::Hexagonal) {
+        // Rows above and below are half a pitch off, whichever the row's parity.
+        if (n == 0 && k != 0) add(k * pitchX, 0);
+        if (n != 0 && k != 0) add(0.5 * k * pitchX, n * pitchY);
+      } else if (n != 0 || k != 0) {
+        add(k * pitchX, n * pitchY);
+      }
+    }
+  return offsets;
+}
+
 namespace {
 
 double median(std::vector<double> values) {
@@ -164,24 +181,38 @@ inline float bilinear(const float* data, int width, double x, double y) {
 
 }  // namespace
 
-CentreEstimate refineSymmetric(const Image& image, double x, double y, double radius, int iterations) {
+CentreEstimate refineSymmetric(const Image& image, double x, double y, double radius, int iterations,
+                               const std::vector<std::array<double, 2>>& neighbours) {
   CentreEstimate estimate;
   const int width = image.width(), height = image.height();
   const int reach = int(std::ceil(radius));
   auto inside = [&] { return x - reach - 2 >= 0 && y - reach - 2 >= 0 && x + reach + 2 <= width && y + reach + 2 <= height; };
   if (!inside()) return estimate;
-  // Offsets over half the disc (d and -d give the same term).
+  // Offsets over half the disc (d and -d give the same term), and each one's offset from the
+  // centre of the microlens image it falls on (the tilt's lever: brightness ramps about each image's
+  // own centre, so a neighbour's part of the window is no continuation of this image's ramp).
   thread_local std::vector<std::array<int, 2>> offsets;
+  thread_local std::vector<std::array<double, 2>> levers;
   thread_local double offsetsRadius = -1;
-  if (offsetsRadius != radius) {
+  thread_local std::vector<std::array<double, 2>> offsetsNeighbours;
+  if (offsetsRadius != radius || offsetsNeighbours != neighbours) {
     offsets.clear();
+    levers.clear();
     for (int dy = 0; dy <= reach; ++dy)
       for (int dx = -reach; dx <= reach; ++dx)
-        if (!(dy == 0 && dx <= 0) && dx * dx + dy * dy <= radius * radius) offsets.push_back({dx, dy});
+        if (!(dy == 0 && dx <= 0) && dx * dx + dy * dy <= radius * radius) {
+          offsets.push_back({dx, dy});
+          std::array<double, 2> lever{double(dx), double(dy)};
+          for (const auto& n : neighbours)
+            if (std::hypot(dx - n[0], dy - n[1]) < std::hypot(lever[0], lever[1])) lever = {dx - n[0], dy - n[1]};
+          levers.push_back(lever);
+        }
     offsetsRadius = radius;
+    offsetsNeighbours = neighbours;
   }
-  // Gauss-Newton on the sum over offsets d of [I(c + d) - I(c - d) - (g . d)(I(c + d) + I(c - d))]^2
-  // over the centre c and a tilt g: a centrally symmetric image S times a linear ramp (1 + g . d),
+  // Gauss-Newton on the sum over offsets d of [I(c + d) - I(c - d) - (g . e)(I(c + d) + I(c - d))]^2
+  // (e: d's lever, d itself without neighbours) over the centre c and a tilt g: a centrally
+  // symmetric image S times a linear ramp (1 + g . d),
   // such as a microlens image under the cos^4 fall-off of the rays of an off-axis microlens, has
   // this residual zero at its true centre, where without g the ramp pulls the centre towards the
   // bright side (inwards). The Jacobian in c is taken once at the start (within a pixel or so).
@@ -219,7 +250,7 @@ CentreEstimate refineSymmetric(const Image& image, double x, double y, double ra
     normal.block<2, 2>(2, 2).setZero();
     Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
     for (std::size_t k = 0; k < offsets.size(); ++k) {
-      const double dx = offsets[k][0], dy = offsets[k][1];
+      const double dx = levers[k][0], dy = levers[k][1];
       const double level = plus[k] + minus[k];
       const double r = plus[k] - minus[k] - (gx * dx + gy * dy) * level;
       const double ggx = -dx * level, ggy = -dy * level;

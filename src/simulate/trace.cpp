@@ -152,8 +152,23 @@ struct TraceOptics {
   double activeHalfA = 0;   // half extents of the sampled rectangle of one microlens (local frame)
   double activeHalfB = 0;
   double activeHalfSide = 0;  // hexagon: half of the flat-to-flat width (scaled by fill factor)
+  double cellArea = 0;      // of the sampled cell (rectangle or hexagon), mm^2
   double reach = 0;         // how far from its image centre a microlens can deliver light
   int searchI = 1, searchJ = 1;
+
+  // A point of the hexagonal cell (flats at a = +-activeHalfSide) from a point (ca, cb) of the unit
+  // square, uniformly: the hexagon is three rhombi, each spanned by two vertices 120 degrees apart.
+  // Every sample lands inside, where sampling the bounding box and rejecting the corners made the
+  // flat top of each hexagonal microlens image as noisy as the count of accepted samples.
+  void hexagonPoint(double ca, double cb, double& a, double& b) const {
+    const double h = activeHalfSide, k = activeHalfB;  // k: centre to the vertex on the b axis
+    static constexpr double kVertexA[3] = {0, 1, -1}, kVertexB[3] = {1, -0.5, -0.5};
+    const int r = std::min(2, int(ca * 3));
+    const double s = ca * 3 - r;
+    const int q = (r + 1) % 3;
+    a = (s * kVertexA[r] + cb * kVertexA[q]) * h;
+    b = (s * kVertexB[r] + cb * kVertexB[q]) * k;
+  }
 
   void lensCentre(int i, int j, double& x, double& y) const {
     double a = (i - 0.5 * (columns - 1)) * pitch;
@@ -192,8 +207,10 @@ TraceOptics prepareOptics(const CameraModel& camera) {
     o.activeHalfSide = 0.5 * o.pitch * shrink;
     o.activeHalfA = o.activeHalfSide;
     o.activeHalfB = o.pitch / std::sqrt(3.0) * shrink;
+    o.cellArea = 2 * std::sqrt(3.0) * o.activeHalfSide * o.activeHalfSide;
   } else {
     o.activeHalfA = o.activeHalfB = 0.5 * o.pitch * shrink;
+    o.cellArea = 4 * o.activeHalfA * o.activeHalfB;
   }
   // x - imageCentre = delta (1 - beta/fm + beta/F) - beta u / F, delta in the active cell,
   // u in the aperture; plus the pixel's half diagonal.
@@ -260,9 +277,13 @@ double pixelIrradiance(const TraceOptics& o, const PreparedScene& scene, int px,
         const double x = x0 + ((k % n) + rng.uniform()) * inv * o.pixel;
         const double y = y0 + ((k / n) + rng.uniform()) * inv * o.pixel;
         const int l = permutation[k];
-        const double a = (((l % n) + rng.uniform()) * inv * 2 - 1) * o.activeHalfA;
-        const double b = (((l / n) + rng.uniform()) * inv * 2 - 1) * o.activeHalfB;
-        if (o.hex && (std::abs(a) * 0.5 + std::abs(b) * 0.8660254037844386 > o.activeHalfSide)) continue;
+        const double ca = ((l % n) + rng.uniform()) * inv, cb = ((l / n) + rng.uniform()) * inv;
+        double a, b;
+        if (o.hex) o.hexagonPoint(ca, cb, a, b);
+        else {
+          a = (ca * 2 - 1) * o.activeHalfA;
+          b = (cb * 2 - 1) * o.activeHalfB;
+        }
         const double mx = lx + o.cosR * a - o.sinR * b, my = ly + o.sinR * a + o.cosR * b;
         // Sensor -> microlens (slope in), thin microlens, -> main lens at distance F.
         const double sx = (mx - x) / o.beta - (mx - lx) / o.fm;
@@ -275,7 +296,7 @@ double pixelIrradiance(const TraceOptics& o, const PreparedScene& scene, int px,
         sum += channelValue(hit.radiance, channel) * c2 * c2;
         ++rays;
       }
-      total += sum / count * (4 * o.activeHalfA * o.activeHalfB) / (o.beta * o.beta);
+      total += sum / count * o.cellArea / (o.beta * o.beta);
     }
   }
   return total;
