@@ -13,10 +13,14 @@
 //     both diagonals) is sampled at (s - u d, t - v d), bilinearly, and compared with the
 //     reference (centre) view: squared difference of luminance, sRGB-encoded so that texture in
 //     the shadows counts. At occlusion boundaries only part of the aperture sees the point, so
-//     the squared differences are averaged over four overlapping half-apertures (u <= 0, u >= 0,
-//     v <= 0, v >= 0), and over the centre row and the centre column alone (for surfaces slanted
-//     steeply along one axis, like a floor), and the best subset is kept. (The light field's
-//     weight is not used here: a vignetted view counts like the others.)
+//     the squared differences are averaged over four strict half-apertures (u < 0, u > 0, v < 0,
+//     v > 0: the views moving along an edge are left out, as they too see a slanted occluder),
+//     and over the centre row and the centre column alone (for surfaces slanted steeply along
+//     one axis, like a floor), and the best subset is kept. Bilinear sampling between pixels
+//     blurs by f (1 - f) / 2 times the second difference at fraction f, which biases the cost
+//     towards whole-pixel shifts; that term, modelled from the reference view's squared second
+//     differences, is subtracted (`lockingCorrection`; a quarter of it in the fine search of
+//     step 6). (The light field's weight is not used here: a vignetted view counts like the others.)
 //  3. Defocus cue, per label d: the photograph refocused at d (lfcam::refocus of the luminance,
 //     every view) is sharpest where d is right; its squared Laplacian is subtracted from the cost,
 //     weighted by `defocusWeight` (both terms are squared luminance).
@@ -54,16 +58,14 @@
 // own disparity-to-depth conversion (hci_parameters.hpp).
 //
 // Measured (tests/depth_layered_planes_test.cpp, tests/realdata/hci_depth_test.cpp): BadPix(0.07)
-// 11.2 %, BadPix(0.03) 13.9 %, MSE x100 9.3 on the layered-planes default scene (9x9 views of
-// 128x128); 15.8 %, 35.5 % and 28.1 on HCI antinous (the goal of 7 % is not reached: the floor,
-// the dark wall whose texture is below the views' 8-bit quantisation, and occlusion edges a pixel
-// or two fat); 16.6 %, 28.2 %, 3.38 on the simulator's `people` scene (ideal light field, 9x9
-// views of 200x200, exact disparity from idealDepth). Without the fill (fillLambda = 0): 9.0 %,
-// 10.3 %, 10.0; 17.6 %, 37.4 %, 31.2; 15.8 %, 27.2 %, 3.40.
+// 8.3 %, BadPix(0.03) 13.9 %, MSE x100 8.9 on the layered-planes default scene (9x9 views of
+// 128x128); 14.2 %, 38.8 % and 9.1 on HCI antinous (the goal of 7 % is not reached: the steep
+// floor, biased too far, and background pixels up to 6 pixels beside a nearer surface given its
+// disparity; docs/design.md has the breakdown).
 // Cost: labels x (33 views + one luminance refocus) bilinear passes over ns x nt, 8 passes of
 // labels x ns x nt for the optimisation, (2 refineSteps + 1) x 33 bilinear passes for the fine
 // search, 6 tridiagonal solves per row and per column for the fill (about 70 ms of CPU at
-// 512x512) and a (2 medianRadius + 1)^2 sort per pixel for the median; memory 2 x labels x ns x nt
+// 512x512) and a (2 medianRadius + 1)^2 selection per pixel for the median; memory 2 x labels x ns x nt
 // floats (bench/depth_bench.cpp: ratio to one refocus).
 #pragma once
 
@@ -78,16 +80,17 @@ namespace lfcam {
 struct DepthOptions {
   std::optional<double> disparityMin, disparityMax;  // default: metadata, else [-2, 2]
   int labels = 0;                 // candidate disparities; 0: one per 0.1 px, within [16, 96]
-  double defocusWeight = 1.0;     // weight of the defocus cue against the correspondence cue
+  double defocusWeight = 0.5;     // weight of the defocus cue against the correspondence cue
   int filterRadius = 1;           // guided filter window: (2 r + 1)^2 pixels
   double filterEpsilon = 1e-4;    // guided filter regulariser, squared linear luminance
   double smoothness = 1.0;        // scales both jump penalties of the optimisation; 0 disables it
   int refineSteps = 2;            // fine search: steps per label on each side; 0 disables it
   int refineRadius = 8;           // guided filter window of the fine search: (2 r + 1)^2 pixels
-  int medianRadius = 4;           // weighted median window; 0 disables it
+  int medianRadius = 6;           // weighted median window; 0 disables it
   double medianSigma = 0.05;      // guide (sRGB luminance) difference that weighs a neighbour 0.6
   double fillLambda = 1.0;        // edge-aware fill (needs refineSteps > 0); 0 disables it
   double fillSigma = 0.02;        // centre-view (sRGB) colour difference that weakens a link to 1/e
+  double lockingCorrection = 1.0; // scale of the interpolation-bias term removed from the cost; 0: none
 };
 
 struct DepthMap {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "lfcam/image.hpp"
@@ -40,6 +41,12 @@ class GuidedFilter {
 // passes. Pixels of low confidence take the values of confident ones on their side of an edge.
 void globalSmooth(const float* guide, int guideChannels, int width, int height, const float* confidence,
                   float* values, float lambda, float sigma, int iterations);
+
+// Weighted median of (value, weight) pairs, weights >= 0 with a positive total: the smallest value
+// whose cumulative weight in ascending order reaches half the total. Both reorder `window`.
+// The reference sorts; the fast one selects by three-way partitions (weighted_median.cpp).
+float weightedMedianSorted(std::vector<std::pair<float, float>>& window, float total);
+float weightedMedianSelect(std::vector<std::pair<float, float>>& window, float total);
 
 // Semi-global optimisation (Hirschmueller 2008) of a cost volume stored pixel-major:
 // cost[(y * width + x) * labels + l]. Sums, over 8 path directions, the path costs
