@@ -84,9 +84,14 @@ class PeopleAllInFocus : public ::testing::Test {
     for (float& sample : noisy_->samples())
       sample += std::sqrt(0.0004f + 0.002f * std::max(sample, 0.0f)) * normal(generator);
 
-    // The cards' disparities (exact, from the optics) and the pixels well inside each card.
+    // The exact disparity of every pixel (non-finite where the optics give none), and the cards'
+    // disparities and the pixels well inside each card.
     const Optics& optics = *clean_->metadata.optics;
     const int w = depth->width(), h = depth->height(), margin = 4;
+    truth_ = new Image(w, h, 1);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        truth_->at(x, y, 0) = float(disparityFromDistance(optics, depth->at(x, y, 0)).value_or(NAN));
     cards_ = new std::vector<Card>;
     for (const Plane& plane : scene.planes) {
       Card card{plane.name, *disparityFromDistance(optics, plane.centreMm[2]), {}};
@@ -105,6 +110,7 @@ class PeopleAllInFocus : public ::testing::Test {
     delete clean_;
     delete noisy_;
     delete cards_;
+    delete truth_;
   }
 
   // Figure 15's two claims, card by card. The composite's slices were chosen on the noisy light
@@ -151,10 +157,12 @@ class PeopleAllInFocus : public ::testing::Test {
   static LightField* clean_;
   static LightField* noisy_;
   static std::vector<Card>* cards_;
+  static Image* truth_;
 };
 LightField* PeopleAllInFocus::clean_ = nullptr;
 LightField* PeopleAllInFocus::noisy_ = nullptr;
 std::vector<Card>* PeopleAllInFocus::cards_ = nullptr;
+Image* PeopleAllInFocus::truth_ = nullptr;
 
 TEST_F(PeopleAllInFocus, FocusMeasureCompositeIsSharpAndQuiet) {
   auto result = allInFocus(*noisy_, stackOptions());
@@ -171,6 +179,27 @@ TEST_F(PeopleAllInFocus, EstimatedDepthCompositeIsSharpAndQuiet) {
   auto result = allInFocus(*noisy_, options);
   ASSERT_TRUE(result) << result.error().message;
   expectSharpAndQuiet(*result);
+}
+
+// Issue 6 asks for the depth scores of every scene that can be run, the simulator's with exact
+// depth included: scored as the HCI benchmark scores (its 15 px border left out: 50 x 50 pixels
+// here), on the noise-free and the noisy light field. Measured: BadPix(0.07) 58.5 % and 43.0 %,
+// MSE x100 2.48 and 1.85 (RMS errors of 0.16 and 0.14 px): far from HCI's figures at 80 x 80
+// pixels. The bounds are loose so that only a broken estimator fails.
+TEST_F(PeopleAllInFocus, DepthScoresAgainstTheExactDisparity) {
+  const AllInFocusOptions range = stackOptions();
+  for (const LightField* lightField : {clean_, noisy_}) {
+    auto depth = estimateDepth(*lightField, {.disparityMin = range.disparityMin, .disparityMax = range.disparityMax});
+    ASSERT_TRUE(depth) << depth.error().message;
+    auto strict = scoreDisparity(depth->disparity, *truth_, 0.07);
+    auto loose = scoreDisparity(depth->disparity, *truth_, 0.03);
+    ASSERT_TRUE(strict && loose);
+    const char* which = lightField == clean_ ? "noise-free" : "noisy";
+    std::printf("people, %s: BadPix(0.07) %.2f %%, BadPix(0.03) %.2f %%, MSE x100 %.3f (%ld px)\n", which,
+                strict->badPix, loose->badPix, strict->mse100, strict->pixels);
+    EXPECT_LT(strict->badPix, 75.0) << which;
+    EXPECT_LT(strict->mse100, 5.0) << which;
+  }
 }
 
 }  // namespace
