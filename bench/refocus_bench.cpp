@@ -1,13 +1,12 @@
 // Refocus speed, as ratios to floors measured in the same run (style.md, point 8):
-//   BM_MemoryCopy         a large memcpy of the light field's size, threaded like refocus: the
-//                         bandwidth that sets the floor.
+// The floor (memory_floor.hpp) is measured before every timed run: floor_ms is its median, ratio
+// the median of each run's time over its own floor.
+//   BM_MemoryCopy         the copy that sets the floor; GB_per_s counts bytes read + written.
 //   BM_MemoryRead         the antinous light field's samples read once by a threaded reduction
-//                         (XOR of their bits, which the compiler vectorises), alternating with the
-//                         copy: ratio = read time / floor, what reading alone reaches here.
+//                         (XOR of their bits, which the compiler vectorises): what reading alone
+//                         reaches against the floor.
 //   BM_Refocus            refocus of the HCI "antinous" light field (9x9 views, 512x512 RGB), or
 //                         a layered-planes field of the same size when the data is absent.
-//                         Counters: output megapixels per second, floor_ms = the light field's
-//                         bytes read once at the memcpy bandwidth, ratio = time / floor.
 //   BM_RefocusIllum       the same for a light field of a Lytro Illum's size (15x15 views of
 //                         625x434 RGB, 732 MB), synthesised as layered planes, with its own floor.
 //   BM_RefocusThreads     refocus of the antinous field on 1 and on 2 threads: the scaling.
@@ -25,15 +24,13 @@
 #include <cstdint>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
-#include <map>
 #include <memory>
 #include <span>
 #include <vector>
 
-#include "lfcam/huge_page_allocator.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/light_field_io.hpp"
+#include "lfcam/memory_floor.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/refocus.hpp"
 
@@ -73,56 +70,43 @@ std::size_t bytesOf(const LightField& lightField) {
   return (lightField.samples().size() + lightField.weights().size()) * sizeof(float);
 }
 
-// Copies `bytes` in slices over parallelFor's threads, as refocus spreads its reads.
-void parallelCopy(char* destination, const char* source, std::size_t bytes) {
-  const std::size_t slice = 4 << 20;
-  lfcam::parallelFor(0, (bytes + slice - 1) / slice, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::size_t offset = i * slice;
-      std::memcpy(destination + offset, source + offset, std::min(slice, bytes - offset));
-    }
-  });
+// The floor per byte, measured anew before every timed run (memory_floor.hpp).
+lfcam::MemoryFloor& floorPerByte() {
+  static lfcam::MemoryFloor floor(1.0);
+  return floor;
 }
 
-// Seconds of one copy of `bytes`, best of `copies` (the floor should be the machine's best).
-double bestCopySeconds(std::size_t bytes, int copies) {
-  // Both buffers written first, so page faults stay out of the timing; on huge pages, like the
-  // light field's samples.
-  std::vector<char, lfcam::HugePageAllocator<char>> source(bytes, 1), destination(bytes, 0);
-  double best = 1e30;
-  for (int i = 0; i < copies; ++i) {
+// Each iteration measures the floor of `lightField`'s bytes (on all threads), then times `work`
+// on `threads` threads (0: all), which is the iteration's time. Counters: floor_ms, the median
+// floor, and ratio, the median of each run's time over its own floor.
+template <class Work>
+void timeAgainstFloor(benchmark::State& state, const LightField& lightField, const Work& work, int threads = 0) {
+  std::vector<double> floors, ratios;
+  for (auto _ : state) {
+    const double floor = floorPerByte().measure() * double(bytesOf(lightField));
+    lfcam::setThreadCount(threads);
     const auto start = std::chrono::steady_clock::now();
-    parallelCopy(destination.data(), source.data(), bytes);
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    benchmark::DoNotOptimize(destination.data());
-    benchmark::ClobberMemory();
+    benchmark::DoNotOptimize(work());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    lfcam::setThreadCount(0);
+    state.SetIterationTime(seconds);
+    floors.push_back(floor);
+    ratios.push_back(seconds / floor);
   }
-  return best;
-}
-
-// The floor: the light field's bytes read once at the bandwidth of a large memcpy, measured once
-// per run. (A memcpy also writes what it reads, so this floor is generous by up to 2x; refocus
-// writes only the small photograph.)
-double floorSeconds(const LightField& lightField) {
-  static std::map<const LightField*, double> seconds;  // per light field, measured once
-  auto found = seconds.find(&lightField);
-  if (found == seconds.end()) found = seconds.emplace(&lightField, bestCopySeconds(bytesOf(lightField), 5)).first;
-  return found->second;
+  state.counters["floor_ms"] = lfcam::medianOf(floors) * 1e3;
+  state.counters["ratio"] = lfcam::medianOf(ratios);
 }
 
 void BM_MemoryCopy(benchmark::State& state) {
-  const std::size_t bytes = bytesOf(antinous());
-  std::vector<char> source(bytes, 1), destination(bytes, 0);
+  std::vector<double> bandwidths;
   for (auto _ : state) {
-    parallelCopy(destination.data(), source.data(), bytes);
-    benchmark::DoNotOptimize(destination.data());
-    benchmark::ClobberMemory();
+    const double secondsPerByte = floorPerByte().measure();
+    state.SetIterationTime(secondsPerByte * double(bytesOf(antinous())));
+    bandwidths.push_back(1.0 / secondsPerByte);
   }
-  state.SetBytesProcessed(std::int64_t(bytes) * state.iterations());
-  state.counters["MB"] = double(bytes) / 1e6;
-  state.counters["floor_ms"] = floorSeconds(antinous()) * 1e3;
+  state.counters["GB_per_s"] = lfcam::medianOf(bandwidths) / 1e9;  // read + written
 }
-BENCHMARK(BM_MemoryCopy)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MemoryCopy)->Unit(benchmark::kMillisecond)->UseManualTime();
 
 // Reads every sample of the light field once, over parallelFor's threads.
 std::uint32_t readAll(const LightField& lightField) {
@@ -143,23 +127,34 @@ std::uint32_t readAll(const LightField& lightField) {
 }
 
 void BM_MemoryRead(benchmark::State& state) {
-  const LightField& lightField = antinous();
-  const std::size_t bytes = bytesOf(lightField);
-  std::vector<char, lfcam::HugePageAllocator<char>> source(bytes, 1), destination(bytes, 0);
-  double readSeconds = 0, copySeconds = 0;
-  for (auto _ : state) {
-    auto start = std::chrono::steady_clock::now();
-    parallelCopy(destination.data(), source.data(), bytes);
-    copySeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    benchmark::ClobberMemory();
-    start = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(readAll(lightField));
-    readSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-  // The copy moves the bytes twice (read and write): the floor is half its time.
-  state.counters["ratio"] = readSeconds / (0.5 * copySeconds);
+  timeAgainstFloor(state, antinous(), [] { return readAll(antinous()); });
 }
-BENCHMARK(BM_MemoryRead)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MemoryRead)->Unit(benchmark::kMillisecond)->UseManualTime();
+
+void BM_Refocus(benchmark::State& state) {
+  const LightField& lightField = antinous();
+  const double slope = double(state.range(0)) / 100.0;
+  timeAgainstFloor(state, lightField, [&] { return lfcam::refocus(lightField, slope).pixels().data(); });
+  state.SetLabel(lightField.metadata.source.empty() ? "hci-antinous" : lightField.metadata.source);
+}
+// Slopes in hundredths: 0 (whole-pixel shifts), fractional ones, and one that moves the outer
+// views 6 pixels.
+BENCHMARK(BM_Refocus)->Arg(0)->Arg(-37)->Arg(63)->Arg(150)->Unit(benchmark::kMillisecond)->UseManualTime();
+
+void BM_RefocusIllum(benchmark::State& state) {
+  const LightField& lightField = illum();
+  timeAgainstFloor(state, lightField, [&] { return lfcam::refocus(lightField, 0.63).pixels().data(); });
+  state.SetLabel("15x15x625x434 RGB");
+}
+BENCHMARK(BM_RefocusIllum)->Unit(benchmark::kMillisecond)->UseManualTime();
+
+// Threads as the argument.
+void BM_RefocusThreads(benchmark::State& state) {
+  const LightField& lightField = antinous();
+  timeAgainstFloor(state, lightField, [&] { return lfcam::refocus(lightField, 0.63).pixels().data(); },
+                   int(state.range(0)));
+}
+BENCHMARK(BM_RefocusThreads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
 
 // Runs `work` once per benchmark iteration and returns the mean seconds per run.
 template <class Work>
@@ -173,43 +168,6 @@ double secondsPerRun(benchmark::State& state, const Work& work) {
   }
   return seconds / double(state.iterations());
 }
-
-void BM_Refocus(benchmark::State& state) {
-  const LightField& lightField = antinous();
-  const double slope = double(state.range(0)) / 100.0;
-  const double perRun = secondsPerRun(state, [&] { return lfcam::refocus(lightField, slope); });
-  const double floor = floorSeconds(lightField);
-  state.counters["MP_per_s"] = double(lightField.ns()) * lightField.nt() / 1e6 / perRun;
-  state.counters["floor_ms"] = floor * 1e3;
-  state.counters["ratio"] = perRun / floor;
-  state.SetLabel(lightField.metadata.source.empty() ? "hci-antinous" : lightField.metadata.source);
-}
-// Slopes in hundredths: 0 (whole-pixel shifts), fractional ones, and one that moves the outer
-// views 6 pixels.
-BENCHMARK(BM_Refocus)->Arg(0)->Arg(-37)->Arg(63)->Arg(150)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-void BM_RefocusIllum(benchmark::State& state) {
-  const LightField& lightField = illum();
-  const double perRun = secondsPerRun(state, [&] { return lfcam::refocus(lightField, 0.63); });
-  const double floor = floorSeconds(lightField);
-  state.counters["MP_per_s"] = double(lightField.ns()) * lightField.nt() / 1e6 / perRun;
-  state.counters["floor_ms"] = floor * 1e3;
-  state.counters["ratio"] = perRun / floor;
-  state.SetLabel("15x15x625x434 RGB");
-}
-BENCHMARK(BM_RefocusIllum)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-// Threads as the argument; the thread limit is lifted again afterwards.
-void BM_RefocusThreads(benchmark::State& state) {
-  const LightField& lightField = antinous();
-  const double floor = floorSeconds(lightField);
-  lfcam::setThreadCount(int(state.range(0)));
-  const double perRun = secondsPerRun(state, [&] { return lfcam::refocus(lightField, 0.63); });
-  lfcam::setThreadCount(0);
-  state.counters["floor_ms"] = floor * 1e3;
-  state.counters["ratio"] = perRun / floor;
-}
-BENCHMARK(BM_RefocusThreads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // A copy of the antinous field on 4 KiB pages: made while the process refuses transparent huge
 // pages, which overrides the allocator's advice.

@@ -21,7 +21,7 @@
 #include "commands.hpp"
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/fourier_slice.hpp"
-#include "lfcam/huge_page_allocator.hpp"
+#include "lfcam/memory_floor.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/synthetic_camera.hpp"
@@ -33,47 +33,6 @@ namespace {
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-// The floor, measured again before every timed photo: a machine shared with others (a virtual one
-// above all) changes speed from one second to the next, so a floor taken once would compare each
-// photo with the machine of another moment. One measurement: a threaded memcpy of 256 MiB, whose
-// bytes read plus bytes written per second are the bandwidth at which the light field's bytes are
-// read once. The buffers are on huge pages like a light field's samples, so that the floor is not
-// one slowed by TLB misses the light field does not have.
-class MemoryFloor {
- public:
-  explicit MemoryFloor(double lightFieldBytes) : lightFieldBytes_(lightFieldBytes) {}
-
-  // Seconds the light field's bytes take at the bandwidth of one copy made now.
-  double measure() {
-    const std::size_t slice = std::size_t(4) << 20;
-    const auto start = std::chrono::steady_clock::now();
-    parallelFor(0, copyBytes / slice, 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k)
-        std::memcpy(destination_.data() + k * slice, source_.data() + k * slice, slice);
-    });
-    const double bandwidth = 2.0 * double(copyBytes) / secondsSince(start);
-    volatile char sink = destination_[copyBytes / 2];
-    (void)sink;
-    bandwidths_.push_back(bandwidth);
-    return lightFieldBytes_ / bandwidth;
-  }
-  double medianBandwidth() const { return median(bandwidths_); }
-
- private:
-  static constexpr std::size_t copyBytes = std::size_t(256) << 20;
-  double lightFieldBytes_;
-  // Written first: no page faults timed.
-  std::vector<char, HugePageAllocator<char>> source_ = std::vector<char, HugePageAllocator<char>>(copyBytes, 1);
-  std::vector<char, HugePageAllocator<char>> destination_ = std::vector<char, HugePageAllocator<char>>(copyBytes, 0);
-  std::vector<double> bandwidths_;
-};
 
 // Timed runs, each just after a measurement of the floor: medians of the times, of the floors,
 // and of the ratio of each run to its own floor (the figure that the machine's changes of speed
@@ -88,7 +47,7 @@ struct TimedRuns {
   Timing summary() const {
     std::vector<double> ratios;
     for (std::size_t i = 0; i < times.size(); ++i) ratios.push_back(times[i] / floors[i]);
-    return {median(times), median(floors), median(ratios)};
+    return {medianOf(times), medianOf(floors), medianOf(ratios)};
   }
 };
 
