@@ -268,7 +268,8 @@ TEST(Observer, BetweenViewsInterpolatesAndMovedAlongTheAxisMatchesReference) {
   std::mt19937 random(13);
   const LightField lightField = randomLightField({.nu = 4, .nv = 4, .ns = 25, .nt = 20, .channels = 1}, random, true);
   for (const Observer& observer : {Observer{.u = 0.3, .v = -0.9}, Observer{.u = 1, .v = 0.5, .beta = 0.8, .parallax = 2},
-                                   Observer{.u = -1, .beta = 1.6, .parallax = 2, .clampToLens = true}}) {
+                                   Observer{.u = -1, .beta = 1.6, .parallax = 2, .clampToLens = true},
+                                   Observer{.u = -3, .v = 0.4, .clampToLens = true}, Observer{.u = 1.7, .v = 2.2}}) {
     auto fast = observe(lightField, observer);
     auto slow = observeReference(lightField, observer);
     ASSERT_TRUE(fast && slow);

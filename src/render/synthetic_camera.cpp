@@ -239,6 +239,17 @@ Result<Image> observeWith(const LightField& lightField, const Observer& observer
   if (!map) return map.error();
   const std::vector<ApertureSample> pinhole{{observer.u, observer.v, 1.0}};
   if (reference) return renderGeneral<double>(lightField, *map, pinhole, observer.clampToLens, false);
+  if (observer.beta == 1) {
+    // On the real lens plane the pinhole's ray lands on the same (u, v) for every pixel: a blend
+    // of the (at most) four views around it, at no shift, which the shift-and-add kernel streams
+    // (clamping moves the pinhole itself onto the lens). Measured by lfcam bench's observer.
+    ApertureSample sample = pinhole.front();
+    if (observer.clampToLens) {
+      sample.u = std::clamp(sample.u, lightField.uFromCentre(0), lightField.uFromCentre(lightField.nu() - 1));
+      sample.v = std::clamp(sample.v, lightField.vFromCentre(0), lightField.vFromCentre(lightField.nv() - 1));
+    }
+    return renderShiftAndAdd(lightField, 0.0, {sample});
+  }
   return renderGeneral<float>(lightField, *map, pinhole, observer.clampToLens, true);
 }
 
