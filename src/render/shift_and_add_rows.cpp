@@ -45,23 +45,35 @@ void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, c
   const float* ahead = nextRow ? nextRow + (interiorBegin + whole) : source0;
   int x = 0;
   const auto k00 = hn::Set(d, c00), k01 = hn::Set(d, c01);
+  // One prefetch per 64-byte line: the vectors of a line are one step of the loop.
+  const int step = std::max(1, 16 / lanes) * lanes;
   if (c10 == 0.0f && c11 == 0.0f) {
     // One source row (integer vertical shift, or the other row outside the view): half the loads.
-    for (; x + lanes <= count; x += lanes) {
+    const auto vectorAt = [&](int k) {
+      auto sum = hn::MulAdd(k00, hn::LoadU(d, source0 + k), hn::LoadU(d, interior + k));
+      hn::StoreU(hn::MulAdd(k01, hn::LoadU(d, source0 + k + 1), sum), d, interior + k);
+    };
+    for (; x + step <= count; x += step) {
       hwy::Prefetch(ahead + x);
-      auto sum = hn::MulAdd(k01, hn::LoadU(d, source0 + x + 1), hn::LoadU(d, interior + x));
-      hn::StoreU(hn::MulAdd(k00, hn::LoadU(d, source0 + x), sum), d, interior + x);
+      for (int k = x; k < x + step; k += lanes) vectorAt(k);
     }
+    for (; x + lanes <= count; x += lanes) vectorAt(x);
     for (; x < count; ++x) interior[x] += c00 * source0[x] + c01 * source0[x + 1];
     return edges();
   }
+  // Each tap one fused multiply-add onto the accumulator: four per vector, no separate adds.
   const auto k10 = hn::Set(d, c10), k11 = hn::Set(d, c11);
-  for (; x + lanes <= count; x += lanes) {
+  const auto vectorAt = [&](int k) {
+    auto sum = hn::MulAdd(k00, hn::LoadU(d, source0 + k), hn::LoadU(d, interior + k));
+    sum = hn::MulAdd(k01, hn::LoadU(d, source0 + k + 1), sum);
+    sum = hn::MulAdd(k10, hn::LoadU(d, source1 + k), sum);
+    hn::StoreU(hn::MulAdd(k11, hn::LoadU(d, source1 + k + 1), sum), d, interior + k);
+  };
+  for (; x + step <= count; x += step) {
     hwy::Prefetch(ahead + x);
-    auto top = hn::MulAdd(k01, hn::LoadU(d, source0 + x + 1), hn::Mul(k00, hn::LoadU(d, source0 + x)));
-    auto bottom = hn::MulAdd(k11, hn::LoadU(d, source1 + x + 1), hn::Mul(k10, hn::LoadU(d, source1 + x)));
-    hn::StoreU(hn::Add(hn::LoadU(d, interior + x), hn::Add(top, bottom)), d, interior + x);
+    for (int k = x; k < x + step; k += lanes) vectorAt(k);
   }
+  for (; x + lanes <= count; x += lanes) vectorAt(x);
   for (; x < count; ++x)
     interior[x] += (c00 * source0[x] + c01 * source0[x + 1]) + (c10 * source1[x] + c11 * source1[x + 1]);
   edges();
