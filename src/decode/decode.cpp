@@ -1,6 +1,7 @@
 // decodeLightField: the decoder's pipeline (decode.hpp); the kernels are in the other files.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,38 @@ Image devignette(Image& value, const Image& white, ColorFilter filter) {
   return weight;
 }
 
+// Unlit photosites (between microlens images) get the mean of the nearest ring of lit ones of
+// their colour. Left at 0, they would pull down every demosaicing and Catmull-Rom tap that reaches
+// them, and through the cubic's negative lobes push the views at the aperture's rim up (by up to
+// 0.05 RMS in mono). Reads only lit photosites and writes only unlit ones: rows run in parallel.
+void fillUnlit(Image& value, const Image& weight, ColorFilter filter) {
+  const int w = value.width(), h = value.height(), step = filter == ColorFilter::Mono ? 1 : 2;
+  constexpr int kRings = 3;
+  float* v = value.plane(0);
+  const float* wt = weight.plane(0);
+  parallelFor(0, std::size_t(h), 16, [&](std::size_t begin, std::size_t end) {
+    for (int y = int(begin); y < int(end); ++y)
+      for (int x = 0; x < w; ++x) {
+        if (wt[std::size_t(y) * w + x] > 0) continue;
+        for (int r = step; r <= kRings * step; r += step) {
+          float sum = 0;
+          int count = 0;
+          for (int dy = -r; dy <= r; dy += step)
+            for (int dx = -r; dx <= r; dx += (std::abs(dy) == r ? step : 2 * r)) {
+              const int xx = x + dx, yy = y + dy;
+              if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+              const std::size_t k = std::size_t(yy) * w + xx;
+              if (wt[k] > 0) sum += v[k], ++count;
+            }
+          if (count) {
+            v[std::size_t(y) * w + x] = sum / float(count);
+            break;
+          }
+        }
+      }
+  });
+}
+
 // Camera RGB -> white-balanced, colour-corrected RGB, per sample.
 void correctColour(LightField& lf, const std::array<double, 3>& gains, const std::array<double, 9>& matrix) {
   float m[9];
@@ -162,6 +195,7 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
       std::copy(given.plane(0), given.plane(0) + given.planeSize(), white.plane(0));
     }
     weight = devignette(value, white, filter);
+    fillUnlit(value, weight, filter);
   }
 
   // 3. Demosaicing.
