@@ -3,7 +3,11 @@
 // reads hundreds of short row runs scattered over the whole light field: with 4 KiB pages nearly
 // every run begins with a TLB miss, with 2 MiB pages a few hundred entries cover it all. Smaller
 // buffers come from operator new as usual. Where the kernel refuses huge pages, memory is the
-// same as before, only aligned.
+// same as before, only aligned. Large buffers are first touched on every thread.
+// LFCAM_HUGE_PAGES=0 in the environment leaves out the advice: on a virtual machine whose host
+// takes freed memory back, a fresh huge page can cost more to fault in than it saves (measured
+// here: a decode of an Illum-size raw, which writes a new 1 GB light field once, is slower with
+// them; a refocus, which reads one many times, faster).
 #pragma once
 
 #include <cstddef>

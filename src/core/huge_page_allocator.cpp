@@ -3,7 +3,11 @@
 #include <sys/mman.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <new>
+#include <string_view>
+
+#include "lfcam/parallel.hpp"
 
 namespace lfcam::huge_pages {
 
@@ -15,6 +19,15 @@ constexpr std::size_t threshold = 2 * hugePage;
 
 std::size_t roundedUp(std::size_t bytes) { return (bytes + hugePage - 1) / hugePage * hugePage; }
 
+// LFCAM_HUGE_PAGES=0 turns the advice off (huge_page_allocator.hpp says when that pays).
+bool hugePagesWanted() {
+  static const bool wanted = [] {
+    const char* setting = std::getenv("LFCAM_HUGE_PAGES");
+    return !(setting && std::string_view(setting) == "0");
+  }();
+  return wanted;
+}
+
 }  // namespace
 
 void* allocate(std::size_t bytes) {
@@ -23,7 +36,14 @@ void* allocate(std::size_t bytes) {
   void* pointer = std::aligned_alloc(hugePage, roundedUp(bytes));
   if (!pointer) throw std::bad_alloc();
   // Advice only: refused (no THP in this kernel), the pages are ordinary ones.
-  ::madvise(pointer, roundedUp(bytes), MADV_HUGEPAGE);
+  if (hugePagesWanted()) ::madvise(pointer, roundedUp(bytes), MADV_HUGEPAGE);
+  // First touch on every thread: a page fault zeroes a whole 2 MiB page, and on a virtual
+  // machine may also wait for the host to back it; std::vector's fill would fault them all in
+  // from one thread (bench/decode_bench: this took a quarter of a second off an Illum decode).
+  char* bytesAt = static_cast<char*>(pointer);
+  parallelFor(0, roundedUp(bytes) / hugePage, 1, [&](std::size_t begin, std::size_t end) {
+    std::memset(bytesAt + begin * hugePage, 0, (end - begin) * hugePage);
+  });
   return pointer;
 }
 
