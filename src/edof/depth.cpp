@@ -466,6 +466,17 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
   if (options.refineSteps > 0) {
     const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.refineRadius, 0),
                                     std::max(options.filterEpsilon, 1e-12));
+    // Slices that follow a smoothed map: the fine search moves a whole window by one offset, so
+    // it keeps the map's own steps (labels climbing a slanted surface); a local mean follows the
+    // slant without them. Only where it stays within a label of the map, so occlusion edges keep
+    // their jumps (measured on antinous: floor 5.4 -> 4.5 points of BadPix(0.07)).
+    if (options.refineSmoothRadius > 0) {
+      float* map = result.disparity.plane(0);
+      std::vector<float> smooth(n);
+      edof::boxFilter(map, smooth.data(), ns, nt, options.refineSmoothRadius);
+      for (std::size_t p = 0; p < n; ++p)
+        if (std::abs(smooth[p] - map[p]) <= step) map[p] = smooth[p];
+    }
     // A quarter of the correction in the fine search: its slices, a fraction of a label apart,
     // see far smaller differences of blur (measured on antinous: 1 there is worse than none).
     refineDisparity(grey, filter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps,
