@@ -85,8 +85,8 @@ void AccumulateBilinearRows(float* HWY_RESTRICT accumulator, const float* plane,
   for (int y = y0; y < y1; ++y) {
     const VerticalTaps taps = verticalTaps(y, wholeY, top, bottom, nt);
     if (taps.c0 == 0.0f) continue;
-    // The row the next row reads; on the last, the first row of the next pass (measured: 3 %
-    // faster than letting that pass start on a cold stream).
+    // The row the next row reads; on the last, the first row of the next pass, so that the pass
+    // does not start on a cold stream.
     const float* next = y + 1 == y1                 ? nextPass
                         : taps.row1 + 1 < nt ? plane + std::size_t(taps.row1 + 1) * ns
                                              : nullptr;
