@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace lfcam {
 namespace {
 
@@ -42,6 +44,23 @@ TEST(LightField, WeightHasOnePlanePerView) {
   EXPECT_EQ(lf.weights().size(), std::size_t(2 * 3 * 4 * 5));
   lf.weightPlane(1, 2)[19] = 0.25f;
   EXPECT_EQ(lf.weights().back(), 0.25f);
+}
+
+// The allocator hands out zeroed memory and the constructor does not fill it again: check both
+// sizes of buffer (operator new below 4 MiB, aligned huge pages above), reused memory included.
+TEST(LightField, NewSamplesAndZeroWeightsAreZero) {
+  for (int side : {8, 400}) {  // 0.02 MB and 5 MB of samples per channel
+    for (int round = 0; round < 2; ++round) {
+      LightField lf({.nu = 2, .nv = 2, .ns = side, .nt = side, .channels = 2});
+      std::size_t nonZero = 0;
+      for (float x : lf.samples()) nonZero += x != 0.0f;
+      lf.enableWeight(0.75f);
+      lf.enableWeight(0.0f);
+      for (float w : lf.weights()) nonZero += w != 0.0f;
+      EXPECT_EQ(nonZero, 0u) << side;
+      std::fill(lf.samples().begin(), lf.samples().end(), 3.0f);  // leaves garbage for round 2's buffer
+    }
+  }
 }
 
 TEST(Optics, AlphaAndSlopeAreInverse) {

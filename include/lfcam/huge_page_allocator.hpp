@@ -8,9 +8,16 @@
 // takes freed memory back, a fresh huge page can cost more to fault in than it saves (measured
 // here: a decode of an Illum-size raw, which writes a new 1 GB light field once, is slower with
 // them; a refocus, which reads one many times, faster).
+// Every buffer comes zeroed (large ones by that first touch), and construct() without a value
+// leaves it so: std::vector<T, HugePageAllocator<T>>(n) is then zero without a second pass over
+// memory that was just written. That holds for fresh allocations only: a vector that shrinks and
+// then grows again within its capacity would get back stale values, so the owners (LightField,
+// MemoryFloor) only ever size a vector when they create it.
 #pragma once
 
 #include <cstddef>
+#include <new>
+#include <utility>
 
 namespace lfcam {
 
@@ -27,6 +34,15 @@ struct HugePageAllocator {
   HugePageAllocator(const HugePageAllocator<U>&) noexcept {}
   T* allocate(std::size_t count) { return static_cast<T*>(huge_pages::allocate(count * sizeof(T))); }
   void deallocate(T* pointer, std::size_t count) noexcept { huge_pages::deallocate(pointer, count * sizeof(T)); }
+  // Default-initialisation: the memory is already zero (see above).
+  template <typename U>
+  void construct(U* pointer) noexcept {
+    ::new (static_cast<void*>(pointer)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* pointer, Args&&... args) {
+    ::new (static_cast<void*>(pointer)) U(std::forward<Args>(args)...);
+  }
   template <typename U>
   bool operator==(const HugePageAllocator<U>&) const noexcept { return true; }
 };

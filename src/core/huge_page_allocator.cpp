@@ -31,7 +31,7 @@ bool hugePagesWanted() {
 }  // namespace
 
 void* allocate(std::size_t bytes) {
-  if (bytes < threshold) return ::operator new(bytes);
+  if (bytes < threshold) return std::memset(::operator new(bytes), 0, bytes);
   if (bytes > std::size_t(-1) - hugePage) throw std::bad_alloc();
   void* pointer = std::aligned_alloc(hugePage, roundedUp(bytes));
   if (!pointer) throw std::bad_alloc();

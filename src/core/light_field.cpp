@@ -13,7 +13,7 @@ double Optics::alphaFromSlope(double slope) const {
   return 1.0 / (1.0 - slope * spatialStepMm / lensStepMm);
 }
 
-LightField::LightField(const LightFieldShape& shape) : shape_(shape), data_(shape.samples(), 0.0f) {
+LightField::LightField(const LightFieldShape& shape) : shape_(shape), data_(shape.samples()) {
   assert(shape.nu >= 0 && shape.nv >= 0 && shape.ns >= 0 && shape.nt >= 0 && shape.channels >= 0);
 }
 
@@ -26,7 +26,13 @@ LightField LightField::copy() const {
   return result;
 }
 
-void LightField::enableWeight(float value) { weight_.assign(shape_.views() * shape_.viewPixels(), value); }
+void LightField::enableWeight(float value) {
+  const std::size_t count = shape_.views() * shape_.viewPixels();
+  if (value != 0.0f) return weight_.assign(count, value);
+  // A fresh buffer is already zero (huge_page_allocator.hpp): no second pass over it.
+  decltype(weight_) zeroed(count);
+  weight_.swap(zeroed);
+}
 
 Image LightField::subApertureImage(int u, int v) const {
   Image image(shape_.ns, shape_.nt, shape_.channels);
