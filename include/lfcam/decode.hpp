@@ -34,6 +34,9 @@ enum class DemosaicMethod {
   HamiltonAdams,   // the paper's choice: edge-directed green, colour differences for red and blue
   LensletAware,    // bilinear within each microlens image from its own pixels only: nothing leaks
                    // across a microlens boundary
+  LightFieldAware, // each missing colour blended from the microlens image's neighbours (2D) and the
+                   // same view of the neighbouring microlenses (4D), by which predicts the
+                   // measured colour better: defocused content is smooth only in the second
 };
 
 enum class Sampling {
@@ -69,7 +72,7 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
 // The steps on their own, for tests and other tools.
 
 // Demosaics a one-channel mosaic (any scale) into 3 planes (R, G, B); a Mono filter gives a copy.
-// LensletAware needs the grid; the other methods ignore it.
+// LensletAware and LightFieldAware need the grid (without it: Malvar-He-Cutler); the others ignore it.
 Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid = nullptr);
 // Plain per-pixel implementations of the same, the references the fast kernels are tested against.
 Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method);

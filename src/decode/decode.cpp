@@ -199,7 +199,9 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
   }
 
   // 3. Demosaicing.
-  Image planes = options.referenceKernels && options.demosaic != DemosaicMethod::LensletAware
+  Image planes = filter != ColorFilter::Mono && options.demosaic == DemosaicMethod::LightFieldAware
+                     ? decode_detail::demosaicLightField(value, filter, grid, weight, options.referenceKernels)
+                 : options.referenceKernels && options.demosaic != DemosaicMethod::LensletAware
                      ? demosaicReference(value, filter, options.demosaic)
                      : demosaic(value, filter, options.demosaic, &grid);
   value = Image();

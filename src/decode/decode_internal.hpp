@@ -19,6 +19,40 @@ struct CfaTable {
   std::array<int, 4> phase{};
 };
 
+// Reflect-101 border: index -1 -> 1, n -> n - 2. Keeps the Bayer parity of every index.
+inline int reflect(int i, int n) {
+  if (n == 1) return 0;
+  while (i < 0 || i >= n) i = i < 0 ? -i : 2 * (n - 1) - i;
+  return i;
+}
+
+// Reads a mosaic with reflected borders.
+struct Mosaic {
+  const float* data;
+  int width, height;
+  float operator()(int x, int y) const { return data[std::size_t(reflect(y, height)) * width + reflect(x, width)]; }
+};
+
+// Direct access, for pixels at least 2 from every border.
+struct Direct {
+  const float* data;
+  int width;
+  float operator()(int x, int y) const { return data[std::size_t(y) * width + x]; }
+};
+
+// Malvar-He-Cutler's green at a red or blue photosite (x, y), any accessor `m` (reflected or direct).
+template <class M>
+inline float mhcGreenAtRB(const M& m, int x, int y) {
+  return (4 * m(x, y) + 2 * (m(x, y - 1) + m(x, y + 1) + m(x - 1, y) + m(x + 1, y)) -
+          (m(x, y - 2) + m(x, y + 2) + m(x - 2, y) + m(x + 2, y))) * 0.125f;
+}
+
+// DemosaicMethod::LightFieldAware (demosaic_light_field.cpp) of a Bayer mosaic. `weight`: how lit
+// each photosite is (devignetting's weight, 0 between microlens images; empty: all lit).
+// `reference`: the plain bounds-checked taps everywhere, what the fast ones are tested against.
+Image demosaicLightField(const Image& mosaic, ColorFilter filter, const LensletGrid& grid, const Image& weight,
+                         bool reference = false);
+
 // For every pixel, a number naming the microlens whose centre is nearest (its Voronoi cell).
 std::vector<int> microlensLabels(const LensletGrid& grid, int width, int height);
 

@@ -1,4 +1,5 @@
-// Demosaicing of a Bayer mosaic: Malvar-He-Cutler, Hamilton-Adams and a lenslet-aware bilinear one,
+// Demosaicing of a Bayer mosaic: Malvar-He-Cutler, Hamilton-Adams and a lenslet-aware bilinear one
+// (the light-field-aware one is in demosaic_light_field.cpp),
 // each with a plain per-pixel reference (reflected borders) and a fast row-parallel kernel that
 // skips the border checks inside the image. Also hot-pixel repair.
 #include <algorithm>
@@ -16,28 +17,14 @@ namespace {
 
 using decode_detail::CfaTable;
 
-// Reflect-101 border: index -1 -> 1, n -> n - 2. Keeps the Bayer parity of every index.
-inline int reflect(int i, int n) {
-  if (n == 1) return 0;
-  while (i < 0 || i >= n) i = i < 0 ? -i : 2 * (n - 1) - i;
-  return i;
-}
-
-// Reads a mosaic with reflected borders.
-struct Mosaic {
-  const float* data;
-  int width, height;
-  float operator()(int x, int y) const { return data[std::size_t(reflect(y, height)) * width + reflect(x, width)]; }
-};
+using decode_detail::Direct;
+using decode_detail::mhcGreenAtRB;
+using decode_detail::Mosaic;
 
 // ---- Malvar-He-Cutler (2004): bilinear corrected by the Laplacian of the centre colour.
 
-// The four kernels of the paper, at (x, y), any accessor `m` (reflected or direct).
-template <class M>
-inline float mhcGreenAtRB(const M& m, int x, int y) {
-  return (4 * m(x, y) + 2 * (m(x, y - 1) + m(x, y + 1) + m(x - 1, y) + m(x + 1, y)) -
-          (m(x, y - 2) + m(x, y + 2) + m(x - 2, y) + m(x + 2, y))) * 0.125f;
-}
+// The kernels of the paper, at (x, y), any accessor `m` (reflected or direct); green at red and
+// blue is in decode_internal.hpp (the light-field-aware demosaic uses it too).
 // At a green pixel whose left and right neighbours have the wanted colour.
 template <class M>
 inline float mhcRowNeighbours(const M& m, int x, int y) {
@@ -109,12 +96,6 @@ inline void haPixel(const M& m, const M& g, const CfaTable& cfa, int x, int y, f
   out[2 - c] = green + (d1 < d2 ? e1 : d2 < d1 ? e2 : 0.5f * (e1 + e2));
 }
 
-// Direct access, for pixels at least 2 from every border.
-struct Direct {
-  const float* data;
-  int width;
-  float operator()(int x, int y) const { return data[std::size_t(y) * width + x]; }
-};
 
 Image monoCopy(const Image& mosaic) { return mosaic.copy(); }
 
@@ -228,6 +209,7 @@ Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, c
   if (filter == ColorFilter::Mono) return monoCopy(mosaic);
   const CfaTable cfa(filter);
   if (method == DemosaicMethod::LensletAware && grid) return demosaicLensletAware(mosaic, cfa, *grid);
+  if (method == DemosaicMethod::LightFieldAware && grid) return decode_detail::demosaicLightField(mosaic, filter, *grid, Image());
   const int w = mosaic.width(), h = mosaic.height();
   if (w < 8 || h < 8) return demosaicReference(mosaic, filter, method);
   Image out(w, h, 3);

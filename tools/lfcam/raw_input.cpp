@@ -32,9 +32,10 @@ std::optional<Optics> opticsFromMetadata(const nlohmann::json& metadata) {
 }  // namespace
 
 void addDecodeMethodOptions(CLI::App& command, DecodeOptions& decode) {
-  command.add_option("--demosaic", decode.demosaic, "mhc (default), ha (Hamilton-Adams) or lenslet")
+  command.add_option("--demosaic", decode.demosaic, "mhc (default), ha (Hamilton-Adams), lenslet or lightfield")
       ->transform(CLI::CheckedTransformer(std::map<std::string, DemosaicMethod>{
-          {"mhc", DemosaicMethod::MalvarHeCutler}, {"ha", DemosaicMethod::HamiltonAdams}, {"lenslet", DemosaicMethod::LensletAware}}));
+          {"mhc", DemosaicMethod::MalvarHeCutler}, {"ha", DemosaicMethod::HamiltonAdams}, {"lenslet", DemosaicMethod::LensletAware},
+          {"lightfield", DemosaicMethod::LightFieldAware}}));
   command.add_option("--sampling", decode.sampling, "subpixel (default) or integral (the paper's)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, Sampling>{{"subpixel", Sampling::SubPixel}, {"integral", Sampling::IntegralPitch}}));
