@@ -339,5 +339,90 @@ TEST(Median3x3, FastKernelMatchesReference) {
   }
 }
 
+// The streamed preparation (every step per band of rows) against the whole-image reference:
+// the same floats, for every combination of steps, sizes down to one pixel, and regions.
+TEST(CalibratePrepare, FastPathMatchesReference) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> value(0, 1);
+  struct Case {
+    ColorFilter filter;
+    CalibrationTarget target;
+    int channels;
+  };
+  for (const Case& c : {Case{ColorFilter::Mono, CalibrationTarget::White, 1}, Case{ColorFilter::GRBG, CalibrationTarget::White, 1},
+                        Case{ColorFilter::RGGB, CalibrationTarget::Pinhole, 1}, Case{ColorFilter::Mono, CalibrationTarget::Pinhole, 2},
+                        Case{ColorFilter::BGGR, CalibrationTarget::Scene, 3}})
+    for (auto [w, h] : {std::pair{1, 1}, {2, 5}, {3, 3}, {37, 29}, {64, 300}}) {
+      Image image(w, h, c.channels);
+      for (float& v : image.pixels()) v = value(random);
+      CalibrationOptions options;
+      options.colorFilter = c.filter;
+      options.target = c.target;
+      options.blackLevel = 0.05;
+      const calibrate_detail::PhaseGains gains = calibrate_detail::phaseGains(image, options);
+      for (bool smoothed : {false, true}) {
+        const Image slow = calibrate_detail::prepareReference(image, options, smoothed);
+        const Image fast = calibrate_detail::prepareRegion(image, options, gains, 0, 0, w, h, smoothed);
+        for (std::size_t k = 0; k < fast.pixels().size(); ++k)
+          ASSERT_EQ(fast.pixels()[k], slow.pixels()[k]) << w << "x" << h << " smoothed " << smoothed << " at " << k;
+        // A region is that part of the whole.
+        const int x0 = w / 3, y0 = h / 4, x1 = std::max(x0 + 1, w - w / 5), y1 = std::max(y0 + 1, h - h / 3);
+        const Image part = calibrate_detail::prepareRegion(image, options, gains, x0, y0, x1, y1, smoothed);
+        for (int y = y0; y < y1; ++y)
+          for (int x = x0; x < x1; ++x) ASSERT_EQ(part.at(x - x0, y - y0, 0), slow.at(x, y, 0)) << w << "x" << h << " at " << x << "," << y;
+      }
+    }
+}
+
+// The centroid over the disc's span with the square root on its rim only, against the whole
+// window through the weight's formula, on random images, radii and start points: the same floats.
+TEST(Calibrate, CentroidFastPathMatchesReference) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> value(0, 1);
+  std::uniform_real_distribution<double> position(12, 48), radius(0.4, 9);
+  Image image(60, 60, 1);
+  for (float& v : image.pixels()) v = value(random);
+  int converged = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double x = position(random), y = position(random), r = radius(random);
+    const auto fast = calibrate_detail::refineCentre(image, x, y, r, 20, 1.5, 0.01);
+    const auto slow = calibrate_detail::refineCentreReference(image, x, y, r, 20, 1.5, 0.01);
+    ASSERT_EQ(fast.ok, slow.ok) << trial;
+    ASSERT_EQ(fast.x, slow.x) << trial;
+    ASSERT_EQ(fast.y, slow.y) << trial;
+    ASSERT_EQ(fast.contrast, slow.contrast) << trial;
+    converged += fast.ok;
+  }
+  EXPECT_GT(converged, 10);
+}
+
+// The symmetric centre resampled once per step against every sample interpolated on its own, on
+// random images (smoothed noise) and start points: the same centres.
+TEST(Calibrate, SymmetricCentreFastPathMatchesReference) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> value(0, 1);
+  std::uniform_real_distribution<double> position(15, 45);
+  Image noise(60, 60, 1);
+  for (float& v : noise.pixels()) v = value(random);
+  const Image image = calibrate_detail::smoothBinomial(calibrate_detail::smoothBinomial(noise));
+  calibrate_detail::Lattice lattice;
+  lattice.packing = Packing::Hexagonal;
+  lattice.pitchX = 9.3;
+  lattice.pitchY = 9.3 * std::sqrt(3.0) / 2;
+  int converged = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const double x = position(random), y = position(random), radius = trial % 2 ? 6.5 : 4.2;
+    const auto neighbours = trial % 3 ? lattice.neighbourOffsets() : std::vector<std::array<double, 2>>{};
+    const auto fast = calibrate_detail::refineSymmetric(image, x, y, radius, 6, neighbours);
+    const auto slow = calibrate_detail::refineSymmetricReference(image, x, y, radius, 6, neighbours);
+    ASSERT_EQ(fast.ok, slow.ok) << trial;
+    converged += fast.ok;
+    if (!fast.ok) continue;
+    EXPECT_NEAR(fast.x, slow.x, 1e-6) << trial;
+    EXPECT_NEAR(fast.y, slow.y, 1e-6) << trial;
+  }
+  EXPECT_GT(converged, 10);
+}
+
 }  // namespace
 }  // namespace lfcam

@@ -19,83 +19,6 @@ using calibrate_detail::Sample;
 
 namespace {
 
-bool isMosaic(ColorFilter filter) { return filter != ColorFilter::Mono; }
-
-// One channel, black level off, each 2x2 phase of a mosaic scaled to the common mean (so a white
-// image's colours agree), hot and dead pixels removed by a 3x3 median, and for a mosaic what is
-// left of its pattern removed by the [1 2 1] binomial (zero at the mosaic's frequency; symmetric,
-// so no centre moves).
-Image prepare(const Image& image, const CalibrationOptions& options) {
-  const int width = image.width(), height = image.height(), channels = image.channels();
-  Image grey(width, height, 1);
-  const float black = float(options.blackLevel);
-  parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
-    for (int y = int(begin); y < int(end); ++y) {
-      float* out = grey.row(y, 0);
-      for (int x = 0; x < width; ++x) out[x] = image.at(x, y, 0);
-      for (int c = 1; c < channels; ++c) {
-        const float* in = image.row(y, c);
-        for (int x = 0; x < width; ++x) out[x] += in[x];
-      }
-      for (int x = 0; x < width; ++x) out[x] = out[x] / float(channels) - black;
-    }
-  });
-  if (isMosaic(options.colorFilter)) {
-    std::vector<std::array<double, 2>> rowSums(height);
-    parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
-      for (int y = int(begin); y < int(end); ++y) {
-        const float* row = grey.row(y, 0);
-        double even = 0, odd = 0;
-        for (int x = 0; x + 1 < width; x += 2) {
-          even += row[x];
-          odd += row[x + 1];
-        }
-        rowSums[y] = {even, odd};
-      }
-    });
-    double phase[4] = {0, 0, 0, 0};
-    for (int y = 0; y < height; ++y) {
-      phase[2 * (y & 1)] += rowSums[y][0];
-      phase[2 * (y & 1) + 1] += rowSums[y][1];
-    }
-    const double mean = 0.25 * (phase[0] + phase[1] + phase[2] + phase[3]);
-    float gain[4];
-    for (int p = 0; p < 4; ++p) gain[p] = phase[p] > 0 && mean > 0 ? float(mean / phase[p]) : 1.0f;
-    parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
-      for (int y = int(begin); y < int(end); ++y) {
-        float* row = grey.row(y, 0);
-        const float g0 = gain[2 * (y & 1)], g1 = gain[2 * (y & 1) + 1];
-        for (int x = 0; x + 1 < width; x += 2) {
-          row[x] *= g0;
-          row[x + 1] *= g1;
-        }
-        if (width & 1) row[width - 1] *= g0;
-      }
-    });
-  }
-  // A pinhole target's spots may be a pixel across: the median would take them for hot pixels.
-  Image work = options.target == CalibrationTarget::Pinhole ? grey.copy() : median3x3(grey);
-  if (!isMosaic(options.colorFilter)) return work;
-  // Binomial [1 2 1] / 4 along x into grey, then along y into work (borders clamped).
-  parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
-    for (int y = int(begin); y < int(end); ++y) {
-      const float* in = work.row(y, 0);
-      float* out = grey.row(y, 0);
-      for (int x = 0; x < width; ++x)
-        out[x] = 0.25f * (in[std::max(x - 1, 0)] + 2 * in[x] + in[std::min(x + 1, width - 1)]);
-    }
-  });
-  parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
-    for (int y = int(begin); y < int(end); ++y) {
-      const float* above = grey.row(std::max(y - 1, 0), 0);
-      const float* middle = grey.row(y, 0);
-      const float* below = grey.row(std::min(y + 1, height - 1), 0);
-      float* out = work.row(y, 0);
-      for (int x = 0; x < width; ++x) out[x] = 0.25f * (above[x] + 2 * middle[x] + below[x]);
-    }
-  });
-  return work;
-}
 
 // A scene raw: divided by its local mean (over about two microlenses each way), so that every
 // microlens image looks like a white one whatever the scene's brightness there.
@@ -139,28 +62,6 @@ double median(std::vector<double> values) {
   return *middle;
 }
 
-// [1 2 1] along each axis (borders clamped): symmetric, takes the remaining pixel noise off the
-// centre estimates. One pass: the vertical sum of three rows, then the horizontal one, per row.
-Image smoothBinomial(const Image& work) {
-  const int width = work.width(), height = work.height();
-  Image smooth(width, height, 1);
-  parallelFor(0, std::size_t(height), 32, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> column(std::size_t(width) + 2);
-    for (int y = int(begin); y < int(end); ++y) {
-      const float* above = work.row(std::max(y - 1, 0), 0);
-      const float* middle = work.row(y, 0);
-      const float* below = work.row(std::min(y + 1, height - 1), 0);
-      float* c = column.data() + 1;
-      for (int x = 0; x < width; ++x) c[x] = above[x] + 2 * middle[x] + below[x];
-      c[-1] = c[0];
-      c[width] = c[width - 1];
-      float* out = smooth.row(y, 0);
-      for (int x = 0; x < width; ++x) out[x] = (c[x - 1] + 2 * c[x] + c[x + 1]) * (1.0f / 16);
-    }
-  });
-  return smooth;
-}
-
 // The start of the growth: the microlens nearest the image's centre (highest contrast of a few
 // hill climbs).
 CentreEstimate findSeed(const Image& smooth, const Lattice& lattice, double radius, double relax) {
@@ -178,11 +79,11 @@ CentreEstimate findSeed(const Image& smooth, const Lattice& lattice, double radi
 }  // namespace
 
 // Measures the centres and fits the lattice, starting from `lattice`.
-Result<Calibration> calibrateFrom(Image work, Lattice lattice, const CalibrationOptions& options, const std::string& where) {
+Result<Calibration> calibrateFrom(const Image& image, const calibrate_detail::PhaseGains& gains, Lattice lattice,
+                                  const CalibrationOptions& options, const std::string& where) {
   if (lattice.pitchX < 3 || lattice.pitchY < 2)
     return makeError(ErrorCode::Format, where + ": the microlens pitch found (" + std::to_string(lattice.pitchX) +
                                             " px) is too small to calibrate");
-  if (options.target == CalibrationTarget::Scene) flattenScene(work, lattice.pitchX);
 
   // Centres in two steps: an iterated centroid in a disc of half the neighbour distance (robust
   // from a guess a quarter pitch off), then, except for pinhole spots whose centroid is already
@@ -190,8 +91,15 @@ Result<Calibration> calibrateFrom(Image work, Lattice lattice, const Calibration
   // microlens images, which fill square or hexagonal cells and whose flat tops carry no
   // information for a centroid).
   const bool pinhole = options.target == CalibrationTarget::Pinhole;
-  const Image smooth = smoothBinomial(work);
-  work = Image();
+  // A scene is flattened between the preparation and the smoothing (with this lattice's pitch);
+  // otherwise both are one pass.
+  const Image smooth = [&] {
+    if (options.target != CalibrationTarget::Scene)
+      return calibrate_detail::prepareRegion(image, options, gains, 0, 0, image.width(), image.height(), true);
+    Image work = calibrate_detail::prepareRegion(image, options, gains, 0, 0, image.width(), image.height(), false);
+    flattenScene(work, lattice.pitchX);
+    return calibrate_detail::smoothBinomial(work);
+  }();
   const double spacing = lattice.neighbourDistance();
   const double centroidRadius = 0.5 * spacing, symmetricRadius = 0.75 * spacing;
   const double relax = pinhole ? 1.0 : 1.5;  // a flat disc's centroid moves half-way per step
@@ -309,7 +217,11 @@ Result<Calibration> calibrateFrom(Image work, Lattice lattice, const Calibration
 
 Result<Calibration> calibrateGridDetailed(const Image& image, const CalibrationOptions& options, const std::string& where) {
   if (image.empty() || image.channels() < 1) return makeError(ErrorCode::Usage, where + ": empty image");
-  Image work = prepare(image, options);
+  const calibrate_detail::PhaseGains gains = calibrate_detail::phaseGains(image, options);
+  // The autocorrelation needs only the prepared central part (latticeFromAutocorrelation's crop).
+  const int size = std::min({image.width(), image.height(), 1024}) & ~1;
+  const int x0 = (image.width() - size) / 2, y0 = (image.height() - size) / 2;
+  const Image centre = calibrate_detail::prepareRegion(image, options, gains, x0, y0, x0 + size, y0 + size, false);
   // The hint is only a guess (a metadata file may belong to another camera), and the image's own
   // autocorrelation can be fooled on a small image: when the two disagree (packing, or pitch by
   // more than 5%), both are fitted and the lattice that fits its centres better (relative to its
@@ -319,10 +231,10 @@ Result<Calibration> calibrateGridDetailed(const Image& image, const CalibrationO
   // 0.68 to 0.70: not a lattice vector); pinhole spots, sharp, lose much more between the integer
   // lags (the half-pitch row offset: under 0.78), and have no gaps to match.
   const double minPeak = options.target == CalibrationTarget::White ? 0.78 : 0.7;
-  auto measured = calibrate_detail::latticeFromAutocorrelation(work, where, minPeak);
+  auto measured = calibrate_detail::latticeFromAutocorrelation(centre, where, minPeak);
   if (!options.hint) {
     if (!measured) return measured.error();
-    return calibrateFrom(std::move(work), *measured, options, where);
+    return calibrateFrom(image, gains, *measured, options, where);
   }
   const LensletHint& hint = *options.hint;
   if (!std::isfinite(hint.pitchPx) || hint.pitchPx < 3 || hint.pitchPx > 0.5 * std::min(image.width(), image.height()))
@@ -336,9 +248,9 @@ Result<Calibration> calibrateGridDetailed(const Image& image, const CalibrationO
   hinted.pitchY = hint.packing == Packing::Hexagonal ? hint.pitchPx * std::sqrt(3.0) / 2 : hint.pitchPx;
   hinted.theta = hint.rotationRad;
   if (!measured || (measured->packing == hinted.packing && std::abs(measured->pitchX / hinted.pitchX - 1) <= 0.05))
-    return calibrateFrom(std::move(work), hinted, options, where);
-  auto fromHint = calibrateFrom(work.copy(), hinted, options, where);
-  auto fromImage = calibrateFrom(std::move(work), *measured, options, where);
+    return calibrateFrom(image, gains, hinted, options, where);
+  auto fromHint = calibrateFrom(image, gains, hinted, options, where);
+  auto fromImage = calibrateFrom(image, gains, *measured, options, where);
   if (!fromHint) return fromImage;
   if (!fromImage) return fromHint;
   const auto relativeResidual = [](const Calibration& c) { return c.grid.fit.rmsResidualPx / c.grid.pitchX; };

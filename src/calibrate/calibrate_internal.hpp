@@ -1,6 +1,7 @@
 // Steps of the lattice calibration (src/calibrate/), shared by its source files.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <vector>
 
@@ -61,6 +62,9 @@ struct CentreEstimate {
 // Stops when a step is below `tolerance` pixels.
 CentreEstimate refineCentre(const Image& image, double x, double y, double radius, int iterations,
                             double relax = 1.0, double tolerance = 1e-3);
+// The same with every pixel of the window through the weight's formula (the reference).
+CentreEstimate refineCentreReference(const Image& image, double x, double y, double radius, int iterations,
+                                     double relax = 1.0, double tolerance = 1e-3);
 
 // The centre of symmetry of `image` near (x, y): Gauss-Newton on the sum over offsets d within
 // `radius` of [I(c + d) - I(c - d) - (g . e(d))(I(c + d) + I(c - d))]^2 over the centre c and a
@@ -70,6 +74,31 @@ CentreEstimate refineCentre(const Image& image, double x, double y, double radiu
 // each image (vignetting off the axis), with its neighbours' images inside the window.
 CentreEstimate refineSymmetric(const Image& image, double x, double y, double radius, int iterations,
                                const std::vector<std::array<double, 2>>& neighbours = {});
+// The same with every sample interpolated on its own (the reference of the fast path, which
+// resamples the window once per step: symmetric_centre.cpp).
+CentreEstimate refineSymmetricReference(const Image& image, double x, double y, double radius, int iterations,
+                                        const std::vector<std::array<double, 2>>& neighbours = {});
+
+// Preparation (prepare.cpp): one channel (channels averaged), black level off, a mosaic's 2x2
+// phases scaled to their common mean, a 3x3 median (not for pinhole targets, whose spots may be a
+// pixel across), for a mosaic the [1 2 1] binomial along x then y, and, when `smoothed`, the [1 2 1]
+// along y then x that takes the remaining noise off the centre estimates. All centrally symmetric
+// with borders clamped to the whole image, so a region is exactly that part of the whole.
+struct PhaseGains {
+  std::array<float, 4> gain{1, 1, 1, 1};  // phase 2 (y & 1) + (x & 1); all 1 without a mosaic
+};
+PhaseGains phaseGains(const Image& image, const CalibrationOptions& options);
+// Columns [x0, x1), rows [y0, y1) of the prepared image: one pass over the rows, nothing else kept.
+Image prepareRegion(const Image& image, const CalibrationOptions& options, const PhaseGains& gains, int x0, int y0,
+                    int x1, int y1, bool smoothed);
+// The smoothing alone of a prepared image.
+Image smoothBinomial(const Image& work);
+// The plain reference: one whole-image pass per step.
+Image prepareReference(const Image& image, const CalibrationOptions& options, bool smoothed);
+
+// One row of the 3x3 median (median3x3.cpp): out[x] for x in [x0, x1) of rows `width` wide;
+// above or below is null outside the image, where the window is clipped.
+void median3x3Row(const float* above, const float* row, const float* below, int width, int x0, int x1, float* out);
 
 // The JSON in a file; errors name it. expected: what the file should be, for the message.
 Result<nlohmann::json> readJsonFile(const std::filesystem::path& path, const char* expected);

@@ -1,4 +1,5 @@
-// The lattice model, its robust least-squares fit, and the sub-pixel centre of one microlens.
+// The lattice model, its robust least-squares fit, and the centroid of one microlens image (the
+// centre of symmetry is in symmetric_centre.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -113,8 +114,13 @@ LatticeFit fitLattice(const std::vector<Sample>& samples, const Lattice& start) 
   return fit;
 }
 
-CentreEstimate refineCentre(const Image& image, double x, double y, double radius, int iterations, double relax,
-                            double tolerance) {
+namespace {
+
+// kFast: only the disc's span of each row, and the square root only on its rim; otherwise every
+// pixel of the window through the weight's formula (the reference). The same floats.
+template <bool kFast>
+CentreEstimate centroid(const Image& image, double x, double y, double radius, int iterations, double relax,
+                        double tolerance) {
   CentreEstimate estimate;
   const int width = image.width(), height = image.height();
   const float* data = image.plane(0);
@@ -138,14 +144,27 @@ CentreEstimate refineCentre(const Image& image, double x, double y, double radiu
     }
     // Soft disc: weight = covered fraction of the pixel, approximated by a one-pixel ramp.
     const float cx = float(x - 0.5), cy = float(y - 0.5), edge = float(outer);
+    // The weight is 1 well inside the disc and 0 outside it: the square root only on the rim (the
+    // margins keep every weight what the formula gives; the zeros add nothing).
+    const float inner2 = edge > 1 ? 0.9999f * (edge - 1) * (edge - 1) : -1.0f, outer2 = 1.0001f * edge * edge;
     double sum = 0, sumX = 0, sumY = 0;
     for (int py = y0; py < y1; ++py) {
       const float dy = py - cy;
+      if (kFast && dy * dy >= outer2) continue;
       const float* row = data + std::size_t(py) * width;
+      // The row's span of the disc, a pixel wide on each side.
+      int from = x0, to = x1;
+      if (kFast) {
+        const float half = std::sqrt(outer2 - dy * dy);
+        from = std::max(x0, int(std::floor(cx - half)) - 1);
+        to = std::min(x1, int(std::ceil(cx + half)) + 2);
+      }
       float rowSum = 0, rowX = 0;
-      for (int px = x0; px < x1; ++px) {
+      for (int px = from; px < to; ++px) {
         const float dx = px - cx;
-        const float w = std::clamp(edge - std::sqrt(dx * dx + dy * dy), 0.0f, 1.0f);
+        const float d2 = dx * dx + dy * dy;
+        if (kFast && d2 >= outer2) continue;
+        const float w = kFast && d2 <= inner2 ? 1.0f : std::clamp(edge - std::sqrt(d2), 0.0f, 1.0f);
         const float v = w * std::max(row[px] - level, 0.0f);
         rowSum += v;
         rowX += v * dx;
@@ -167,122 +186,16 @@ CentreEstimate refineCentre(const Image& image, double x, double y, double radiu
   return estimate;
 }
 
-namespace {
-
-// Bilinear sample at continuous position (x, y) (pixel centres at half-integers); the caller keeps
-// it inside the image.
-inline float bilinear(const float* data, int width, double x, double y) {
-  const double fx = x - 0.5, fy = y - 0.5;
-  const int ix = int(std::floor(fx)), iy = int(std::floor(fy));
-  const float ax = float(fx - ix), ay = float(fy - iy);
-  const float* p = data + std::size_t(iy) * width + ix;
-  return (1 - ay) * ((1 - ax) * p[0] + ax * p[1]) + ay * ((1 - ax) * p[width] + ax * p[width + 1]);
-}
-
 }  // namespace
 
-CentreEstimate refineSymmetric(const Image& image, double x, double y, double radius, int iterations,
-                               const std::vector<std::array<double, 2>>& neighbours) {
-  CentreEstimate estimate;
-  const int width = image.width(), height = image.height();
-  const int reach = int(std::ceil(radius));
-  auto inside = [&] { return x - reach - 2 >= 0 && y - reach - 2 >= 0 && x + reach + 2 <= width && y + reach + 2 <= height; };
-  if (!inside()) return estimate;
-  // Offsets over half the disc (d and -d give the same term), and each one's offset from the
-  // centre of the microlens image it falls on (the tilt's lever: brightness ramps about each image's
-  // own centre, so a neighbour's part of the window is no continuation of this image's ramp).
-  thread_local std::vector<std::array<int, 2>> offsets;
-  thread_local std::vector<std::array<double, 2>> levers;
-  thread_local double offsetsRadius = -1;
-  thread_local std::vector<std::array<double, 2>> offsetsNeighbours;
-  if (offsetsRadius != radius || offsetsNeighbours != neighbours) {
-    offsets.clear();
-    levers.clear();
-    for (int dy = 0; dy <= reach; ++dy)
-      for (int dx = -reach; dx <= reach; ++dx)
-        if (!(dy == 0 && dx <= 0) && dx * dx + dy * dy <= radius * radius) {
-          offsets.push_back({dx, dy});
-          std::array<double, 2> lever{double(dx), double(dy)};
-          for (const auto& n : neighbours)
-            if (std::hypot(dx - n[0], dy - n[1]) < std::hypot(lever[0], lever[1])) lever = {dx - n[0], dy - n[1]};
-          levers.push_back(lever);
-        }
-    offsetsRadius = radius;
-    offsetsNeighbours = neighbours;
-  }
-  // Gauss-Newton on the sum over offsets d of [I(c + d) - I(c - d) - (g . e)(I(c + d) + I(c - d))]^2
-  // (e: d's lever, d itself without neighbours) over the centre c and a tilt g: a centrally
-  // symmetric image S times a linear ramp (1 + g . d),
-  // such as a microlens image under the cos^4 fall-off of the rays of an off-axis microlens, has
-  // this residual zero at its true centre, where without g the ramp pulls the centre towards the
-  // bright side (inwards). The Jacobian in c is taken once at the start (within a pixel or so).
-  const float* data = image.plane(0);
-  thread_local std::vector<double> jx, jy, plus, minus;
-  jx.resize(offsets.size());
-  jy.resize(offsets.size());
-  plus.resize(offsets.size());
-  minus.resize(offsets.size());
-  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
-  for (std::size_t k = 0; k < offsets.size(); ++k) {
-    const double px = x + offsets[k][0], py = y + offsets[k][1], qx = x - offsets[k][0], qy = y - offsets[k][1];
-    // The bilinear interpolation of the central differences, which is the central difference of
-    // the bilinear interpolation (both linear): no gradient images needed.
-    jx[k] = 0.5 * (bilinear(data, width, px + 1, py) - bilinear(data, width, px - 1, py) -
-                   bilinear(data, width, qx + 1, qy) + bilinear(data, width, qx - 1, qy));
-    jy[k] = 0.5 * (bilinear(data, width, px, py + 1) - bilinear(data, width, px, py - 1) -
-                   bilinear(data, width, qx, qy + 1) + bilinear(data, width, qx, qy - 1));
-    normal(0, 0) += jx[k] * jx[k];
-    normal(0, 1) += jx[k] * jy[k];
-    normal(1, 1) += jy[k] * jy[k];
-  }
-  if (!(normal(0, 0) * normal(1, 1) - normal(0, 1) * normal(0, 1) > 0)) return estimate;
-  double gx = 0, gy = 0;
-  double lastStep = INFINITY;
-  for (int iteration = 0; iteration < iterations; ++iteration) {
-    if (!inside()) return estimate;
-    for (std::size_t k = 0; k < offsets.size(); ++k) {
-      plus[k] = bilinear(data, width, x + offsets[k][0], y + offsets[k][1]);
-      minus[k] = bilinear(data, width, x - offsets[k][0], y - offsets[k][1]);
-    }
-    // d r / d c = grad I(c + d) - grad I(c - d) = (jx, jy) (the tilt's share neglected: g is
-    // small); d r / d g = -d (I(c + d) + I(c - d)).
-    normal.block<2, 2>(0, 2).setZero();
-    normal.block<2, 2>(2, 2).setZero();
-    Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
-    for (std::size_t k = 0; k < offsets.size(); ++k) {
-      const double dx = levers[k][0], dy = levers[k][1];
-      const double level = plus[k] + minus[k];
-      const double r = plus[k] - minus[k] - (gx * dx + gy * dy) * level;
-      const double ggx = -dx * level, ggy = -dy * level;
-      normal(0, 2) += jx[k] * ggx;
-      normal(0, 3) += jx[k] * ggy;
-      normal(1, 2) += jy[k] * ggx;
-      normal(1, 3) += jy[k] * ggy;
-      normal(2, 2) += ggx * ggx;
-      normal(2, 3) += ggx * ggy;
-      normal(3, 3) += ggy * ggy;
-      rhs += Eigen::Vector4d(jx[k], jy[k], ggx, ggy) * r;
-    }
-    const Eigen::Matrix4d full = normal.selfadjointView<Eigen::Upper>();
-    const Eigen::Vector4d step = -full.ldlt().solve(rhs);
-    if (!step.allFinite()) return estimate;
-    double stepX = step[0], stepY = step[1];
-    const double length = std::hypot(stepX, stepY);
-    if (length > 1.0) {
-      stepX /= length;
-      stepY /= length;
-    }
-    x += stepX;
-    y += stepY;
-    gx += step[2];
-    gy += step[3];
-    lastStep = std::hypot(stepX, stepY);
-    if (lastStep < 1e-3) break;
-  }
-  estimate.x = x;
-  estimate.y = y;
-  estimate.ok = lastStep < 0.02;
-  return estimate;
+CentreEstimate refineCentre(const Image& image, double x, double y, double radius, int iterations, double relax,
+                            double tolerance) {
+  return centroid<true>(image, x, y, radius, iterations, relax, tolerance);
+}
+
+CentreEstimate refineCentreReference(const Image& image, double x, double y, double radius, int iterations,
+                                     double relax, double tolerance) {
+  return centroid<false>(image, x, y, radius, iterations, relax, tolerance);
 }
 
 }  // namespace lfcam::calibrate_detail
