@@ -56,7 +56,7 @@ TEST(DepthLayeredPlanes, MeetsTheBenchmarkScoresWithExactTruth) {
   auto scores = scoreDisparity(depth->disparity, scene.disparity);
   ASSERT_TRUE(scores);
   std::printf("layered planes 9x9x128x128: BadPix(0.07) %.2f %%, MSE x100 %.3f\n", scores->badPix, scores->mse100);
-  // Measured 8.4 % and 8.9 (8.6 % with the interpolation-bias correction on; 11.2 % and 9.3
+  // Measured 8.6 % and 8.9 (8.4 % and 8.9 before DepthOptions::refineAggregateHalves; 11.2 % and 9.3
   // before issue 6's second round: strict half-apertures, defocus weight 0.5, median radius 6,
   // the fine search from the map's local mean).
   EXPECT_LT(scores->badPix, 10.5);

@@ -38,6 +38,9 @@
 //     is first replaced by its local mean over (2 `refineSmoothRadius` + 1)^2 pixels wherever that
 //     is within a label step of it, so that the slices follow a slanted surface without the
 //     labels' steps (a window is moved by one offset) while occlusion edges keep their jumps.
+//     With `refineAggregateHalves` each subset of views of step 2 is aggregated on its own and the
+//     lowest taken per slice afterwards (a window keeps to one subset; a per-pixel minimum picks
+//     whichever subset is lowest by chance at each pixel, a bias and noise).
 //  7. Edge-aware fill (`fillLambda`, `fillSigma`): each disparity is weighted by the curvature of
 //     its fine-search cost at the minimum (flat without texture) over the cost left there (high
 //     where no disparity makes the views agree, as at occlusions), and the map replaced by its
@@ -61,16 +64,17 @@
 // own disparity-to-depth conversion (hci_parameters.hpp).
 //
 // Measured (tests/depth_layered_planes_test.cpp, tests/realdata/hci_depth_test.cpp,
-// tests/edof_people_test.cpp): BadPix(0.07) 8.4 %, MSE x100 8.9 on the layered-planes default
-// scene (9x9 views of 128x128); 14.2 %, BadPix(0.03) 40.1 % and 9.1 on HCI antinous (the goal of
-// 7 % is not reached: the steep floor, biased too far, and background pixels up to 6 pixels
-// beside a nearer surface given its disparity; docs/design.md has the breakdown); 17.9 % and 2.37
-// on the simulator's people scene, noise-free (9x9 views of 80x80).
+// tests/edof_people_test.cpp): BadPix(0.07) 8.6 %, MSE x100 8.9 on the layered-planes default
+// scene (9x9 views of 128x128); 10.3 %, BadPix(0.03) 25.5 % and 10.3 on HCI antinous (the goal
+// of 7 % is not reached: the steep floor, biased too far where it has no texture, and occlusion
+// edges; docs/design.md has the breakdown); 11.0 % and 2.15 on the simulator's people scene,
+// noise-free (9x9 views of 80x80).
 // Cost: labels x (33 views + one luminance refocus) bilinear passes over ns x nt, 8 passes of
 // labels x ns x nt for the optimisation, (2 refineSteps + 1) x 33 bilinear passes for the fine
-// search, 6 tridiagonal solves per row and per column for the fill (about 70 ms of CPU at
-// 512x512) and a (2 medianRadius + 1)^2 selection per pixel for the median; memory 2 x labels x ns x nt
-// floats (bench/depth_bench.cpp: ratio to one refocus).
+// search (and 6 x (2 refineSteps + 1) guided filters of its subsets), 6 tridiagonal solves per
+// row and per column for the fill (about 70 ms of CPU at 512x512) and a (2 medianRadius + 1)^2
+// selection per pixel for the median; memory 2 x labels x ns x nt floats (the fine search's
+// subsets 6 x (2 refineSteps + 1) x ns x nt more; bench/depth_bench.cpp: ratio to one refocus).
 #pragma once
 
 #include <optional>
@@ -89,14 +93,16 @@ struct DepthOptions {
   double filterEpsilon = 1e-4;    // guided filter regulariser, squared linear luminance
   double smoothness = 1.0;        // scales both jump penalties of the optimisation; 0 disables it
   int refineSteps = 2;            // fine search: steps per label on each side; 0 disables it
-  int refineRadius = 8;           // guided filter window of the fine search: (2 r + 1)^2 pixels
+  int refineRadius = 4;           // guided filter window of the fine search: (2 r + 1)^2 pixels
   int refineSmoothRadius = 2;     // local mean of the map the fine search starts from; 0: none
+  bool refineAggregateHalves = true;  // fine search: aggregate each subset's cost, then the best
   int medianRadius = 6;           // weighted median window; 0 disables it
   double medianSigma = 0.05;      // guide (sRGB luminance) difference that weighs a neighbour 0.6
   double fillLambda = 1.0;        // edge-aware fill (needs refineSteps > 0); 0 disables it
   double fillSigma = 0.02;        // centre-view (sRGB) colour difference that weakens a link to 1/e
-  // Scale of the interpolation-bias term removed from the cost; 0: none. Off by default: it takes
-  // antinous from 14.2 to 13.3 % BadPix(0.07) but the simulator's people scene from 17.9 to 47.2 %.
+  // Scale of the interpolation-bias term removed from the cost; 0: none. Off by default: it took
+  // antinous from 14.2 to 13.3 % BadPix(0.07) but the simulator's people scene from 17.9 to 47.2 %
+  // (before refineAggregateHalves; with it, antinous 10.3 -> 10.4 %).
   double lockingCorrection = 0.0;
 };
 
