@@ -49,9 +49,10 @@ TEST(LightField, WeightHasOnePlanePerView) {
 // The allocator hands out zeroed memory and the constructor does not fill it again: check both
 // sizes of buffer (operator new below 4 MiB, aligned huge pages above), reused memory included.
 TEST(LightField, NewSamplesAndZeroWeightsAreZero) {
+  for (Pages pages : {Pages::Huge, Pages::Ordinary})
   for (int side : {8, 400}) {  // 0.02 MB and 5 MB of samples per channel
     for (int round = 0; round < 2; ++round) {
-      LightField lf({.nu = 2, .nv = 2, .ns = side, .nt = side, .channels = 2});
+      LightField lf({.nu = 2, .nv = 2, .ns = side, .nt = side, .channels = 2}, pages);
       std::size_t nonZero = 0;
       for (float x : lf.samples()) nonZero += x != 0.0f;
       lf.enableWeight(0.75f);

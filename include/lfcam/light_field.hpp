@@ -75,8 +75,9 @@ struct LightFieldMetadata {
 class LightField {
  public:
   LightField() = default;
-  // Zero-filled samples; no weight until enableWeight().
-  explicit LightField(const LightFieldShape& shape);
+  // Zero-filled samples; no weight until enableWeight(). `pages`: Ordinary for a light field
+  // that is written once and passed on (huge_page_allocator.hpp).
+  explicit LightField(const LightFieldShape& shape, Pages pages = Pages::Huge);
 
   LightField(LightField&&) noexcept = default;
   LightField& operator=(LightField&&) noexcept = default;

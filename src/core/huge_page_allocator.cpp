@@ -30,13 +30,15 @@ bool hugePagesWanted() {
 
 }  // namespace
 
-void* allocate(std::size_t bytes) {
+void* allocate(std::size_t bytes, Pages pages) {
   if (bytes < threshold) return std::memset(::operator new(bytes), 0, bytes);
   if (bytes > std::size_t(-1) - hugePage) throw std::bad_alloc();
   void* pointer = std::aligned_alloc(hugePage, roundedUp(bytes));
   if (!pointer) throw std::bad_alloc();
-  // Advice only: refused (no THP in this kernel), the pages are ordinary ones.
-  if (hugePagesWanted()) ::madvise(pointer, roundedUp(bytes), MADV_HUGEPAGE);
+  // Advice only: refused (no THP in this kernel), the pages are ordinary ones. Ordinary ones are
+  // asked for explicitly, for kernels that give huge pages to every aligned region.
+  const bool huge = pages == Pages::Huge && hugePagesWanted();
+  ::madvise(pointer, roundedUp(bytes), huge ? MADV_HUGEPAGE : MADV_NOHUGEPAGE);
   // First touch on every thread: a page fault zeroes a whole 2 MiB page, and on a virtual
   // machine may also wait for the host to back it; std::vector's fill would fault them all in
   // from one thread (bench/decode_bench: this took a quarter of a second off an Illum decode).

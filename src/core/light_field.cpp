@@ -13,7 +13,8 @@ double Optics::alphaFromSlope(double slope) const {
   return 1.0 / (1.0 - slope * spatialStepMm / lensStepMm);
 }
 
-LightField::LightField(const LightFieldShape& shape) : shape_(shape), data_(shape.samples()) {
+LightField::LightField(const LightFieldShape& shape, Pages pages)
+    : shape_(shape), data_(shape.samples(), HugePageAllocator<float>(pages)) {
   assert(shape.nu >= 0 && shape.nv >= 0 && shape.ns >= 0 && shape.nt >= 0 && shape.channels >= 0);
 }
 
@@ -27,11 +28,10 @@ LightField LightField::copy() const {
 }
 
 void LightField::enableWeight(float value) {
-  const std::size_t count = shape_.views() * shape_.viewPixels();
-  if (value != 0.0f) return weight_.assign(count, value);
-  // A fresh buffer is already zero (huge_page_allocator.hpp): no second pass over it.
-  decltype(weight_) zeroed(count);
-  weight_.swap(zeroed);
+  // A fresh buffer, on the samples' kind of pages, is already zero (huge_page_allocator.hpp).
+  decltype(weight_) fresh(shape_.views() * shape_.viewPixels(), data_.get_allocator());
+  if (value != 0.0f) std::fill(fresh.begin(), fresh.end(), value);
+  weight_.swap(fresh);
 }
 
 Image LightField::subApertureImage(int u, int v) const {

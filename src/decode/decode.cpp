@@ -207,7 +207,8 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
   value = Image();
 
   // 4. Dicing.
-  LightField lf(LightFieldShape{n, n, grid.columns, grid.rows, channels});
+  // Written once here: ordinary pages fault in faster (huge_page_allocator.hpp).
+  LightField lf(LightFieldShape{n, n, grid.columns, grid.rows, channels}, Pages::Ordinary);
   lf.enableWeight(0);
   decode_detail::ViewLayout layout;
   layout.views = n;
