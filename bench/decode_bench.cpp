@@ -6,6 +6,9 @@
 //                           far, which includes the two input raws), mpix_per_s of raw.
 //   BM_DecodeIllumIntegral  the paper's integral-pitch sampling, same inputs.
 //   BM_DecodeIllumHA        Hamilton-Adams demosaicing.
+//   BM_DecodeIllumLightField  the light-field-aware demosaic, each decode followed (untimed) by a
+//                           default one: ratio = its decode time / Malvar-He-Cutler's, and
+//                           demosaic_ratio the same for the demosaic step alone (the raw's mosaic).
 //   BM_DemosaicReference    the plain per-pixel demosaic against the fast one on a 1024 x 1024
 //                           crop: ratio = reference time / fast time.
 //   BM_SamplingReference    the same for the sampling (decode with referenceKernels on a crop).
@@ -124,6 +127,26 @@ double seconds(F&& f) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+void BM_DecodeIllumLightField(benchmark::State& state) {
+  const Synthetic& s = illum();
+  DecodeOptions options;
+  options.white = &s.white;
+  double aware = 0, malvar = 0, awareStep = 0, malvarStep = 0;
+  for (auto _ : state) {
+    options.demosaic = DemosaicMethod::LightFieldAware;
+    aware += seconds([&] { benchmark::DoNotOptimize(decodeLightField(s.raw, s.grid, options)); });
+    state.PauseTiming();
+    options.demosaic = DemosaicMethod::MalvarHeCutler;
+    malvar += seconds([&] { benchmark::DoNotOptimize(decodeLightField(s.raw, s.grid, options)); });
+    awareStep += seconds([&] { benchmark::DoNotOptimize(demosaic(s.raw.mosaic, ColorFilter::GRBG, DemosaicMethod::LightFieldAware, &s.grid)); });
+    malvarStep += seconds([&] { benchmark::DoNotOptimize(demosaic(s.raw.mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler)); });
+    state.ResumeTiming();
+  }
+  state.counters["ratio"] = aware / malvar;
+  state.counters["demosaic_ratio"] = awareStep / malvarStep;
+  state.counters["peak_rss_mb"] = peakRssMb();
+}
+
 void BM_DemosaicReference(benchmark::State& state) {
   static const Synthetic s = synthesise(1024, 1024);
   Image mosaic = s.raw.mosaic.copy();
@@ -151,6 +174,7 @@ void BM_SamplingReference(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_DecodeIllum)->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
+BENCHMARK(BM_DecodeIllumLightField)->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
 BENCHMARK(BM_DecodeIllumIntegral)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_DecodeIllumHA)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_DemosaicReference)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();

@@ -74,8 +74,9 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
 // Demosaics a one-channel mosaic (any scale) into 3 planes (R, G, B); a Mono filter gives a copy.
 // LensletAware and LightFieldAware need the grid (without it: Malvar-He-Cutler); the others ignore it.
 Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid = nullptr);
-// Plain per-pixel implementations of the same, the references the fast kernels are tested against.
-Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method);
+// Plain per-pixel implementations of the same, the references the fast kernels are tested against
+// (LightFieldAware's with bounds-checked taps everywhere; LensletAware has only the one).
+Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid = nullptr);
 
 // Replaces each photosite more than `threshold` above every same-colour neighbour (8 of them, two
 // pixels away in a Bayer mosaic) by their median. Returns the number repaired.

@@ -166,25 +166,30 @@ Status checkInputs(const RawImage& raw, const LensletGrid& grid, const DecodeOpt
   return {};
 }
 
+int viewCount(const LensletGrid& grid, const DecodeOptions& options) {
+  return options.views > 0 ? options.views : std::max(1, int(std::lround(grid.pitchX)));
+}
+
 }  // namespace
 
-Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options) {
+namespace decode_detail {
+
+Result<Devignetted> devignettedMosaic(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options) {
   LFCAM_TRY(checkInputs(raw, grid, options));
-  const ColorFilter filter = raw.colorFilter;
-  const int channels = filter == ColorFilter::Mono ? 1 : 3;
-  const int n = options.views > 0 ? options.views : std::max(1, int(std::lround(grid.pitchX)));
+  const int channels = raw.colorFilter == ColorFilter::Mono ? 1 : 3;
+  const int n = viewCount(grid, options);
   const double samples = double(n) * n * grid.columns * grid.rows * (channels + 1);
   if (samples > 4e9) return makeError(ErrorCode::Resource, "decode: light field too large (" + std::to_string(samples) + " samples)");
+  const ColorFilter filter = raw.colorFilter;
 
   // 1. Offset and scale, hot pixels.
-  Image value = normalise(raw, options.dark);
-  if (options.repairHotPixels) repairHotPixels(value, filter, kHotPixelThreshold);
+  Devignetted out;
+  out.value = normalise(raw, options.dark);
+  if (options.repairHotPixels) repairHotPixels(out.value, filter, kHotPixelThreshold);
 
   // 2. Devignetting by the white image (same offset treatment: the dark frame holds the
   //    sensor's offset for both).
-  Image weight;
-  const bool hasWhite = options.white || options.whiteImage;
-  if (hasWhite) {
+  if (options.white || options.whiteImage) {
     Image white;
     if (options.white) {
       white = normalise(*options.white, options.dark);
@@ -194,27 +199,30 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
       white = Image(given.width(), given.height(), 1);
       std::copy(given.plane(0), given.plane(0) + given.planeSize(), white.plane(0));
     }
-    weight = devignette(value, white, filter);
-    fillUnlit(value, weight, filter);
+    out.weight = devignette(out.value, white, filter);
+    fillUnlit(out.value, out.weight, filter);
   }
+  return out;
+}
 
-  // 3. Demosaicing.
-  Image planes = filter != ColorFilter::Mono && options.demosaic == DemosaicMethod::LightFieldAware
-                     ? decode_detail::demosaicLightField(value, filter, grid, weight, options.referenceKernels)
-                 : options.referenceKernels && options.demosaic != DemosaicMethod::LensletAware
-                     ? demosaicReference(value, filter, options.demosaic)
-                     : demosaic(value, filter, options.demosaic, &grid);
-  value = Image();
+Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& raw, const LensletGrid& grid,
+                                    const DecodeOptions& options) {
+  LFCAM_TRY(checkInputs(raw, grid, options));
+  const int channels = raw.colorFilter == ColorFilter::Mono ? 1 : 3;
+  if (planes.channels() != channels || planes.width() != raw.mosaic.width() || planes.height() != raw.mosaic.height())
+    return makeError(ErrorCode::Usage, "decode: the demosaiced planes do not match the raw");
+  const int n = viewCount(grid, options);
+  const bool hasWhite = options.white || options.whiteImage;
 
   // 4. Dicing.
   // Written once here: ordinary pages fault in faster (huge_page_allocator.hpp).
   LightField lf(LightFieldShape{n, n, grid.columns, grid.rows, channels}, Pages::Ordinary);
   lf.enableWeight(0);
-  decode_detail::ViewLayout layout;
+  ViewLayout layout;
   layout.views = n;
   layout.sampling = options.sampling;
   layout.integralScale = grid.pitchX / std::max(1.0, std::round(grid.pitchX));
-  decode_detail::sampleLenslets(planes, weight, grid, layout, lf, options.referenceKernels);
+  sampleLenslets(planes, weight, grid, layout, lf, options.referenceKernels);
   planes = Image();
   weight = Image();
 
@@ -248,6 +256,23 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
                        std::to_string(grid.columns) + "x" + std::to_string(grid.rows) + " " + packingName(grid.packing) +
                        " microlenses, pitch " + std::to_string(grid.pitchX) + " px";
   return lf;
+}
+
+}  // namespace decode_detail
+
+Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options) {
+  auto prepared = decode_detail::devignettedMosaic(raw, grid, options);
+  if (!prepared.ok()) return prepared.error();
+  Image& value = prepared->value;
+  const ColorFilter filter = raw.colorFilter;
+
+  // 3. Demosaicing.
+  Image planes = filter != ColorFilter::Mono && options.demosaic == DemosaicMethod::LightFieldAware
+                     ? decode_detail::demosaicLightField(value, filter, grid, prepared->weight, options.referenceKernels)
+                 : options.referenceKernels ? demosaicReference(value, filter, options.demosaic, &grid)
+                                            : demosaic(value, filter, options.demosaic, &grid);
+  value = Image();
+  return decode_detail::decodeDemosaiced(std::move(planes), std::move(prepared->weight), raw, grid, options);
 }
 
 }  // namespace lfcam

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "lfcam/camera_model.hpp"
@@ -9,6 +10,8 @@
 #include "lfcam/image.hpp"
 #include "lfcam/lenslet_grid.hpp"
 #include "lfcam/light_field.hpp"
+#include "lfcam/raw_image.hpp"
+#include "lfcam/result.hpp"
 
 namespace lfcam::decode_detail {
 
@@ -47,6 +50,19 @@ inline float mhcGreenAtRB(const M& m, int x, int y) {
           (m(x, y - 2) + m(x, y + 2) + m(x - 2, y) + m(x + 2, y))) * 0.125f;
 }
 
+// Hamilton-Adams's green at a red or blue photosite: the direction (across or down) with the
+// smaller gradient and Laplacian, corrected by the centre colour's Laplacian along it.
+template <class M>
+inline float haGreen(const M& m, int x, int y) {
+  const float c = m(x, y);
+  const float lapH = 2 * c - m(x - 2, y) - m(x + 2, y), lapV = 2 * c - m(x, y - 2) - m(x, y + 2);
+  const float dH = std::abs(m(x - 1, y) - m(x + 1, y)) + std::abs(lapH);
+  const float dV = std::abs(m(x, y - 1) - m(x, y + 1)) + std::abs(lapV);
+  const float gH = 0.5f * (m(x - 1, y) + m(x + 1, y)) + 0.25f * lapH;
+  const float gV = 0.5f * (m(x, y - 1) + m(x, y + 1)) + 0.25f * lapV;
+  return dH < dV ? gH : dV < dH ? gV : 0.5f * (gH + gV);
+}
+
 // DemosaicMethod::LightFieldAware (demosaic_light_field.cpp) of a Bayer mosaic. `weight`: how lit
 // each photosite is (devignetting's weight, 0 between microlens images; empty: all lit).
 // `reference`: the plain bounds-checked taps everywhere, what the fast ones are tested against.
@@ -69,5 +85,18 @@ struct ViewLayout {
 // `reference`: one sample at a time, the plain version the fast kernel is tested against.
 void sampleLenslets(const Image& planes, const Image& weight, const LensletGrid& grid, const ViewLayout& layout,
                     LightField& lf, bool reference);
+
+// decodeLightField's steps before and after demosaicing (decode.cpp), apart so that a test can
+// decode a full-colour mosaic it knows (the simulator's true colour at every photosite: a perfect
+// demosaic) exactly as the decoder decodes a demosaiced one.
+struct Devignetted {
+  Image value;   // offset and scaled, hot pixels repaired, over the white image (unlit ones filled)
+  Image weight;  // devignetting's weight per photosite; empty without a white image
+};
+// Steps 1 and 2, after checking the inputs.
+Result<Devignetted> devignettedMosaic(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options);
+// Steps 4 to 6: `planes` (3, or 1 for a Mono raw, of the raw's size) and `weight` as step 2 left them.
+Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& raw, const LensletGrid& grid,
+                                    const DecodeOptions& options);
 
 }  // namespace lfcam::decode_detail

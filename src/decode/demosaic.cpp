@@ -18,6 +18,7 @@ namespace {
 using decode_detail::CfaTable;
 
 using decode_detail::Direct;
+using decode_detail::haGreen;
 using decode_detail::mhcGreenAtRB;
 using decode_detail::Mosaic;
 
@@ -62,18 +63,8 @@ inline void mhcPixel(const M& m, const CfaTable& cfa, int x, int y, float out[3]
 }
 
 // ---- Hamilton-Adams (1997): green interpolated along the smoother direction (gradient plus
-// Laplacian of the centre colour), then red and blue from colour differences.
-
-template <class M>
-inline float haGreen(const M& m, int x, int y) {
-  const float c = m(x, y);
-  const float lapH = 2 * c - m(x - 2, y) - m(x + 2, y), lapV = 2 * c - m(x, y - 2) - m(x, y + 2);
-  const float dH = std::abs(m(x - 1, y) - m(x + 1, y)) + std::abs(lapH);
-  const float dV = std::abs(m(x, y - 1) - m(x, y + 1)) + std::abs(lapV);
-  const float gH = 0.5f * (m(x - 1, y) + m(x + 1, y)) + 0.25f * lapH;
-  const float gV = 0.5f * (m(x, y - 1) + m(x, y + 1)) + 0.25f * lapV;
-  return dH < dV ? gH : dV < dH ? gV : 0.5f * (gH + gV);
-}
+// Laplacian of the centre colour; haGreen is in decode_internal.hpp), then red and blue from
+// colour differences.
 
 // Second pass: `m` the mosaic, `g` the full green plane (same accessor type).
 template <class M>
@@ -177,9 +168,12 @@ std::vector<int> microlensLabels(const LensletGrid& grid, int width, int height)
 
 }  // namespace decode_detail
 
-Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method) {
+Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid) {
   if (filter == ColorFilter::Mono) return monoCopy(mosaic);
   const CfaTable cfa(filter);
+  if (method == DemosaicMethod::LensletAware && grid) return demosaicLensletAware(mosaic, cfa, *grid);
+  if (method == DemosaicMethod::LightFieldAware && grid)
+    return decode_detail::demosaicLightField(mosaic, filter, *grid, Image(), true);
   const int w = mosaic.width(), h = mosaic.height();
   Image out(w, h, 3);
   const Mosaic m{mosaic.plane(0), w, h};
