@@ -27,7 +27,12 @@ void squaredLaplacian(const Image& image, float* out);
 class GuidedFilter {
  public:
   GuidedFilter(const float* guide, int width, int height, int radius, double epsilon);
+  // Buffers of one apply, kept by the caller across slices (no allocation per slice).
+  struct Scratch {
+    std::vector<float> a, b, rows;
+  };
   void apply(const float* in, float* out) const;
+  void apply(const float* in, float* out, Scratch& scratch) const;
 
  private:
   int width_, height_, radius_;

@@ -7,6 +7,12 @@
 
 namespace lfcam::edof {
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define LFCAM_FILTER_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define LFCAM_FILTER_CLONES
+#endif
+
 namespace {
 
 void luminanceOfPlanes(const float* const* planes, int channels, std::size_t count, float* out) {
@@ -82,6 +88,54 @@ void boxFilter(const float* in, float* out, int width, int height, int radius) {
   }
 }
 
+namespace {
+
+// The guided filter's box filters for radii up to kSmallRadius: float sums of the window's rows,
+// then of its columns, a row at a time; a few vectorised adds per pixel (and no drift, unlike
+// running sums), where boxFilter's double prefix sums are a serial chain with a division per
+// pixel.
+constexpr int kSmallRadius = 8;
+
+// Row y of the mean over rows [y - r, y + r] (clipped) of `in`, times `weight` per pixel when it
+// is given (the guided filter's I p without a plane of its own).
+LFCAM_FILTER_CLONES void columnMeanRow(const float* __restrict in, const float* __restrict weight, int width,
+                                       int height, int y, int radius, float* __restrict target) {
+  const int y0 = std::max(0, y - radius), y1 = std::min(height, y + radius + 1);
+  std::fill(target, target + width, 0.0f);
+  for (int yy = y0; yy < y1; ++yy) {
+    const float* row = in + std::size_t(yy) * width;
+    if (weight) {
+      const float* w = weight + std::size_t(yy) * width;
+      for (int x = 0; x < width; ++x) target[x] += w[x] * row[x];
+    } else {
+      for (int x = 0; x < width; ++x) target[x] += row[x];
+    }
+  }
+  const float inverse = 1.0f / float(y1 - y0);
+  for (int x = 0; x < width; ++x) target[x] *= inverse;
+}
+
+// The mean over [x - r, x + r] (clipped) of one row: the interior as 2 r + 1 vectorised passes.
+LFCAM_FILTER_CLONES void rowMean(const float* __restrict row, int width, int radius, float* __restrict target) {
+  auto clipped = [&](int x) {
+    const int x0 = std::max(0, x - radius), x1 = std::min(width, x + radius + 1);
+    float sum = 0;
+    for (int xx = x0; xx < x1; ++xx) sum += row[xx];
+    target[x] = sum / float(x1 - x0);
+  };
+  const int interiorEnd = std::max(radius, width - radius);
+  for (int x = 0; x < std::min(radius, width); ++x) clipped(x);
+  for (int x = interiorEnd; x < width; ++x) clipped(x);
+  if (interiorEnd <= radius) return;
+  const float inverse = 1.0f / float(2 * radius + 1);
+  for (int x = radius; x < interiorEnd; ++x) target[x] = row[x - radius];
+  for (int k = 1 - radius; k <= radius; ++k)
+    for (int x = radius; x < interiorEnd; ++x) target[x] += row[x + k];
+  for (int x = radius; x < interiorEnd; ++x) target[x] *= inverse;
+}
+
+}  // namespace
+
 GuidedFilter::GuidedFilter(const float* guide, int width, int height, int radius, double epsilon)
     : width_(width), height_(height), radius_(radius) {
   const std::size_t n = std::size_t(width) * height;
@@ -98,21 +152,60 @@ GuidedFilter::GuidedFilter(const float* guide, int width, int height, int radius
   }
 }
 
-// q = mean(a) I + mean(b), a = cov(I, p) / (var(I) + eps), b = mean(p) - a mean(I).
 void GuidedFilter::apply(const float* in, float* out) const {
-  const std::size_t n = std::size_t(width_) * height_;
-  std::vector<float> product(n), meanIn(n), meanProduct(n);
-  for (std::size_t i = 0; i < n; ++i) product[i] = guide_[i] * in[i];
-  boxFilter(in, meanIn.data(), width_, height_, radius_);
-  boxFilter(product.data(), meanProduct.data(), width_, height_, radius_);
-  std::vector<float>& a = product;  // reuse
-  for (std::size_t i = 0; i < n; ++i) {
-    a[i] = (meanProduct[i] - meanGuide_[i] * meanIn[i]) * inverseVariance_[i];
-    meanIn[i] -= a[i] * meanGuide_[i];  // b
+  Scratch scratch;
+  apply(in, out, scratch);
+}
+
+// q = mean(a) I + mean(b), a = cov(I, p) / (var(I) + eps), b = mean(p) - a mean(I). The guide's
+// statistics come from the constructor; per input two sweeps of rows: the means of p and I p and
+// from them a and b, then the means of a and b and q, each row's sums in row buffers (in cache).
+void GuidedFilter::apply(const float* in, float* out, Scratch& scratch) const {
+  const int w = width_, h = height_, r = radius_;
+  const std::size_t n = std::size_t(w) * h;
+  scratch.a.resize(n);
+  scratch.b.resize(n);
+  scratch.rows.resize(4 * std::size_t(w));
+  float* a = scratch.a.data();
+  float* b = scratch.b.data();
+  float* column0 = scratch.rows.data();
+  float* column1 = column0 + w;
+  float* mean0 = column1 + w;
+  float* mean1 = mean0 + w;
+  if (r > kSmallRadius) {  // wide windows: whole-plane running sums
+    std::vector<float> product(n), meanIn(n), meanProduct(n);
+    for (std::size_t i = 0; i < n; ++i) product[i] = guide_[i] * in[i];
+    boxFilter(in, meanIn.data(), w, h, r);
+    boxFilter(product.data(), meanProduct.data(), w, h, r);
+    for (std::size_t i = 0; i < n; ++i) {
+      a[i] = (meanProduct[i] - meanGuide_[i] * meanIn[i]) * inverseVariance_[i];
+      b[i] = meanIn[i] - a[i] * meanGuide_[i];
+    }
+    boxFilter(a, meanIn.data(), w, h, r);
+    boxFilter(b, out, w, h, r);
+    for (std::size_t i = 0; i < n; ++i) out[i] += meanIn[i] * guide_[i];
+    return;
   }
-  boxFilter(a.data(), meanProduct.data(), width_, height_, radius_);
-  boxFilter(meanIn.data(), out, width_, height_, radius_);
-  for (std::size_t i = 0; i < n; ++i) out[i] += meanProduct[i] * guide_[i];
+  for (int y = 0; y < h; ++y) {
+    columnMeanRow(in, nullptr, w, h, y, r, column0);
+    columnMeanRow(in, guide_.data(), w, h, y, r, column1);
+    rowMean(column0, w, r, mean0);
+    rowMean(column1, w, r, mean1);
+    const std::size_t row = std::size_t(y) * w;
+    for (int x = 0; x < w; ++x) {
+      const float slope = (mean1[x] - meanGuide_[row + x] * mean0[x]) * inverseVariance_[row + x];
+      a[row + x] = slope;
+      b[row + x] = mean0[x] - slope * meanGuide_[row + x];
+    }
+  }
+  for (int y = 0; y < h; ++y) {
+    columnMeanRow(a, nullptr, w, h, y, r, column0);
+    columnMeanRow(b, nullptr, w, h, y, r, column1);
+    rowMean(column0, w, r, mean0);
+    rowMean(column1, w, r, mean1);
+    const std::size_t row = std::size_t(y) * w;
+    for (int x = 0; x < w; ++x) out[row + x] = mean0[x] * guide_[row + x] + mean1[x];
+  }
 }
 
 void squaredLaplacian(const Image& image, float* out) {

@@ -1,0 +1,78 @@
+// The filters of src/edof/filters.cpp against plain references on random inputs: boxFilter
+// (double running sums) against the window average pixel by pixel; the guided filter (its own
+// float box sums for small radii, boxFilter beyond) against He et al.'s formula with those plain
+// averages.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "edof/edof_internal.hpp"
+
+namespace lfcam::edof {
+namespace {
+
+// Reference: the mean over the window clipped to the image, each pixel on its own, in double.
+std::vector<double> plainBox(const std::vector<float>& in, int width, int height, int radius) {
+  std::vector<double> out(in.size());
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      double sum = 0;
+      int count = 0;
+      for (int yy = std::max(0, y - radius); yy <= std::min(height - 1, y + radius); ++yy)
+        for (int xx = std::max(0, x - radius); xx <= std::min(width - 1, x + radius); ++xx)
+          sum += in[std::size_t(yy) * width + xx], ++count;
+      out[std::size_t(y) * width + x] = sum / count;
+    }
+  return out;
+}
+
+TEST(BoxFilter, MatchesThePlainWindowMeanOnRandomInputs) {
+  std::mt19937 generator(11);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (int trial = 0; trial < 40; ++trial) {
+    // Sizes from 1 to 70, some below the window.
+    const int width = 1 + int(generator() % 70), height = 1 + int(generator() % 70);
+    const int radius = int(generator() % 11);
+    std::vector<float> in(std::size_t(width) * height), out(in.size());
+    for (float& v : in) v = uniform(generator);
+    boxFilter(in.data(), out.data(), width, height, radius);
+    const std::vector<double> reference = plainBox(in, width, height, radius);
+    for (std::size_t i = 0; i < in.size(); ++i)
+      ASSERT_NEAR(out[i], reference[i], 2e-6) << "trial " << trial << " pixel " << i << " radius " << radius;
+  }
+}
+
+TEST(GuidedFilter, MatchesTheFormulaWithPlainMeansOnRandomInputs) {
+  std::mt19937 generator(12);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (int trial = 0; trial < 30; ++trial) {
+    // Sizes from 1, some below the window; radii 0 to 10 (beyond 8 the whole-plane path).
+    const int width = 1 + int(generator() % 40), height = 1 + int(generator() % 40), radius = int(generator() % 11);
+    const double epsilon = 1e-3;
+    const std::size_t n = std::size_t(width) * height;
+    std::vector<float> guide(n), in(n), out(n), product(n);
+    for (std::size_t i = 0; i < n; ++i) guide[i] = uniform(generator), in[i] = uniform(generator);
+    const GuidedFilter filter(guide.data(), width, height, radius, epsilon);
+    GuidedFilter::Scratch scratch;
+    filter.apply(in.data(), out.data(), scratch);
+    // He et al. 2010, algorithm 1, with plain means.
+    std::vector<float> squares(n);
+    for (std::size_t i = 0; i < n; ++i) product[i] = guide[i] * in[i], squares[i] = guide[i] * guide[i];
+    const auto meanI = plainBox(guide, width, height, radius), meanP = plainBox(in, width, height, radius),
+               meanIp = plainBox(product, width, height, radius), meanII = plainBox(squares, width, height, radius);
+    std::vector<float> a(n), b(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      a[i] = float((meanIp[i] - meanI[i] * meanP[i]) / (meanII[i] - meanI[i] * meanI[i] + epsilon));
+      b[i] = float(meanP[i] - a[i] * meanI[i]);
+    }
+    const auto meanA = plainBox(a, width, height, radius), meanB = plainBox(b, width, height, radius);
+    for (std::size_t i = 0; i < n; ++i)
+      ASSERT_NEAR(out[i], meanA[i] * guide[i] + meanB[i], 1e-4) << "trial " << trial << " pixel " << i;
+  }
+}
+
+}  // namespace
+}  // namespace lfcam::edof
