@@ -5,6 +5,9 @@
 //   BM_DepthWithoutFill  the same without the edge-aware fill (fillLambda = 0); counter
 //                   fill_cost = default time / this time - 1, CPU time of both in this run
 //                   (the time shown is of both runs).
+//   BM_DepthSubsetsApart  estimateDepth with and without aggregateSubsetsApart, alternating;
+//                   counter apart_cost = CPU time with / without - 1 (this run); both
+//                   counters' benchmarks also show cpu_default_s, CPU seconds per default run.
 //   BM_AllInFocus   allInFocus given the depth map (focal stack + blending). Same counter.
 //   BM_DepthAndAllInFocus  both, as `lfcam edof` without --depth does: the goal is < 5 s on 2 cores.
 //
@@ -73,20 +76,36 @@ double processCpuSeconds() {
   return double(std::clock()) / CLOCKS_PER_SEC;
 }
 
-void BM_DepthWithoutFill(benchmark::State& state) {
+// Process CPU time of estimateDepth with `without` and with the default options, alternating
+// (the state's iterations each run both); returns with / without - 1.
+double extraCpuOfDefault(benchmark::State& state, const lfcam::DepthOptions& without) {
   const LightField& lightField = antinous();
-  auto timeDepth = [&](double fill) {
+  auto timeDepth = [&](const lfcam::DepthOptions& options) {
     const double start = processCpuSeconds();
-    auto depth = lfcam::estimateDepth(lightField, {.fillLambda = fill});
+    auto depth = lfcam::estimateDepth(lightField, options);
     if (!depth) state.SkipWithError(depth.error().message.c_str());
     return processCpuSeconds() - start;
   };
-  double with = 0, without = 0;
+  double withSeconds = 0, withoutSeconds = 0;
   for (auto _ : state) {
-    with += timeDepth(lfcam::DepthOptions{}.fillLambda);
-    without += timeDepth(0.0);
+    withSeconds += timeDepth({});
+    withoutSeconds += timeDepth(without);
   }
-  if (without > 0) state.counters["fill_cost"] = with / without - 1;
+  state.counters["cpu_default_s"] = withSeconds / double(state.iterations());
+  return withoutSeconds > 0 ? withSeconds / withoutSeconds - 1 : 0.0;
+}
+
+void BM_DepthWithoutFill(benchmark::State& state) {
+  state.counters["fill_cost"] = extraCpuOfDefault(state, {.fillLambda = 0.0});
+}
+
+void BM_DepthSubsetsApart(benchmark::State& state) {
+  state.counters["apart_cost"] = extraCpuOfDefault(state, {.aggregateSubsetsApart = false});
+}
+
+// The occlusion-edge step (src/edof/occlusion_edges.cpp): CPU with it over without, same run.
+void BM_DepthOcclusionEdges(benchmark::State& state) {
+  state.counters["occlusion_cost"] = extraCpuOfDefault(state, {.occlusionBand = 0});
 }
 
 void BM_AllInFocus(benchmark::State& state) {
@@ -116,6 +135,8 @@ void BM_DepthAndAllInFocus(benchmark::State& state) {
 BENCHMARK(BM_Refocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
 BENCHMARK(BM_Depth)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_DepthWithoutFill)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+BENCHMARK(BM_DepthSubsetsApart)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_DepthOcclusionEdges)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 BENCHMARK(BM_AllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_DepthAndAllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 

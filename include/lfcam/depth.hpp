@@ -25,7 +25,10 @@
 //     every view) is sharpest where d is right; its squared Laplacian is subtracted from the cost,
 //     weighted by `defocusWeight` (both terms are squared luminance).
 //  4. Aggregation: each cost slice is smoothed by a guided filter (He et al. 2010) steered by the
-//     centre view, which averages over a window without crossing intensity edges.
+//     centre view, which averages over a window without crossing intensity edges. With
+//     `aggregateSubsetsApart` (on) each subset of step 2 is aggregated on its own (less the
+//     defocus cue) and the lowest subset taken per label afterwards, as the fine search does,
+//     labels four at a time so that memory stays that of one volume.
 //  5. Regularisation: semi-global optimisation (Hirschmueller 2008) along 8 paths, with a small
 //     penalty for a one-label step (slanted surfaces) and a large one for jumps, lowered across
 //     intensity edges of the centre view. The optimiser's label per pixel, then a parabola through
@@ -48,6 +51,11 @@
 //     in the centre view (the fast global smoother of Min et al. 2014): unsure pixels take
 //     the disparity of sure ones on the same surface (on antinous it helps the wall; the floor,
 //     slanted steeply, is beyond a fit that favours constant disparity).
+//  7b. Occlusion edges (`occlusionBand`): pixels within that many pixels of a jump of the map move
+//     to the farther surface when its pixels beyond the band, weighted by colour likeness in the
+//     centre view, outweigh their own surface's (src/edof/occlusion_edges.cpp): where the
+//     background has no texture only colour tells which surface a pixel shows, and the nearer
+//     disparity spreads a few pixels onto it.
 //  8. Weighted median (`medianRadius`, `medianSigma`): each disparity becomes the median of its
 //     window weighted by likeness in the centre view (Ma et al. 2013), which removes isolated
 //     mistakes and pulls occlusion edges back onto intensity edges.
@@ -64,17 +72,19 @@
 // own disparity-to-depth conversion (hci_parameters.hpp).
 //
 // Measured (tests/depth_layered_planes_test.cpp, tests/realdata/hci_depth_test.cpp,
-// tests/edof_people_test.cpp): BadPix(0.07) 8.6 %, MSE x100 8.9 on the layered-planes default
-// scene (9x9 views of 128x128); 10.3 %, BadPix(0.03) 25.5 % and 10.3 on HCI antinous (the goal
-// of 7 % is not reached: the steep floor, biased too far where it has no texture, and occlusion
-// edges; docs/design.md has the breakdown); 11.0 % and 2.15 on the simulator's people scene,
+// tests/edof_people_test.cpp): BadPix(0.07) 5.5 %, MSE x100 6.7 on the layered-planes default
+// scene (9x9 views of 128x128); 6.8 %, BadPix(0.03) 22.2 % and 6.0 on HCI antinous (what
+// remains: the steep floor, biased too far where it has no texture, and occlusion edges;
+// docs/design.md has the breakdown); 5.2 % and 0.95 on the simulator's people scene,
 // noise-free (9x9 views of 80x80).
 // Cost: labels x (33 views + one luminance refocus) bilinear passes over ns x nt, 8 passes of
 // labels x ns x nt for the optimisation, (2 refineSteps + 1) x 33 bilinear passes for the fine
-// search (and 6 x (2 refineSteps + 1) guided filters of its subsets), 6 tridiagonal solves per
+// search (and 6 x (2 refineSteps + 1) guided filters of its subsets; 6 x labels in the cost
+// volume with aggregateSubsetsApart), 6 tridiagonal solves per
 // row and per column for the fill (about 70 ms of CPU at 512x512) and a (2 medianRadius + 1)^2
 // selection per pixel for the median; memory 2 x labels x ns x nt floats (the fine search's
-// subsets 6 x (2 refineSteps + 1) x ns x nt more; bench/depth_bench.cpp: ratio to one refocus).
+// subsets 6 x (2 refineSteps + 1) x ns x nt more, the cost volume's 6 x 4 x ns x nt;
+// bench/depth_bench.cpp: ratio to one refocus).
 #pragma once
 
 #include <optional>
@@ -88,15 +98,17 @@ namespace lfcam {
 struct DepthOptions {
   std::optional<double> disparityMin, disparityMax;  // default: metadata, else [-2, 2]
   int labels = 0;                 // candidate disparities; 0: one per 0.1 px, within [16, 96]
-  double defocusWeight = 0.5;     // weight of the defocus cue against the correspondence cue
+  double defocusWeight = 0.75;    // weight of the defocus cue against the correspondence cue
   int filterRadius = 1;           // guided filter window: (2 r + 1)^2 pixels
-  double filterEpsilon = 1e-4;    // guided filter regulariser, squared linear luminance
-  double smoothness = 1.0;        // scales both jump penalties of the optimisation; 0 disables it
+  double filterEpsilon = 3e-5;    // guided filter regulariser, squared linear luminance
+  double smoothness = 0.7;        // scales both jump penalties of the optimisation; 0 disables it
   int refineSteps = 2;            // fine search: steps per label on each side; 0 disables it
-  int refineRadius = 4;           // guided filter window of the fine search: (2 r + 1)^2 pixels
+  int refineRadius = 2;           // guided filter window of the fine search: (2 r + 1)^2 pixels
   int refineSmoothRadius = 2;     // local mean of the map the fine search starts from; 0: none
   bool refineAggregateHalves = true;  // fine search: aggregate each subset's cost, then the best
-  int medianRadius = 6;           // weighted median window; 0 disables it
+  bool aggregateSubsetsApart = true;  // cost volume: aggregate each subset's cost, then the best
+  int occlusionBand = 3;          // background beside nearer surfaces reclaimed within it; 0: off
+  int medianRadius = 5;           // weighted median window; 0 disables it
   double medianSigma = 0.05;      // guide (sRGB luminance) difference that weighs a neighbour 0.6
   double fillLambda = 1.0;        // edge-aware fill (needs refineSteps > 0); 0 disables it
   double fillSigma = 0.02;        // centre-view (sRGB) colour difference that weakens a link to 1/e

@@ -16,12 +16,6 @@ namespace lfcam {
 
 namespace {
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define LFCAM_DEPTH_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define LFCAM_DEPTH_CLONES
-#endif
-
 // Subsets of views compared separately, as bits (a view may belong to several): four strict
 // half-apertures for occlusion boundaries, u < 0, u > 0, v < 0, v > 0; and the centre row and
 // the centre column alone, for surfaces strongly slanted in depth along one axis (a floor seen at
@@ -62,7 +56,7 @@ std::vector<StarView> starViews(const LightField& lightField, int referenceU, in
 
 // Samples row y of `plane` (ns x nt) shifted by (shiftX, shiftY), bilinearly, with coordinates
 // clamped to the view: out[x] = plane(x + shiftX, y + shiftY). `padded` is scratch of ns + 2 pad.
-LFCAM_DEPTH_CLONES void sampleShiftedRow(const float* __restrict plane, int ns, int nt, int y, double shiftX,
+LFCAM_EDOF_CLONES void sampleShiftedRow(const float* __restrict plane, int ns, int nt, int y, double shiftX,
                                          double shiftY, int pad, float* __restrict padded, float* __restrict out) {
   const double rowPosition = y + shiftY;
   const double rowFloor = std::floor(rowPosition);
@@ -85,7 +79,7 @@ LFCAM_DEPTH_CLONES void sampleShiftedRow(const float* __restrict plane, int ns, 
 }
 
 // accumulator += (sample - reference)^2
-LFCAM_DEPTH_CLONES void accumulateSquaredDifference(const float* __restrict sample, const float* __restrict reference,
+LFCAM_EDOF_CLONES void accumulateSquaredDifference(const float* __restrict sample, const float* __restrict reference,
                                                     float* __restrict accumulator, int count) {
   for (int x = 0; x < count; ++x) {
     const float difference = sample[x] - reference[x];
@@ -130,24 +124,38 @@ inline double interpolationBlur(double shift) {
   return 0.5 * f * (1 - f);
 }
 
-// The correspondence cue for every label: cost[l * n + p], n = ns * nt. `locking` scales the
-// interpolation-bias term removed (0: none).
-std::vector<float> correspondenceCost(const LightField& grey, const std::vector<double>& disparities,
-                                      double locking) {
-  const int ns = grey.ns(), nt = grey.nt(), labels = int(disparities.size());
+// The subsets of views with at least one view (all six unless the aperture is a single row or
+// column), and how many views each has.
+std::vector<int> subsetsWithViews(const std::vector<StarView>& views, int (&viewsIn)[kHalves]) {
+  std::fill(viewsIn, viewsIn + kHalves, 0);
+  for (const StarView& view : views)
+    for (int h = 0; h < kHalves; ++h) viewsIn[h] += (view.halves >> h) & 1;
+  std::vector<int> subsets;
+  for (int h = 0; h < kHalves; ++h)
+    if (viewsIn[h] > 0) subsets.push_back(h);
+  return subsets;
+}
+
+// The correspondence cue for labels [labelBegin, labelEnd), n = ns * nt:
+// the best subset in out[(l - labelBegin) * n + p]; with `perSubset`, every subset with views
+// apart, out[((l - labelBegin) * subsets + i) * n + p] (subsetsWithViews' order). `locking`
+// scales the interpolation-bias term removed (0: none).
+void correspondenceCost(const LightField& grey, const std::vector<double>& disparities, int labelBegin, int labelEnd,
+                        double locking, bool perSubset, float* out) {
+  const int ns = grey.ns(), nt = grey.nt();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
   const double referenceUc = grey.uFromCentre(referenceU), referenceVc = grey.vFromCentre(referenceV);
   const std::size_t n = grey.shape().viewPixels();
-  std::vector<float> cost(n * labels, 0.0f);
-  const SecondDifferences secondDiff = secondDifferences(grey.plane(referenceU, referenceV, 0), ns, nt);
+  // The second differences only feed the interpolation-bias term.
+  const SecondDifferences secondDiff =
+      locking > 0 ? secondDifferences(grey.plane(referenceU, referenceV, 0), ns, nt) : SecondDifferences{};
+  int viewsIn[kHalves];
+  const std::vector<int> subsets = subsetsWithViews(views, viewsIn);
 
-  int viewsIn[kHalves] = {};
   double largestOffset = 0, largestDisparity = 0;
-  for (const StarView& view : views) {
-    for (int h = 0; h < kHalves; ++h) viewsIn[h] += (view.halves >> h) & 1;
+  for (const StarView& view : views)
     largestOffset = std::max({largestOffset, std::abs(view.uc), std::abs(view.vc)});
-  }
   for (double d : disparities) largestDisparity = std::max(largestDisparity, std::abs(d));
   const int pad = int(std::ceil(largestOffset * largestDisparity)) + 3;
 
@@ -161,7 +169,7 @@ std::vector<float> correspondenceCost(const LightField& grey, const std::vector<
     std::vector<float> accumulator(std::size_t(kHalves) * blockRows * ns);
     for (std::size_t block = begin; block < end; ++block) {
       const int y0 = int(block) * blockRows, y1 = std::min(nt, y0 + blockRows);
-      for (int l = 0; l < labels; ++l) {
+      for (int l = labelBegin; l < labelEnd; ++l) {
         const double d = disparities[l];
         // The reference view brought to the aperture centre's grid (no shift when it is the centre).
         for (int y = y0; y < y1; ++y)
@@ -192,33 +200,89 @@ std::vector<float> correspondenceCost(const LightField& grey, const std::vector<
         }
         // The best half-aperture: at an occlusion boundary, the half that sees only the surface.
         for (int y = y0; y < y1; ++y) {
-          float* target = cost.data() + std::size_t(l) * n + std::size_t(y) * ns;
           const std::size_t row = std::size_t(y) * ns;
           for (int x = 0; x < ns; ++x) {
             float best = std::numeric_limits<float>::infinity();
-            const float cxx = secondDiff.xx[row + x], cyy = secondDiff.yy[row + x], cxy = secondDiff.xy[row + x];
-            for (int h = 0; h < kHalves; ++h)
-              if (viewsIn[h] > 0)
-                best = std::min(best, accumulator[(std::size_t(h) * blockRows + (y - y0)) * ns + x] / viewsIn[h] -
-                                          (wx[h] * cxx + wy[h] * cyy + wxy[h] * cxy));
-            target[x] = std::isfinite(best) ? best : 0.0f;
+            const float cxx = locking > 0 ? secondDiff.xx[row + x] : 0.0f,
+                        cyy = locking > 0 ? secondDiff.yy[row + x] : 0.0f,
+                        cxy = locking > 0 ? secondDiff.xy[row + x] : 0.0f;
+            for (std::size_t i = 0; i < subsets.size(); ++i) {
+              const int h = subsets[i];
+              const float mean = accumulator[(std::size_t(h) * blockRows + (y - y0)) * ns + x] / viewsIn[h] -
+                                 (wx[h] * cxx + wy[h] * cyy + wxy[h] * cxy);
+              if (perSubset)
+                out[(std::size_t(l - labelBegin) * subsets.size() + i) * n + row + x] = mean;
+              else
+                best = std::min(best, mean);
+            }
+            if (!perSubset) out[std::size_t(l - labelBegin) * n + row + x] = std::isfinite(best) ? best : 0.0f;
           }
         }
       }
     }
   });
-  return cost;
 }
 
 // Aggregation: each of `count` planes of n pixels replaced by its guided filter, in parallel.
 void aggregatePlanes(const edof::GuidedFilter& filter, float* planes, std::size_t count, std::size_t n) {
   parallelFor(0, count, 1, [&](std::size_t begin, std::size_t end) {
     std::vector<float> filtered(n);
+    edof::GuidedFilter::Scratch scratch;
     for (std::size_t k = begin; k < end; ++k) {
-      filter.apply(planes + k * n, filtered.data());
+      filter.apply(planes + k * n, filtered.data(), scratch);
       std::copy(filtered.begin(), filtered.end(), planes + k * n);
     }
   });
+}
+
+// The defocus cue at disparity d: the squared Laplacian of the full-aperture photograph.
+void defocusEnergy(const LightField& grey, double d, float* energy) {
+  const Image photo = refocus(grey, d);
+  edof::squaredLaplacian(photo, energy);
+}
+
+// Steps 1-3 with each subset of views aggregated apart (`aggregateSubsetsApart`): per label, each
+// subset's correspondence slice less the defocus cue (the guided filter is linear, so this is
+// the defocus cue aggregated on its own) is aggregated, then the lowest subset taken, as the
+// fine search does (refineDisparity). Labels go in chunks so that only chunk x subsets slices are
+// held besides the volume. Returns cost[l * n + p].
+std::vector<float> aggregatedSubsetCost(const LightField& grey, const std::vector<double>& disparities,
+                                        const edof::GuidedFilter& filter, double defocusWeight, double locking) {
+  const std::size_t n = grey.shape().viewPixels();
+  const int labels = int(disparities.size());
+  int viewsIn[kHalves];
+  const std::size_t subsets =
+      subsetsWithViews(starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2), viewsIn).size();
+  constexpr int kChunk = 4;
+  std::vector<float> cost(n * labels), planes(std::size_t(kChunk) * subsets * n), energy(n);
+  for (int first = 0; first < labels; first += kChunk) {
+    const int last = std::min(labels, first + kChunk);
+    correspondenceCost(grey, disparities, first, last, locking, /*perSubset=*/true, planes.data());
+    if (defocusWeight > 0)
+      for (int l = first; l < last; ++l) {
+        defocusEnergy(grey, disparities[l], energy.data());
+        const float weight = float(defocusWeight);
+        parallelFor(0, subsets, 1, [&](std::size_t begin, std::size_t end) {
+          for (std::size_t i = begin; i < end; ++i) {
+            float* slice = planes.data() + (std::size_t(l - first) * subsets + i) * n;
+            for (std::size_t p = 0; p < n; ++p) slice[p] -= weight * energy[p];
+          }
+        });
+      }
+    aggregatePlanes(filter, planes.data(), std::size_t(last - first) * subsets, n);
+    parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+      for (int l = first; l < last; ++l) {
+        float* target = cost.data() + std::size_t(l) * n;
+        const float* slices = planes.data() + std::size_t(l - first) * subsets * n;
+        for (std::size_t p = begin; p < end; ++p) {
+          float best = slices[p];
+          for (std::size_t i = 1; i < subsets; ++i) best = std::min(best, slices[i * n + p]);
+          target[p] = best;
+        }
+      }
+    });
+  }
+  return cost;
 }
 
 float bilinear(const float* plane, int ns, int nt, double x, double y) {
@@ -248,18 +312,14 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
   const double referenceUc = grey.uFromCentre(referenceU), referenceVc = grey.vFromCentre(referenceV);
-  int viewsIn[kHalves] = {};
-  for (const StarView& view : views)
-    for (int h = 0; h < kHalves; ++h) viewsIn[h] += (view.halves >> h) & 1;
+  int viewsIn[kHalves];
+  const std::vector<int> subsets = subsetsWithViews(views, viewsIn);
   const int slices = 2 * steps + 1;
   std::vector<float> cost(n * slices);
-  // The subsets with views (all six unless the aperture is a single row or column); with
-  // aggregateHalves, subset i of them and slice k in plane i * slices + k.
-  std::vector<int> subsets;
-  for (int h = 0; h < kHalves; ++h)
-    if (viewsIn[h] > 0) subsets.push_back(h);
+  // With aggregateHalves, subset i and slice k in plane i * slices + k.
   std::vector<float> subsetCost(aggregateHalves ? subsets.size() * slices * n : 0);
-  const SecondDifferences secondDiff = secondDifferences(grey.plane(referenceU, referenceV, 0), ns, nt);
+  const SecondDifferences secondDiff =
+      locking > 0 ? secondDifferences(grey.plane(referenceU, referenceV, 0), ns, nt) : SecondDifferences{};
   parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
     for (std::size_t y = begin; y < end; ++y)
       for (int x = 0; x < ns; ++x) {
@@ -273,9 +333,12 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
             const float difference =
                 bilinear(grey.plane(view.u, view.v, 0), ns, nt, x - view.uc * d, double(y) - view.vc * d) - reference;
             // The interpolation-bias term (correspondenceCost).
-            const double bx = interpolationBlur(-view.uc * d), by = interpolationBlur(-view.vc * d);
-            const float bias =
-                float(locking * (bx * bx * secondDiff.xx[p] + by * by * secondDiff.yy[p] + bx * by * secondDiff.xy[p]));
+            float bias = 0;
+            if (locking > 0) {
+              const double bx = interpolationBlur(-view.uc * d), by = interpolationBlur(-view.vc * d);
+              bias = float(locking *
+                           (bx * bx * secondDiff.xx[p] + by * by * secondDiff.yy[p] + bx * by * secondDiff.xy[p]));
+            }
             for (int h = 0; h < kHalves; ++h)
               if ((view.halves >> h) & 1) sums[h] += difference * difference - bias;
           }
@@ -415,25 +478,27 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   Image guide = grey.subApertureImage(referenceU, referenceV);
 
-  // 1. Correspondence cue.
-  std::vector<float> cost = correspondenceCost(grey, disparities, std::max(options.lockingCorrection, 0.0));
-
-  // 2. Defocus cue: the full-aperture photograph at each label, sharpest where the label is right.
-  if (options.defocusWeight > 0) {
-    std::vector<float> energy(n);
-    for (int l = 0; l < labels; ++l) {
-      const Image photo = refocus(grey, disparities[l]);
-      edof::squaredLaplacian(photo, energy.data());
-      float* slice = cost.data() + std::size_t(l) * n;
-      const float weight = float(options.defocusWeight);
-      for (std::size_t i = 0; i < n; ++i) slice[i] -= weight * energy[i];
+  const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.filterRadius, 0),
+                                  std::max(options.filterEpsilon, 1e-12));
+  const double locking = std::max(options.lockingCorrection, 0.0);
+  std::vector<float> cost;
+  if (options.aggregateSubsetsApart) {
+    cost = aggregatedSubsetCost(grey, disparities, filter, options.defocusWeight, locking);
+  } else {
+    // 1. Correspondence cue.
+    cost.resize(n * labels);
+    correspondenceCost(grey, disparities, 0, labels, locking, /*perSubset=*/false, cost.data());
+    // 2. Defocus cue: the full-aperture photograph at each label, sharpest where the label is right.
+    if (options.defocusWeight > 0) {
+      std::vector<float> energy(n);
+      for (int l = 0; l < labels; ++l) {
+        defocusEnergy(grey, disparities[l], energy.data());
+        float* slice = cost.data() + std::size_t(l) * n;
+        const float weight = float(options.defocusWeight);
+        for (std::size_t i = 0; i < n; ++i) slice[i] -= weight * energy[i];
+      }
     }
-  }
-
-  // 3. Aggregation: guided filter per slice, steered by the reference view.
-  {
-    const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.filterRadius, 0),
-                                    std::max(options.filterEpsilon, 1e-12));
+    // 3. Aggregation: guided filter per slice, steered by the reference view.
     aggregatePlanes(filter, cost.data(), std::size_t(labels), n);
   }
 
@@ -490,8 +555,8 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
   // 6. Fine search around the optimised map, then 7. the weighted median (depth.hpp).
   std::vector<float> curvature(n, 1.0f), residual(n, 0.0f);
   if (options.refineSteps > 0) {
-    const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.refineRadius, 0),
-                                    std::max(options.filterEpsilon, 1e-12));
+    const edof::GuidedFilter refineFilter(guide.plane(0), ns, nt, std::max(options.refineRadius, 0),
+                                          std::max(options.filterEpsilon, 1e-12));
     // Slices that follow a smoothed map: the fine search moves a whole window by one offset, so
     // it keeps the map's own steps (labels climbing a slanted surface); a local mean follows the
     // slant without them. Only where it stays within a label of the map, so occlusion edges keep
@@ -505,7 +570,7 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
     }
     // A quarter of the correction in the fine search: its slices, a fraction of a label apart,
     // see far smaller differences of blur (measured on antinous: 1 there is worse than none).
-    refineDisparity(grey, filter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps,
+    refineDisparity(grey, refineFilter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps,
                     0.25 * std::max(options.lockingCorrection, 0.0), options.refineAggregateHalves, curvature.data(),
                     residual.data());
     // The fine search may step past the ends of the range searched; the map stays inside it.
@@ -514,6 +579,7 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
   }
   if (options.fillLambda > 0 && options.refineSteps > 0)
     fillUncertain(lightField, curvature, residual, options, result.disparity.plane(0));
+  edof::reclaimOcclusionEdges(lightField, options.occlusionBand, result.disparity.plane(0));  // occlusion_edges.cpp
   if (options.medianRadius > 0)
     weightedMedian(guide.plane(0), ns, nt, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
                    result.disparity.plane(0));

@@ -9,6 +9,13 @@
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
 
+// Hot loops compiled for AVX2 and for baseline x86-64, the one to run picked at load time.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define LFCAM_EDOF_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define LFCAM_EDOF_CLONES
+#endif
+
 namespace lfcam::edof {
 
 // Rec. 709 luminance of a linear image (the mean for other channel counts): one channel.
@@ -52,6 +59,16 @@ void globalSmooth(const float* guide, int guideChannels, int width, int height, 
 // The reference sorts; the fast one selects by three-way partitions (weighted_median.cpp).
 float weightedMedianSorted(std::vector<std::pair<float, float>>& window, float total);
 float weightedMedianSelect(std::vector<std::pair<float, float>>& window, float total);
+
+// Occlusion edges (occlusion_edges.cpp). Chessboard distance from each pixel to the nearest jump
+// (both pixels of a 4-neighbour pair whose disparities differ by more than `jump`), capped at
+// cap + 1.
+std::vector<int> jumpDistance(const float* disparity, int width, int height, float jump, int cap);
+// Pixels within `band` of a jump of the map (width x height of `guide`, an sRGB colour image) move
+// to a farther surface when its pixels beyond the band outweigh their own surface's by colour
+// likeness: the weighted median of those. The LightField form guides by its centre view.
+void reclaimOcclusionEdges(const Image& guide, int band, float* disparity);
+void reclaimOcclusionEdges(const LightField& lightField, int band, float* disparity);
 
 // Semi-global optimisation (Hirschmueller 2008) of a cost volume stored pixel-major:
 // cost[(y * width + x) * labels + l]. Sums, over 8 path directions, the path costs

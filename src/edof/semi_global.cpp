@@ -9,14 +9,7 @@ namespace lfcam::edof {
 
 namespace {
 
-// Schedule: the per-pixel recurrence over labels is compiled for AVX2 and for baseline x86-64,
-// picked at load time (as in src/render/refocus.cpp); the label loop vectorises.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define LFCAM_EDOF_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define LFCAM_EDOF_CLONES
-#endif
-
+// Schedule: the label loop vectorises (LFCAM_EDOF_CLONES).
 // One step of a path: cur = Lr(p, .) from prev = Lr(p - r, .); sum += cur.
 LFCAM_EDOF_CLONES void pathStep(const float* __restrict cost, const float* __restrict prev, float* __restrict cur,
                                 float* __restrict sum, int labels, float p1, float p2) {

@@ -1,0 +1,111 @@
+// Occlusion edges of a disparity map (edof_internal.hpp): the background beside a nearer surface
+// given back to the background.
+//
+// Why: where the background has little texture, no subset of views tells its disparity from the
+// nearer surface's (both make the views agree), so the aggregation and the optimisation carry the
+// nearer disparity a few pixels onto the background ("fattening"; on HCI antinous background
+// pixels 1, 2, 3 px beside a nearer surface were 88, 73, 53 % bad). Only the centre view's
+// colours can tell which surface a pixel belongs to. Pixels near a jump of the map are the
+// unsure ones; those further away vote, weighted by colour likeness, and a pixel moves to the
+// farther surface when that surface's voters outweigh its own: the nearer surface does not
+// extend past its own colour edge. Only moves to a farther surface: a nearer surface's own edge
+// pixels, textured, keep what the cost said (allowing both ways made the layered planes' MSE
+// worse, 8.1 -> 11.7, measured with a jump of 0.3 and voter radius 6).
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "edof/edof_internal.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/parallel.hpp"
+
+namespace lfcam::edof {
+
+namespace {
+
+// Disparity difference between 4-neighbours that counts as an occlusion jump, px per view step
+// (a floor slanted by 0.075 per row is far from it).
+constexpr float kJump = 0.5f;
+// Voters come from a (2 kVoterRadius + 1)^2 window; colour likeness exp(-c^2 / (2 kSigma^2)), c
+// the Euclidean distance of sRGB colours.
+constexpr int kVoterRadius = 10;
+constexpr float kSigma = 0.05f;
+
+}  // namespace
+
+std::vector<int> jumpDistance(const float* disparity, int width, int height, float jump, int cap) {
+  const std::size_t n = std::size_t(width) * height;
+  std::vector<int> distance(n, cap + 1);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t p = std::size_t(y) * width + x;
+      if (x + 1 < width && std::abs(disparity[p + 1] - disparity[p]) > jump) distance[p] = distance[p + 1] = 0;
+      if (y + 1 < height && std::abs(disparity[p + width] - disparity[p]) > jump) distance[p] = distance[p + width] = 0;
+    }
+  // Two raster passes over the 8-neighbourhood give the chessboard distance exactly.
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      int& d = distance[std::size_t(y) * width + x];
+      if (x > 0) d = std::min(d, distance[std::size_t(y) * width + x - 1] + 1);
+      if (y > 0)
+        for (int dx = std::max(x - 1, 0); dx <= std::min(x + 1, width - 1); ++dx)
+          d = std::min(d, distance[std::size_t(y - 1) * width + dx] + 1);
+    }
+  for (int y = height - 1; y >= 0; --y)
+    for (int x = width - 1; x >= 0; --x) {
+      int& d = distance[std::size_t(y) * width + x];
+      if (x + 1 < width) d = std::min(d, distance[std::size_t(y) * width + x + 1] + 1);
+      if (y + 1 < height)
+        for (int dx = std::max(x - 1, 0); dx <= std::min(x + 1, width - 1); ++dx)
+          d = std::min(d, distance[std::size_t(y + 1) * width + dx] + 1);
+    }
+  for (int& d : distance) d = std::min(d, cap + 1);
+  return distance;
+}
+
+void reclaimOcclusionEdges(const Image& guide, int band, float* disparity) {
+  const int width = guide.width(), height = guide.height(), channels = guide.channels();
+  if (band <= 0 || width < 1 || height < 1) return;
+  const std::vector<int> distance = jumpDistance(disparity, width, height, kJump, band);
+  const std::vector<float> input(disparity, disparity + std::size_t(width) * height);
+  auto likeness = [&](std::size_t p, std::size_t q) {
+    float squares = 0;
+    for (int c = 0; c < channels; ++c) {
+      const float difference = guide.plane(c)[p] - guide.plane(c)[q];
+      squares += difference * difference;
+    }
+    return std::exp(-squares / (2 * kSigma * kSigma));
+  };
+  parallelFor(0, std::size_t(height), 4, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::pair<float, float>> farther;
+    for (std::size_t y = begin; y < end; ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::size_t p = y * width + x;
+        if (distance[p] > band) continue;
+        float own = 0, fartherWeight = 0;
+        farther.clear();
+        for (long yy = std::max(long(y) - kVoterRadius, 0L); yy <= std::min(long(y) + kVoterRadius, long(height) - 1);
+             ++yy)
+          for (int xx = std::max(x - kVoterRadius, 0); xx <= std::min(x + kVoterRadius, width - 1); ++xx) {
+            const std::size_t q = std::size_t(yy) * width + xx;
+            if (distance[q] <= band) continue;  // unsure itself: no vote
+            if (std::abs(input[q] - input[p]) <= kJump) {
+              own += likeness(p, q);
+            } else if (input[q] < input[p] - kJump) {
+              const float weight = likeness(p, q);
+              fartherWeight += weight;
+              farther.emplace_back(input[q], weight);
+            }
+          }
+        if (fartherWeight > own && fartherWeight > 0) disparity[p] = weightedMedianSelect(farther, fartherWeight);
+      }
+  });
+}
+
+void reclaimOcclusionEdges(const LightField& lightField, int band, float* disparity) {
+  Image guide = lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2);
+  for (float& v : guide.pixels()) v = linearToSrgb(std::max(v, 0.0f));
+  reclaimOcclusionEdges(guide, band, disparity);
+}
+
+}  // namespace lfcam::edof
