@@ -6,8 +6,10 @@
 //                   fill_cost = default time / this time - 1, CPU time of both in this run
 //                   (the time shown is of both runs).
 //   BM_DepthSubsetsApart  estimateDepth with and without aggregateSubsetsApart, alternating;
-//                   counter apart_cost = CPU time with / without - 1 (this run); both
-//                   counters' benchmarks also show cpu_default_s, CPU seconds per default run.
+//                   counter apart_cost = CPU time with / without - 1 (this run).
+//   BM_DepthOcclusionEdges  the same for the occlusion-edge step (occlusionBand 0):
+//                   occlusion_cost. These three also show cpu_default_s, CPU seconds per
+//                   default run.
 //   BM_AllInFocus   allInFocus given the depth map (focal stack + blending). Same counter.
 //   BM_DepthAndAllInFocus  both, as `lfcam edof` without --depth does: the goal is < 5 s on 2 cores.
 //

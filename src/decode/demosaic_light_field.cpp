@@ -66,8 +66,8 @@ inline float sameColourAround(const M& m, int x, int y) {
 
 // The 4D estimate of colour c at (x, y): the values (`value(k)`, k a photosite's index) of the
 // photosites of colour c around the translated points, weighted by their bilinear weight and how
-// lit they are; false if none. `plain` checks every tap (the reference, and the border); `inside`
-// (at least `margin` from every border) reads precomputed (index offset, weight) lists.
+// lit they are; false if none. `plain` checks every tap (the reference, and the border);
+// `insideFixed` (at least `margin` from every border) reads precomputed (index offset, weight) lists.
 class LatticeTaps {
  public:
   LatticeTaps(const LensletGrid& grid, const CfaTable& cfa, int width, int height, const float* lit)
@@ -100,22 +100,7 @@ class LatticeTaps {
     return true;
   }
 
-  template <class V>
-  bool inside(const V& value, int c, int x, int y, float& out) const {
-    const List& t = lists_[std::size_t((y & 1) * 2 + (x & 1))][std::size_t(c)];
-    const std::ptrdiff_t k = std::ptrdiff_t(y) * w_ + x;
-    float num = 0, den = 0;
-    for (int i = 0; i < t.count; ++i) {
-      const std::size_t at = std::size_t(k + t.offset[std::size_t(i)]);
-      const float b = t.weight[std::size_t(i)] * (lit_ ? lit_[at] : 1.0f);
-      num += b * value(at), den += b;
-    }
-    if (den <= 0) return false;
-    out = num / den;
-    return true;
-  }
-
-  // `inside` with the tap count known when compiling: each lattice vector's 2x2 photosites hold
+  // Inside the image, with the tap count known when compiling: each lattice vector's 2x2 photosites hold
   // one red, one blue and two greens, so N is the number of lattice vectors for red and blue, and
   // twice that for green. k: the pixel's index; phase: (y & 1) * 2 + (x & 1).
   template <int N, bool HasLit, class V>
@@ -133,10 +118,10 @@ class LatticeTaps {
   }
   int shifts() const { return int(shifts_.size()); }
 
+  // Near the borders (the fast path's only use of it): every tap checked.
   template <class V>
   bool operator()(const V& value, int c, int x, int y, float& out) const {
-    return x < margin || y < margin || x >= w_ - margin || y >= h_ - margin ? plain(value, c, x, y, out)
-                                                                           : inside(value, c, x, y, out);
+    return plain(value, c, x, y, out);
   }
 
   int margin = 2;
