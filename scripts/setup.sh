@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
+  ccache               # repeat builds (scripts/build.sh, build-san) reuse earlier compiles
   libopenimageio-dev   # image files: PNG, TIFF, OpenEXR, JPEG
   libhdf5-dev          # the native .lf.h5 light-field file
   libeigen3-dev        # least-squares fits (lenslet grid)

@@ -7,6 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 CC=clang-14 CXX=clang++-14 cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache \
   -DLFCAM_SANITIZE=ON -DLFCAM_BUILD_BENCH=OFF -DLFCAM_FUZZ_SECONDS="${LFCAM_FUZZ_SECONDS:-20}" >/dev/null
 cmake --build build-san
 # Leaks are reported too; a sanitizer report ends the process with an error status.
