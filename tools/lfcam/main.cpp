@@ -4,6 +4,7 @@
 #include <exception>
 #include <new>
 
+#include "command_help.hpp"
 #include "commands.hpp"
 #include "lfcam/parallel.hpp"
 
@@ -12,7 +13,7 @@ int main(int argc, char** argv) {
   CLI::App app{"lfcam: light-field photography after Ng et al. 2005, \"Light Field Photography with a "
                "Hand-held Plenoptic Camera\"",
                "lfcam"};
-  app.require_subcommand(1);
+  app.require_subcommand(0, 1);
   app.set_version_flag("--version", "lfcam 0.1.0");
   int threads = 0;
   app.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::NonNegativeNumber);
@@ -39,6 +40,13 @@ int main(int argc, char** argv) {
   cli::addDecodeCommand(app, job);
   cli::addCalibrateCommand(app, job);
 
+  cli::addExamples(app);
+
+  if (const auto unknown = cli::unknownCommand(app, argc, argv)) {
+    std::fprintf(stderr, "lfcam: unknown command '%s'; the nearest is '%s' (lfcam alone lists them all)\n",
+                 unknown->c_str(), cli::nearestCommand(app, *unknown).c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help, --version
@@ -48,6 +56,10 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  if (app.get_subcommands().empty()) {  // `lfcam` alone, or with global options only
+    cli::printCommandList(app);
+    return 0;
+  }
   try {
     setThreadCount(threads);
     const Status status = job();
