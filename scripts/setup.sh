@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
+  python3              # tests/module_includes: the check of module boundaries
   ccache               # repeat builds (scripts/build.sh, build-san) reuse earlier compiles
   libopenimageio-dev   # image files: PNG, TIFF, OpenEXR, JPEG
   libhdf5-dev          # the native .lf.h5 light-field file

@@ -14,7 +14,7 @@
 #include <optional>
 #include <vector>
 
-#include "lfcam/camera_model.hpp"
+#include "lfcam/sensor_layout.hpp"
 #include "lfcam/image.hpp"
 #include "lfcam/lenslet_grid.hpp"
 #include "lfcam/raw_image.hpp"

@@ -32,6 +32,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "lfcam/result.hpp"
+#include "lfcam/sensor_layout.hpp"
 
 namespace lfcam {
 
@@ -49,9 +50,6 @@ struct MainLens {
   void setImageSideFNumber(double n) { fNumber = n * focalLengthMm / imageDistanceMm(); }
 };
 
-enum class Packing { Square, Hexagonal };
-const char* packingName(Packing packing);
-
 struct MicrolensArray {
   double pitchMm = 0.125;        // centre to centre (the paper: 125 um)
   double focalLengthMm = 0.5;    // the paper: 500 um, so f/4
@@ -67,9 +65,6 @@ struct MicrolensArray {
   double separationMm() const { return toSensorMm.value_or(focalLengthMm); }
   double rowPitchMm() const { return packing == Packing::Square ? pitchMm : pitchMm * 0.8660254037844386; }
 };
-
-enum class ColorFilter { RGGB, BGGR, GRBG, GBRG, Mono };
-const char* colorFilterName(ColorFilter filter);
 
 struct Sensor {
   int width = 1000, height = 1000;  // pixels (the paper's KAF-16802CE: about 4000 x 4000)

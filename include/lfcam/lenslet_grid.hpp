@@ -15,7 +15,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "lfcam/camera_model.hpp"  // Packing
+#include "lfcam/sensor_layout.hpp"
 #include "lfcam/result.hpp"
 
 namespace lfcam {

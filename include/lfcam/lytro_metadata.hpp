@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/camera_model.hpp"
+#include "lfcam/sensor_layout.hpp"
 #include "lfcam/raw_image.hpp"
 #include "lfcam/raw_packing.hpp"
 #include "lfcam/result.hpp"

@@ -12,8 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/camera_model.hpp"  // ColorFilter, Packing
 #include "lfcam/image.hpp"
+#include "lfcam/sensor_layout.hpp"
 
 namespace lfcam {
 

@@ -51,9 +51,6 @@ SensorCapture simulateCapture(const Scene& scene, const CameraModel& camera,
 // full-well clipping, quantisation and hot pixels.
 Image applySensor(const Image& irradiance, const Sensor& sensor);
 
-// Colour (0 red, 1 green, 2 blue, -1 none: monochrome) of sensor pixel (x, y).
-int colorFilterChannel(ColorFilter filter, int x, int y);
-
 // The ideal light field: the scene's radiance along the ray from lens point (u, v) through each
 // microlens centre, with no sensor in the way. (s, t) index the microlens lattice (i, j) turned
 // the right way up: s = columns - 1 - i, t = rows - 1 - j (the sensor image is upside down).

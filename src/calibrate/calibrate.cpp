@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "calibrate/calibrate_internal.hpp"
-#include "edof/edof_internal.hpp"
+#include "core/box_filter.hpp"
 #include "lfcam/parallel.hpp"
 
 namespace lfcam {
@@ -25,7 +25,7 @@ namespace {
 void flattenScene(Image& work, double pitch) {
   const int radius = std::max(2, int(std::lround(pitch)));
   Image mean(work.width(), work.height(), 1);
-  edof::boxFilter(work.plane(0), mean.plane(0), work.width(), work.height(), radius);
+  boxFilter(work.plane(0), mean.plane(0), work.width(), work.height(), radius);
   float floor = 0;
   for (float v : mean.pixels()) floor = std::max(floor, v);
   floor *= 1e-3f;

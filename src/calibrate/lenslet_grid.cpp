@@ -9,7 +9,7 @@
 
 #include "lfcam/atomic_file.hpp"
 #include "calibrate/calibrate_internal.hpp"
-#include "simulate/json_reader.hpp"
+#include "core/json_reader.hpp"
 
 namespace lfcam {
 
@@ -44,7 +44,7 @@ nlohmann::json gridToJson(const LensletGrid& grid) {
 }
 
 Result<LensletGrid> gridFromJson(const nlohmann::json& json, const std::string& where) {
-  using simulate_detail::JsonObject;
+  using json_reader::JsonObject;
   JsonObject root(json, where, "");
   LFCAM_TRY(root.requireObject());
   std::string format, packing;

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <vector>
 
-#include "lfcam/camera_model.hpp"
 #include "lfcam/decode.hpp"
 #include "lfcam/image.hpp"
 #include "lfcam/lenslet_grid.hpp"
 #include "lfcam/light_field.hpp"
 #include "lfcam/raw_image.hpp"
 #include "lfcam/result.hpp"
+#include "lfcam/sensor_layout.hpp"
 
 namespace lfcam::decode_detail {
 

@@ -9,7 +9,7 @@
 #include "decode/decode_internal.hpp"
 #include "lfcam/decode.hpp"
 #include "lfcam/parallel.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/sensor_layout.hpp"
 
 namespace lfcam {
 

@@ -20,7 +20,7 @@ void focusMeasure(const Image& slice, int radius, float* out) {
   const int w = grey.width(), h = grey.height();
   std::vector<float> energy(grey.planeSize());
   edof::squaredLaplacian(grey, energy.data());
-  edof::boxFilter(energy.data(), out, w, h, radius);
+  boxFilter(energy.data(), out, w, h, radius);
 }
 
 }  // namespace

@@ -564,7 +564,7 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
     if (options.refineSmoothRadius > 0) {
       float* map = result.disparity.plane(0);
       std::vector<float> smooth(n);
-      edof::boxFilter(map, smooth.data(), ns, nt, options.refineSmoothRadius);
+      boxFilter(map, smooth.data(), ns, nt, options.refineSmoothRadius);
       for (std::size_t p = 0; p < n; ++p)
         if (std::abs(smooth[p] - map[p]) <= step) map[p] = smooth[p];
     }

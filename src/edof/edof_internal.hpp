@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/box_filter.hpp"
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
 
@@ -23,8 +24,6 @@ Image luminance(const Image& image);
 // The light field of luminance: same views, one channel, weight kept.
 LightField luminanceLightField(const LightField& lightField);
 
-// Mean over the (2 r + 1)^2 window clipped to the image, in O(1) per pixel.
-void boxFilter(const float* in, float* out, int width, int height, int radius);
 // Squared 4-neighbour Laplacian of channel 0, borders clamped: a focus energy per pixel.
 void squaredLaplacian(const Image& image, float* out);
 

@@ -5,29 +5,16 @@
 #include <limits>
 
 #include "lfcam/memory_budget.hpp"
-#include "simulate/json_reader.hpp"
+#include "core/json_reader.hpp"
 
 namespace lfcam {
 
-using simulate_detail::JsonObject;
+using json_reader::JsonObject;
 
 double MainLens::imageDistanceMm() const {
   // Thin lens: 1/f = 1/d + 1/F. Focus at infinity (or closer than f, refused by validate) -> f.
   if (!std::isfinite(focusDistanceMm) || focusDistanceMm <= focalLengthMm) return focalLengthMm;
   return focalLengthMm * focusDistanceMm / (focusDistanceMm - focalLengthMm);
-}
-
-const char* packingName(Packing packing) { return packing == Packing::Square ? "square" : "hexagonal"; }
-
-const char* colorFilterName(ColorFilter filter) {
-  switch (filter) {
-    case ColorFilter::RGGB: return "RGGB";
-    case ColorFilter::BGGR: return "BGGR";
-    case ColorFilter::GRBG: return "GRBG";
-    case ColorFilter::GBRG: return "GBRG";
-    case ColorFilter::Mono: return "mono";
-  }
-  return "?";
 }
 
 std::array<int, 2> CameraModel::microlensCounts() const {

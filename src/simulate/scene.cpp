@@ -7,11 +7,11 @@
 #include <sstream>
 
 #include "lfcam/image_io.hpp"
-#include "simulate/json_reader.hpp"
+#include "core/json_reader.hpp"
 
 namespace lfcam {
 
-using simulate_detail::JsonObject;
+using json_reader::JsonObject;
 
 namespace {
 

@@ -8,10 +8,10 @@ add_custom_command(
           -P ${PROJECT_SOURCE_DIR}/src/viewer/embed_assets_script.cmake
   DEPENDS ${LFCAM_VIEWER_ASSETS} ${PROJECT_SOURCE_DIR}/src/viewer/embed_assets_script.cmake
   COMMENT "Embedding the viewer's page")
-target_sources(lfcam PRIVATE ${LFCAM_VIEWER_ASSETS_CPP})
+target_sources(lfcam_viewer PRIVATE ${LFCAM_VIEWER_ASSETS_CPP})
 
 # cpp-httplib (Debian builds it as a library whose ABI depends on its definitions): only the
 # server's source is compiled with its flags, and the library is linked.
 set_source_files_properties(${PROJECT_SOURCE_DIR}/src/viewer/viewer_server.cpp PROPERTIES
   COMPILE_OPTIONS "${HTTPLIB_CFLAGS}")
-target_link_libraries(lfcam PRIVATE "$<BUILD_INTERFACE:${HTTPLIB_LINK_LIBRARIES}>")
+target_link_libraries(lfcam_viewer PRIVATE ${HTTPLIB_LINK_LIBRARIES})

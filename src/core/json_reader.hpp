@@ -1,4 +1,4 @@
-// Reading the scene file's JSON objects with errors that name the file and the key
+// Reading JSON objects (scene, camera and grid files) with errors that name the file and the key
 // ("scene.json: camera.sensor.width: expected an integer in [1, 100000]"), and unknown keys
 // reported instead of ignored (a misspelt key would otherwise silently do nothing).
 #pragma once
@@ -12,7 +12,7 @@
 
 #include "lfcam/result.hpp"
 
-namespace lfcam::simulate_detail {
+namespace lfcam::json_reader {
 
 class JsonObject {
  public:
@@ -141,4 +141,4 @@ class JsonObject {
   mutable std::set<std::string> seen_;
 };
 
-}  // namespace lfcam::simulate_detail
+}  // namespace lfcam::json_reader
