@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <vector>
 
 #include "lfcam/calibrate.hpp"
 #include "lfcam/decode.hpp"
 #include "lfcam/raw_io.hpp"
+#include "lenslet_means.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {
@@ -89,70 +89,33 @@ TEST(DecodeLfmGuv, ViewsArePlausible) {
   EXPECT_LT(neighbour / count, 2.0 * deviation);  // smoother than noise
 }
 
-// Pearson correlation of two equal-sized one-channel images over the pixels where `use` holds.
-double correlation(const Image& a, const Image& b, const std::vector<bool>& use) {
-  double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-  long n = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      if (!use[std::size_t(y) * a.width() + x]) continue;
-      const double p = a.at(x, y, 0), q = b.at(x, y, 0);
-      sa += p, sb += q, saa += p * p, sbb += q * q, sab += p * q, ++n;
-    }
-  const double cov = sab / n - sa / n * sb / n;
-  return cov / std::sqrt(std::max(1e-30, (saa / n - sa / n * sa / n) * (sbb / n - sb / n * sb / n)));
-}
-
-// The raw's own picture: each microlens image averaged (dark subtracted, over the white image's),
-// laid out as the microlenses lie in the file. A photo decoded the right way up matches it as it
-// lies; one turned upside down matches it only once turned by 180 degrees.
+// A photo decoded the right way up matches the raw's lenslet means (lenslet_means.hpp) as they
+// lie; one turned upside down matches them only once turned by 180 degrees.
 TEST(DecodeLfmGuv, CentreViewLiesAsTheLensletsDo) {
   LFCAM_REQUIRE_SHARED_DATA("lfm-guv", folder);
   LfmGuv data;
   ASSERT_NO_FATAL_FAILURE(readLfmGuv(folder, data));
-  const LensletGrid& grid = data.grid;
   auto lf = decodeLfmGuv(data);
   ASSERT_TRUE(lf.ok()) << lf.error().message;
-  ASSERT_EQ(lf->ns(), grid.columns);
-  ASSERT_EQ(lf->nt(), grid.rows);
-
-  const Image &r = data.raw.mosaic, &dark = data.dark.mosaic, &white = data.white.mosaic;
-  Image means(grid.columns, grid.rows, 1);
-  std::vector<bool> use(means.planeSize(), false);
-  const double radius = 0.4 * grid.pitchX;
-  for (int j = 0; j < grid.rows; ++j)
-    for (int i = 0; i < grid.columns; ++i) {
-      const auto c = grid.centre(i, j);
-      double light = 0, response = 0;
-      bool inside = true;
-      for (int y = int(c[1] - radius); y <= int(c[1] + radius); ++y)
-        for (int x = int(c[0] - radius); x <= int(c[0] + radius); ++x) {
-          if (std::hypot(x + 0.5 - c[0], y + 0.5 - c[1]) > radius) continue;
-          if (x < 0 || y < 0 || x >= r.width() || y >= r.height()) {
-            inside = false;
-            continue;
-          }
-          light += r.at(x, y, 0) - dark.at(x, y, 0);
-          response += white.at(x, y, 0) - dark.at(x, y, 0);
-        }
-      means.at(i, j, 0) = response > 0 ? float(light / response) : 0.0f;
-      use[std::size_t(j) * grid.columns + i] = inside && response > 0;
-    }
+  ASSERT_EQ(lf->ns(), data.grid.columns);
+  ASSERT_EQ(lf->nt(), data.grid.rows);
+  const test::LensletMeans lenslets = test::lensletMeans(data.raw, data.white, data.grid, &data.dark);
   const int centre = lf->nu() / 2;
   const Image view = lf->subApertureImage(centre, centre);
-  Image turned(view.width(), view.height(), 1);
-  for (int t = 0; t < view.height(); ++t)
-    for (int s = 0; s < view.width(); ++s) turned.at(view.width() - 1 - s, view.height() - 1 - t, 0) = view.at(s, t, 0);
-  std::vector<bool> both(use.size());  // microlenses inside the raw, as they lie and turned
   const int w = view.width(), h = view.height();
+  // Over the microlenses wholly inside the raw, as they lie and turned.
+  test::Correlation asTheyLie, turned;
   for (int t = 0; t < h; ++t)
-    for (int s = 0; s < w; ++s) both[std::size_t(t) * w + s] = use[std::size_t(t) * w + s] && use[std::size_t(h - 1 - t) * w + w - 1 - s];
-  const double asTheyLie = correlation(view, means, both), turnedBy180 = correlation(turned, means, both);
+    for (int s = 0; s < w; ++s) {
+      if (!lenslets.complete[std::size_t(t) * w + s] || !lenslets.complete[std::size_t(h - 1 - t) * w + w - 1 - s]) continue;
+      asTheyLie.add(view.at(s, t, 0), lenslets.means.at(s, t, 0));
+      turned.add(view.at(w - 1 - s, h - 1 - t, 0), lenslets.means.at(s, t, 0));
+    }
   std::printf("[ decode  ] lfm-guv: centre view against the raw's lenslet means: correlation %.3f as they lie, "
               "%.3f turned by 180 degrees\n",
-              asTheyLie, turnedBy180);
-  EXPECT_GT(asTheyLie, 0.85);
-  EXPECT_GT(asTheyLie, turnedBy180 + 0.1);
+              asTheyLie.value(), turned.value());
+  EXPECT_GT(asTheyLie.value(), 0.85);
+  EXPECT_GT(asTheyLie.value(), turned.value() + 0.1);
 }
 
 }  // namespace
