@@ -21,6 +21,15 @@ struct ViewsPerLens {
   int nu = 0, nv = 0;
 };
 
+// "16" when found, "16 or 24" when only plausible, "none" when neither.
+std::string periodsOf(const MacroPixelPeriod& estimate) {
+  if (estimate.period) return std::to_string(*estimate.period);
+  if (estimate.plausible.empty()) return "none";
+  std::string text;
+  for (int period : estimate.plausible) text += (text.empty() ? "" : " or ") + std::to_string(period);
+  return text;
+}
+
 std::string describe(int nu, int nv) {
   return std::string(kDescriptionTag) + " nu=" + std::to_string(nu) + " nv=" + std::to_string(nv);
 }
@@ -61,13 +70,17 @@ Result<ViewsPerLens> viewsPerLens(const fs::path& path, const LightFieldReadOpti
     if (!read) return read.error();
     image = std::move(*read);
   }
-  const auto nu = estimateMacroPixelPeriod(*image, true);
-  const auto nv = estimateMacroPixelPeriod(*image, false);
-  if (!nu || !nv)
+  const MacroPixelPeriod nu = estimateMacroPixelPeriod(*image, true);
+  const MacroPixelPeriod nv = estimateMacroPixelPeriod(*image, false);
+  if (nu.period && nv.period) return ViewsPerLens{*nu.period, *nv.period};
+  if (nu.plausible.empty() && nv.plausible.empty())
     return fileError(ErrorCode::Usage, path,
                      "no whole number of pixels repeats under each microlens; if it is a rectified lenslet "
                      "image, give the views per lens (--lenslet-views N)");
-  return ViewsPerLens{*nu, *nv};
+  return fileError(ErrorCode::Usage, path,
+                   "unsure how many pixels repeat under each microlens (plausible across: " + periodsOf(nu) +
+                       "; down: " + periodsOf(nv) + "); if it is a rectified lenslet image, give the views per lens "
+                       "(--lenslet-views N)");
 }
 
 Result<LightFieldShape> shapeOf(const fs::path& path, int width, int height, int channels, ViewsPerLens views) {
