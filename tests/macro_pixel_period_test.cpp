@@ -224,5 +224,19 @@ TEST(MacroPixelPeriod, UnsureEstimatesNameThePlausiblePeriods) {
   EXPECT_TRUE(unsure);
 }
 
+TEST(MacroPixelPeriod, GivenViewsThatDoNotDivideTheImageAreAUsageError) {
+  test::TempDir dir;
+  ASSERT_TRUE(writeImage(dir / "frame.png", microscopeFrame({.views = 7, .lensesX = 30, .lensesY = 20}, 6),
+                         {.sampleType = SampleType::UInt16})
+                  .ok());
+  auto read = readLightField(dir / "frame.png", {.lensletViews = 4});  // 210 x 140: 4 divides neither
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.error().code, ErrorCode::Usage);
+  EXPECT_NE(read.error().message.find("frame.png"), std::string::npos) << read.error().message;
+  auto probed = probeLightField(dir / "frame.png", {.lensletViews = 4});
+  ASSERT_FALSE(probed.ok());
+  EXPECT_EQ(probed.error().code, ErrorCode::Usage);
+}
+
 }  // namespace
 }  // namespace lfcam

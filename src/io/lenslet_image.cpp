@@ -19,6 +19,7 @@ constexpr const char* kDescriptionTag = "lfcam lenslet";
 
 struct ViewsPerLens {
   int nu = 0, nv = 0;
+  bool given = false;  // by the caller (a wrong count is then a usage error)
 };
 
 // "16" when found, "16 or 24" when only plausible, "none" when neither.
@@ -63,7 +64,7 @@ Result<ViewsPerLens> viewsPerLens(const fs::path& path, const LightFieldReadOpti
     if (*options.lensletViews < 1)
       return fileError(ErrorCode::Usage, path,
                        "views per lens must be at least 1, not " + std::to_string(*options.lensletViews));
-    return ViewsPerLens{*options.lensletViews, *options.lensletViews};
+    return ViewsPerLens{*options.lensletViews, *options.lensletViews, true};
   }
   if (!image) {
     auto read = readImage(path);
@@ -85,9 +86,10 @@ Result<ViewsPerLens> viewsPerLens(const fs::path& path, const LightFieldReadOpti
 
 Result<LightFieldShape> shapeOf(const fs::path& path, int width, int height, int channels, ViewsPerLens views) {
   if (width % views.nu != 0 || height % views.nv != 0)
-    return fileError(ErrorCode::Format, path,
+    return fileError(views.given ? ErrorCode::Usage : ErrorCode::Format, path,
                      std::to_string(width) + "x" + std::to_string(height) + " pixels is not a whole number of " +
-                         std::to_string(views.nu) + "x" + std::to_string(views.nv) + " macro-pixels");
+                         std::to_string(views.nu) + "x" + std::to_string(views.nv) + " macro-pixels" +
+                         (views.given ? ": the views per lens given must divide both sides" : ""));
   return LightFieldShape{.nu = views.nu, .nv = views.nv, .ns = width / views.nu, .nt = height / views.nv,
                          .channels = channels};
 }
