@@ -104,12 +104,20 @@ TEST(SimulatedGrid, MatchesTheSimulatorsCentres) {
   const auto [columns, rows] = camera.microlensCounts();
   EXPECT_EQ(grid.columns, columns);
   EXPECT_EQ(grid.rows, rows);
-  for (int j : {0, 1, 2, rows - 1})
-    for (int i : {0, 3, columns - 1}) {
-      const auto a = grid.centre(i, j), b = camera.microlensImageCentrePx(i, j);
-      EXPECT_NEAR(a[0], b[0], 1e-9);
-      EXPECT_NEAR(a[1], b[1], 1e-9);
-    }
+  // The raw is the sensor turned by 180 degrees: the grid's microlens (i, j) is the simulator's
+  // (columns - 1 - i, rows - 1 - j), for either parity of the row count.
+  for (int extraRow : {0, 1}) {
+    CameraModel other = camera;
+    other.microlenses->rows = rows + extraRow;
+    const LensletGrid g = gridFromCamera(other);
+    EXPECT_EQ(g.hexParity, (rows + extraRow) & 1);
+    for (int j : {0, 1, 2, g.rows - 1})
+      for (int i : {0, 3, columns - 1}) {
+        const auto a = g.centre(i, j), b = other.microlensImageCentrePx(columns - 1 - i, g.rows - 1 - j);
+        EXPECT_NEAR(a[0], b[0], 1e-9) << i << ", " << j;
+        EXPECT_NEAR(a[1], b[1], 1e-9) << i << ", " << j;
+      }
+  }
   EXPECT_NEAR(grid.pitchX, 13.37, 1e-9);
   EXPECT_NEAR(grid.pitchY, 13.37 * std::sqrt(3.0) / 2, 1e-9);
 }

@@ -668,6 +668,9 @@ TEST(LightFieldIoLenslet, AnImageWithoutMacroPixelsAsksForTheViewCount) {
   auto read = readLightField(dir / "photo.png");
   expectErrorMentioning(read, "photo.png");
   expectErrorMentioning(read, "views per lens");
+  // Its JPEG too: 8-pixel blocks and subsampled chroma do not pass for lenses.
+  ASSERT_TRUE(writeImage(dir / "photo.jpg", plain));
+  expectErrorMentioning(readLightField(dir / "photo.jpg"), "views per lens");
   // Told, it reads; a count that does not divide the size is an error.
   auto told = readLightField(dir / "photo.png", {.lensletViews = 3});
   ASSERT_TRUE(told) << told.error().message;

@@ -206,8 +206,8 @@ TEST(SimulateOptics, SameLightPerUnitAreaInLightFieldAndConventionalModes) {
     conventional.microlenses.reset();
     const SensorCapture a = simulateCapture(whiteScene(plenoptic), plenoptic, {.samplesPerPixel = 9});
     const SensorCapture b = simulateCapture(whiteScene(conventional), conventional, {.samplesPerPixel = 9});
-    // Over whole microlens cells: lenses 2..6 of 9.
-    const auto first = plenoptic.microlensImageCentrePx(2, 2), last = plenoptic.microlensImageCentrePx(6, 6);
+    // Over whole microlens cells: lenses 2..6 of 9 (the raw is turned: lens 6's image lies first).
+    const auto first = plenoptic.microlensImageCentrePx(6, 6), last = plenoptic.microlensImageCentrePx(2, 2);
     const double half = 0.5 * (last[0] - first[0]) / 4;
     double sumA = 0, sumB = 0;
     for (int y = int(std::lround(first[1] - half)); y < int(std::lround(last[1] + half)); ++y)

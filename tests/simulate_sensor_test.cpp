@@ -11,6 +11,7 @@
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/simulate.hpp"
+#include "lfcam/simulated_grid.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {
@@ -170,7 +171,7 @@ TEST(SimulateOutputs, GroundTruthAndCameraFile) {
 TEST(SimulateOutputs, RawOverWhiteIsTheIdealLightField) {
   // A card in the focal plane: each microlens image is uniform (Figure 13), and the raw divided
   // by the white image at the image's centre is the radiance of the ideal light field at that
-  // microlens, (s, t) = (columns - 1 - i, rows - 1 - j).
+  // microlens: (s, t) is microlens (i, j) = (s, t) of the raw's grid, which is stored upright.
   CameraModel camera = tinyCamera(168);
   camera.sensor.noise = false;
   camera.sensor.colorFilter = ColorFilter::Mono;
@@ -189,20 +190,19 @@ TEST(SimulateOutputs, RawOverWhiteIsTheIdealLightField) {
   const SensorCapture white = simulateCapture(*builtinScene("white", camera), camera, {.samplesPerPixel = 4});
   auto lf = idealLightField(scene, camera);
   ASSERT_TRUE(lf);
-  const auto [columns, rows] = camera.microlensCounts();
+  const LensletGrid grid = gridFromCamera(camera);
   const int u = lf->nu() / 2, v = lf->nv() / 2;
   int compared = 0;
-  for (int j = 1; j + 1 < rows; ++j)
-    for (int i = 1; i + 1 < columns; ++i) {
-      const int s = columns - 1 - i, t = rows - 1 - j;
+  for (int t = 1; t + 1 < grid.rows; ++t)
+    for (int s = 1; s + 1 < grid.columns; ++s) {
       bool uniform = true;  // away from the checkerboard's edges
       for (int dt = -1; dt <= 1; ++dt)
         for (int ds = -1; ds <= 1; ++ds) uniform &= lf->at(u, v, s + ds, t + dt, 0) == lf->at(u, v, s, t, 0);
       if (!uniform) continue;
-      const auto centre = camera.microlensImageCentrePx(i, j);
+      const auto centre = grid.centre(s, t);
       const int x = int(centre[0]), y = int(centre[1]);
       EXPECT_NEAR(raw.irradiance.at(x, y, 0) / white.irradiance.at(x, y, 0), lf->at(u, v, s, t, 0), 0.01)
-          << "microlens " << i << ", " << j;
+          << "microlens " << s << ", " << t;
       ++compared;
     }
   EXPECT_GT(compared, 8);

@@ -14,6 +14,11 @@
 // the pixel pitch and W x H the resolution: the optical axis crosses the sensor's centre. Pixel
 // centres are at (px + 0.5, py + 0.5) as in image.hpp.
 //
+// The raw as the camera stores it (simulateCapture, raw.png): a camera reads its sensor out turned
+// by 180 degrees, so that the scene stands upright. Raw pixel (x, y) is sensor pixel (W - 1 - x,
+// H - 1 - y); the colour filter pattern (Sensor::colorFilter) and every pixel position this model
+// reports (microlensImageCentrePx, camera.json's lattice_px) are the raw's.
+//
 // Microlens lattice: microlens (i, j), i in [0, columns), j in [0, rows), has its centre at
 //   centre = offset + R(rotation) * (a, b),
 //   square:    a = (i - (columns - 1) / 2) pitch,             b = (j - (rows - 1) / 2) pitch
@@ -102,7 +107,8 @@ struct CameraModel {
   // Centre of microlens (i, j) on the microlens plane, mm.
   std::array<double, 2> microlensCentreMm(int i, int j) const;
   // The projection of the main lens's centre through microlens (i, j)'s centre onto the sensor,
-  // in sensor pixel coordinates: the centre of its image, what a calibration finds.
+  // in the raw's pixel coordinates (turned by 180 degrees, see above): the centre of its image in
+  // the stored raw, what a calibration finds.
   std::array<double, 2> microlensImageCentrePx(int i, int j) const;
   // Diameter of the image of the main-lens aperture under one microlens, in pixels
   // (aperture * separation / F; section 3.2).

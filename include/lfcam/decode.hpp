@@ -6,12 +6,15 @@
 // sampling every microlens image at its fitted sub-pixel centre, hexagonal to rectangular
 // resampling, white balance and colour matrix.
 //
-// Orientation (the same as idealLightField in simulate.hpp, so that a decoded simulator capture can
-// be scored against the ideal one): (s, t) = (columns - 1 - i, rows - 1 - j) for microlens (i, j) of
-// the grid (the sensor image is upside down); view (u, v) is the sensor point at the microlens
-// image's centre plus (-(u - (nu - 1) / 2), -(v - (nv - 1) / 2)) pixels (a ray through the left of
-// the main lens lands on the right of the microlens image). Views are one sensor pixel apart on the
-// sensor, in sensor axes (the main lens does not turn with the microlens array).
+// Orientation: as the raw lies. Sample (s, t) is microlens (i, j) = (s, t) of the grid: a camera
+// reads its sensor out turned by 180 degrees, undoing the main lens's inversion, so the scene
+// stands upright in the raw's lenslet layout (as LFToolbox and PlenoptiCam keep it). The readout
+// turns each microlens image too, which the microlens had inverted as the main lens inverts the
+// scene: view (u, v) is the raw's point at the microlens image's centre plus (u - (nu - 1) / 2,
+// v - (nv - 1) / 2) pixels, and it looks through the main lens that many view steps right of and
+// below its centre, as seen from behind the camera (light_field.hpp). Views are one pixel apart in
+// the raw's axes (the main lens does not turn with the microlens array). The simulator writes its
+// raws the same way, so a decoded capture is scored against idealLightField as it is.
 //
 // Weights: the white image's response at each sample, over its brightest level (1: the full
 // aperture reached that pixel, 0: no light); without a white image, 1 inside the aperture disc of
@@ -84,8 +87,8 @@ int repairHotPixels(Image& mosaic, ColorFilter filter, float threshold);
 
 // Interpolates the shifted rows of a hexagonal-grid light field (decoded with hexToRectangular
 // off, or idealLightField) onto the s positions of the other rows (cubic along s). shiftedT: the
-// parity of the rows t whose sample s lies at s - 1/2 (a grid's shifted rows j lie half a pitch
-// towards +x on the sensor, which is -s once turned the right way up): (rows + hexParity) & 1.
+// parity of the rows t whose sample s lies at s + 1/2 (a grid's shifted rows j = t, half a pitch
+// towards +x in the raw): 1 - hexParity.
 void hexRowsToRectangular(LightField& lightField, int shiftedT);
 
 }  // namespace lfcam

@@ -15,7 +15,9 @@
 //   centre, (s, t) in pixels, and disparity ("slope") in pixels of (s, t) per view step. A
 //   surface of disparity d appears in view (u, v) displaced by (-u d, -v d) relative to the
 //   centre (u, v measured from the centre), which is the HCI benchmark's convention: positive d
-//   is nearer than the plane in focus at capture.
+//   is nearer than the plane in focus at capture. Light fields decoded from raws follow it too:
+//   decode keeps the raw's lenslet layout as (s, t) and takes view u from the pixel u - (nu - 1) / 2
+//   right of each microlens image's centre (decode.hpp says why).
 //
 // Memory: one contiguous float32 buffer (on huge pages when large: huge_page_allocator.hpp), views
 // outermost:

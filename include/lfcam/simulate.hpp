@@ -32,6 +32,8 @@ struct SimulationOptions {
   int samplesPerPixel = 16;  // rounded up to a square number n x n (stratified), at most 32 x 32
 };
 
+// Both images are laid out as the camera stores its raw: the sensor turned by 180 degrees, so
+// that the scene stands upright (camera_model.hpp).
 struct SensorCapture {
   // Irradiance per unit scene radiance (steradians) of each pixel's own colour filter; 1 channel,
   // sensor width x height. No noise.
@@ -52,13 +54,14 @@ SensorCapture simulateCapture(const Scene& scene, const CameraModel& camera,
 Image applySensor(const Image& irradiance, const Sensor& sensor);
 
 // The ideal light field: the scene's radiance along the ray from lens point (u, v) through each
-// microlens centre, with no sensor in the way. (s, t) index the microlens lattice (i, j) turned
-// the right way up: s = columns - 1 - i, t = rows - 1 - j (the sensor image is upside down).
+// microlens centre, with no sensor in the way. (s, t) is microlens (s, t) of the raw's grid
+// (gridFromCamera), the simulator's microlens (columns - 1 - s, rows - 1 - t): the right way up.
 // (u, v): views spaced du = F * pixelPitch / separation on the lens (one sensor pixel under a
 // microlens), as many as the microlens image is pixels across (rounded), centred on the axis, u
 // to the right and v down as seen from behind the camera. Weight 1 for lens points inside the
-// aperture, 0 outside. Hexagonal lattices: odd rows j are offset by half a pitch. Channels: 3
-// (RGB), or 1 (luminance) for a monochrome sensor. metadata.optics is set.
+// aperture, 0 outside. Hexagonal lattices: rows t with (t + rows) odd (the grid's shifted rows)
+// lie half a pitch towards +s of the others. Channels: 3 (RGB), or 1 (luminance) for a monochrome
+// sensor. metadata.optics is set.
 // Requires a microlens array (Usage error otherwise).
 Result<LightField> idealLightField(const Scene& scene, const CameraModel& camera);
 

@@ -249,7 +249,7 @@ Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& 
 
   // 6. Hexagonal rows onto a rectangular s grid.
   if (grid.packing == Packing::Hexagonal && options.hexToRectangular)
-    hexRowsToRectangular(lf, (grid.rows + grid.hexParity) & 1);
+    hexRowsToRectangular(lf, 1 - grid.hexParity);
 
   lf.metadata.optics = options.optics;
   lf.metadata.source = "lfcam decode" + (raw.source.empty() ? std::string() : " of a " + raw.source + " raw") + ": " +

@@ -10,12 +10,12 @@ namespace lfcam {
 
 namespace {
 
-// Row `row` of n samples, whose sample s lies at s - 1/2: values at the whole positions s.
+// Row `row` of n samples, whose sample s lies at s + 1/2: values at the whole positions s.
 void halfShiftRow(float* row, int n, std::vector<float>& scratch, bool clampToUnit) {
   scratch.assign(row, row + n);
   auto at = [&](int s) { return scratch[std::size_t(std::clamp(s, 0, n - 1))]; };
   for (int s = 0; s < n; ++s) {
-    float value = (-at(s - 1) + 9 * at(s) + 9 * at(s + 1) - at(s + 2)) * (1.0f / 16);
+    float value = (-at(s - 2) + 9 * at(s - 1) + 9 * at(s) - at(s + 1)) * (1.0f / 16);
     if (clampToUnit) value = std::clamp(value, 0.0f, 1.0f);
     row[s] = value;
   }

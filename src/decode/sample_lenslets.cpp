@@ -1,6 +1,6 @@
 // Dicing: every microlens image sampled into the views of L(u, v, s, t).
 //
-// SubPixel: view (u, v) of microlens (i, j) is the sensor point centre(i, j) - (u - (n-1)/2,
+// SubPixel: view (u, v) of microlens (i, j) is the raw's point centre(i, j) + (u - (n-1)/2,
 // v - (n-1)/2), interpolated with a Catmull-Rom cubic. All views of one microlens share the same
 // sub-pixel phase (they are whole pixels apart), so the fast kernel filters the microlens's patch
 // separably with one set of 4 weights per axis: (n + 3) n 4 + n n 4 multiply-adds per microlens and
@@ -57,13 +57,13 @@ inline float cleanWeight(float w) { return w < 0.02f ? 0.0f : std::min(w, 1.0f);
 void sampleMicrolensPlain(const Image& planes, const Image& weight, const LensletGrid& grid, const ViewLayout& layout,
                           LightField& lf, int i, int j) {
   const int n = layout.views, w = planes.width(), h = planes.height();
-  const int s = grid.columns - 1 - i, t = grid.rows - 1 - j;
+  const int s = i, t = j;
   const auto centre = grid.centre(i, j);
   const bool cubic = layout.sampling == Sampling::SubPixel;
   const double cs = std::cos(grid.rotationRad), sn = std::sin(grid.rotationRad);
   for (int v = 0; v < n; ++v)
     for (int u = 0; u < n; ++u) {
-      double ox = -(u - 0.5 * (n - 1)), oy = -(v - 0.5 * (n - 1));
+      double ox = u - 0.5 * (n - 1), oy = v - 0.5 * (n - 1);
       if (!cubic) {  // the resampled image's pixels: lattice axes, pitch / round(pitch) apart
         const double rx = ox * layout.integralScale, ry = oy * layout.integralScale;
         ox = cs * rx - sn * ry, oy = sn * rx + cs * ry;
@@ -79,33 +79,33 @@ void sampleMicrolensPlain(const Image& planes, const Image& weight, const Lensle
 }
 
 // One microlens, separable: the fast kernel of SubPixel sampling. Both passes run over
-// contiguous, forward arrays (index q = n - 1 - u, since view u lies u pixels left of view 0) so
-// that the compiler vectorises them. Writes out[p * n * n + v * n + q] for plane p (the channels,
-// then the weight); `rows` holds (n + 3) * n floats. Returns false when the patch reaches beyond
+// contiguous, forward arrays (view u lies u pixels right of view 0) so that the compiler
+// vectorises them. Writes out[p * n * n + v * n + u] for plane p (the channels, then the weight);
+// `rows` holds (n + 3) * n floats. Returns false when the patch reaches beyond
 // the image (caller falls back).
 bool sampleMicrolensSeparable(const Image& planes, const Image& weight, const LensletGrid& grid, int n, int i, int j,
                               float* rows, float* out) {
   const int w = planes.width(), h = planes.height();
   const auto centre = grid.centre(i, j);
-  // Array coordinate of view 0 (the rightmost/lowest sensor point); view u is u pixels left of it.
-  const double x0 = centre[0] + 0.5 * (n - 1) - 0.5, y0 = centre[1] + 0.5 * (n - 1) - 0.5;
+  // Array coordinate of view 0 (the leftmost/highest point); view u is u pixels right of it.
+  const double x0 = centre[0] - 0.5 * (n - 1) - 0.5, y0 = centre[1] - 0.5 * (n - 1) - 0.5;
   const int bx = int(std::floor(x0)), by = int(std::floor(y0));
-  const int left = bx - n, top = by - n;  // first tap column / row (of view n - 1)
-  if (left < 0 || top < 0 || bx + 2 >= w || by + 2 >= h) return false;
+  const int left = bx - 1, top = by - 1;  // first tap column / row (of view 0)
+  if (left < 0 || top < 0 || bx + n + 1 >= w || by + n + 1 >= h) return false;
   float wx[4], wy[4];
   catmullRom(x0 - bx, wx);
   catmullRom(y0 - by, wy);
   auto filter = [&](const float* plane, float* o) {
-    // Horizontal pass over the n + 3 rows the vertical taps need: rows[r * n + q].
+    // Horizontal pass over the n + 3 rows the vertical taps need: rows[r * n + u].
     for (int r = 0; r < n + 3; ++r) {
       const float* src = plane + std::size_t(top + r) * w + left;
       float* dst = rows + std::size_t(r) * n;
-      for (int q = 0; q < n; ++q) dst[q] = wx[0] * src[q] + wx[1] * src[q + 1] + wx[2] * src[q + 2] + wx[3] * src[q + 3];
+      for (int u = 0; u < n; ++u) dst[u] = wx[0] * src[u] + wx[1] * src[u + 1] + wx[2] * src[u + 2] + wx[3] * src[u + 3];
     }
-    // Vertical pass: view v reads rows n-1-v .. n+2-v.
+    // Vertical pass: view v reads rows v .. v+3.
     for (int v = 0; v < n; ++v, o += n) {
-      const float* r0 = rows + std::size_t(n - 1 - v) * n;
-      for (int q = 0; q < n; ++q) o[q] = wy[0] * r0[q] + wy[1] * r0[q + n] + wy[2] * r0[q + 2 * n] + wy[3] * r0[q + 3 * n];
+      const float* r0 = rows + std::size_t(v) * n;
+      for (int u = 0; u < n; ++u) o[u] = wy[0] * r0[u] + wy[1] * r0[u + n] + wy[2] * r0[u + 2 * n] + wy[3] * r0[u + 3 * n];
     }
   };
   const std::size_t views = std::size_t(n) * n;
@@ -134,7 +134,7 @@ void sampleLenslets(const Image& planes, const Image& weight, const LensletGrid&
   parallelFor(0, std::size_t(grid.rows), 1, [&](std::size_t begin, std::size_t end) {
     std::vector<float> rows(std::size_t(n + 3) * n), buffer(perLens * kBatch);
     for (int j = int(begin); j < int(end); ++j) {
-      const int t = grid.rows - 1 - j;
+      const int t = j;
       for (int i0 = 0; i0 < grid.columns; i0 += kBatch) {
         const int count = std::min(kBatch, grid.columns - i0);
         bool done[kBatch] = {};
@@ -144,15 +144,15 @@ void sampleLenslets(const Image& planes, const Image& weight, const LensletGrid&
           if (!done[b]) sampleMicrolensPlain(planes, weight, grid, layout, lf, i0 + b, j);
         }
         if (!separable) continue;
-        // Microlens i0 + b is sample s = columns - 1 - i0 - b: the batch runs leftwards in s.
-        const std::size_t k0 = std::size_t(t) * lf.ns() + std::size_t(grid.columns - 1 - i0);
+        // Microlens i0 + b is sample s = i0 + b.
+        const std::size_t k0 = std::size_t(t) * lf.ns() + std::size_t(i0);
         for (int p = 0; p <= channels; ++p)
           for (int v = 0; v < n; ++v)
-            for (int q = 0; q < n; ++q) {
-              float* dst = (p < channels ? lf.plane(n - 1 - q, v, p) : lf.weightPlane(n - 1 - q, v)) + k0;
-              const float* src = buffer.data() + std::size_t(p) * n * n + std::size_t(v) * n + q;
+            for (int u = 0; u < n; ++u) {
+              float* dst = (p < channels ? lf.plane(u, v, p) : lf.weightPlane(u, v)) + k0;
+              const float* src = buffer.data() + std::size_t(p) * n * n + std::size_t(v) * n + u;
               for (int b = 0; b < count; ++b)
-                if (done[b]) *(dst - b) = src[std::size_t(b) * perLens];
+                if (done[b]) dst[b] = src[std::size_t(b) * perLens];
             }
       }
     }

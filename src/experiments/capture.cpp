@@ -109,12 +109,7 @@ Result<LightField> captureLightField(const TracedCapture& traced, bool noise, st
 
 Result<Image> conventionalPhoto(const TracedCapture& traced, bool noise, std::uint64_t seed) {
   if (traced.camera.microlenses) return makeError(ErrorCode::Usage, "conventional photo: the camera has microlenses");
-  const Image radiance = radianceFrame(traced, noise, seed);
-  const int w = radiance.width(), h = radiance.height();
-  Image upright(w, h, 1);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) upright.at(w - 1 - x, h - 1 - y, 0) = radiance.at(x, y, 0);
-  return upright;
+  return radianceFrame(traced, noise, seed);  // upright: the raw is stored as a camera reads it out
 }
 
 CameraModel plenopticCamera(int microlenses, int pixelsPerMicrolens, double focusMm) {

@@ -39,7 +39,7 @@ Result<TracedCapture> traceCapture(const Scene& scene, const CameraModel& camera
 Result<LightField> captureLightField(const TracedCapture& traced, bool noise, std::uint64_t seed);
 
 // A conventional photograph from a camera without microlenses, in scene radiance units (divided
-// by the white field), turned the right way up like the light field's views.
+// by the white field), upright like the light field's views (the raw is stored as a camera reads it out).
 Result<Image> conventionalPhoto(const TracedCapture& traced, bool noise, std::uint64_t seed);
 
 // ---- cameras and targets ----------------------------------------------------------------------

@@ -19,7 +19,17 @@ constexpr const char* kDescriptionTag = "lfcam lenslet";
 
 struct ViewsPerLens {
   int nu = 0, nv = 0;
+  bool given = false;  // by the caller (a wrong count is then a usage error)
 };
+
+// "16" when found, "16 or 24" when only plausible, "none" when neither.
+std::string periodsOf(const MacroPixelPeriod& estimate) {
+  if (estimate.period) return std::to_string(*estimate.period);
+  if (estimate.plausible.empty()) return "none";
+  std::string text;
+  for (int period : estimate.plausible) text += (text.empty() ? "" : " or ") + std::to_string(period);
+  return text;
+}
 
 std::string describe(int nu, int nv) {
   return std::string(kDescriptionTag) + " nu=" + std::to_string(nu) + " nv=" + std::to_string(nv);
@@ -54,27 +64,32 @@ Result<ViewsPerLens> viewsPerLens(const fs::path& path, const LightFieldReadOpti
     if (*options.lensletViews < 1)
       return fileError(ErrorCode::Usage, path,
                        "views per lens must be at least 1, not " + std::to_string(*options.lensletViews));
-    return ViewsPerLens{*options.lensletViews, *options.lensletViews};
+    return ViewsPerLens{*options.lensletViews, *options.lensletViews, true};
   }
   if (!image) {
     auto read = readImage(path);
     if (!read) return read.error();
     image = std::move(*read);
   }
-  const auto nu = estimateMacroPixelPeriod(*image, true);
-  const auto nv = estimateMacroPixelPeriod(*image, false);
-  if (!nu || !nv)
+  const MacroPixelPeriod nu = estimateMacroPixelPeriod(*image, true);
+  const MacroPixelPeriod nv = estimateMacroPixelPeriod(*image, false);
+  if (nu.period && nv.period) return ViewsPerLens{*nu.period, *nv.period};
+  if (nu.plausible.empty() && nv.plausible.empty())
     return fileError(ErrorCode::Usage, path,
                      "no whole number of pixels repeats under each microlens; if it is a rectified lenslet "
                      "image, give the views per lens (--lenslet-views N)");
-  return ViewsPerLens{*nu, *nv};
+  return fileError(ErrorCode::Usage, path,
+                   "unsure how many pixels repeat under each microlens (plausible across: " + periodsOf(nu) +
+                       "; down: " + periodsOf(nv) + "); if it is a rectified lenslet image, give the views per lens "
+                       "(--lenslet-views N)");
 }
 
 Result<LightFieldShape> shapeOf(const fs::path& path, int width, int height, int channels, ViewsPerLens views) {
   if (width % views.nu != 0 || height % views.nv != 0)
-    return fileError(ErrorCode::Format, path,
+    return fileError(views.given ? ErrorCode::Usage : ErrorCode::Format, path,
                      std::to_string(width) + "x" + std::to_string(height) + " pixels is not a whole number of " +
-                         std::to_string(views.nu) + "x" + std::to_string(views.nv) + " macro-pixels");
+                         std::to_string(views.nu) + "x" + std::to_string(views.nv) + " macro-pixels" +
+                         (views.given ? ": the views per lens given must divide both sides" : ""));
   return LightFieldShape{.nu = views.nu, .nv = views.nv, .ns = width / views.nu, .nt = height / views.nv,
                          .channels = channels};
 }

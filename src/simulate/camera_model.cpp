@@ -6,6 +6,7 @@
 
 #include "lfcam/memory_budget.hpp"
 #include "core/json_reader.hpp"
+#include "lfcam/simulated_grid.hpp"
 
 namespace lfcam {
 
@@ -41,8 +42,9 @@ std::array<double, 2> CameraModel::microlensCentreMm(int i, int j) const {
 std::array<double, 2> CameraModel::microlensImageCentrePx(int i, int j) const {
   const auto centre = microlensCentreMm(i, j);
   const double scale = 1.0 + microlenses->separationMm() / mainLens.imageDistanceMm();
-  return {centre[0] * scale / sensor.pixelPitchMm + 0.5 * sensor.width,
-          centre[1] * scale / sensor.pixelPitchMm + 0.5 * sensor.height};
+  // On the sensor at (W/2, H/2) + centre * scale / pitch; the raw turns it about the sensor's centre.
+  return {0.5 * sensor.width - centre[0] * scale / sensor.pixelPitchMm,
+          0.5 * sensor.height - centre[1] * scale / sensor.pixelPitchMm};
 }
 
 double CameraModel::microlensImageDiameterPx() const {
@@ -228,25 +230,26 @@ nlohmann::json cameraToJson(const CameraModel& camera) {
                         {"fill_factor", m.fillFactor},
                         {"columns", columns},
                         {"rows", rows}};
-  // The lattice of microlens image centres on the sensor, in pixels: what a calibration from the
-  // white image recovers. centre(i, j) = origin_px + i * column_step_px + j * row_step_px
-  // (+ half a column step on odd rows when hexagonal).
+  // The lattice of microlens image centres in the raw (turned by 180 degrees), in pixels: what a
+  // calibration from the white image recovers, in grid.json's terms (lenslet_grid.hpp).
+  const LensletGrid grid = gridFromCamera(camera);
+  const double pitchPx = grid.pitchX, rowPx = grid.pitchY;
+  const double c = std::cos(grid.rotationRad), sn = std::sin(grid.rotationRad);
   const double scale = 1.0 + m.separationMm() / l.imageDistanceMm();
-  const double pitchPx = m.pitchMm * scale / s.pixelPitchMm;
-  const double angle = m.rotationDeg * M_PI / 180.0;
-  const auto origin = camera.microlensImageCentrePx(0, 0);
-  const double rowPx = m.rowPitchMm() * scale / s.pixelPitchMm;
+  const double toPx = scale / s.pixelPitchMm;
+  const std::array<double, 2> offsetPx{-m.offsetMm[0] * toPx, -m.offsetMm[1] * toPx};  // turned with the raw
   out["lattice_px"] = {
       {"pitch_px", pitchPx},
       {"row_pitch_px", rowPx},
       {"rotation_deg", m.rotationDeg},
       {"packing", packingName(m.packing)},
-      {"offset_px", {m.offsetMm[0] * scale / s.pixelPitchMm, m.offsetMm[1] * scale / s.pixelPitchMm}},
-      {"centre_px", {0.5 * s.width + m.offsetMm[0] * scale / s.pixelPitchMm, 0.5 * s.height + m.offsetMm[1] * scale / s.pixelPitchMm}},
-      {"origin_px", {origin[0], origin[1]}},
-      {"column_step_px", {pitchPx * std::cos(angle), pitchPx * std::sin(angle)}},
-      {"row_step_px", {-rowPx * std::sin(angle), rowPx * std::cos(angle)}},
+      {"offset_px", {offsetPx[0], offsetPx[1]}},
+      {"centre_px", {0.5 * s.width + offsetPx[0], 0.5 * s.height + offsetPx[1]}},
+      {"origin_px", {grid.origin[0], grid.origin[1]}},
+      {"column_step_px", {pitchPx * c, pitchPx * sn}},
+      {"row_step_px", {-rowPx * sn, rowPx * c}},
       {"odd_row_shift", m.packing == Packing::Hexagonal ? 0.5 : 0.0},
+      {"hex_parity", grid.hexParity},
       {"pixels_per_microlens", pitchPx},
       {"image_diameter_px", camera.microlensImageDiameterPx()},
       {"pixel_coordinates", "pixel (x, y) covers [x, x+1) x [y, y+1); centres at half-integers"}};

@@ -197,7 +197,8 @@ Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, 
           {"views", grid.views},
           {"lens_step_mm", grid.stepMm},
           {"spatial_step_mm", camera.microlenses->pitchMm},
-          {"orientation", "(s, t) = (columns - 1 - i, rows - 1 - j): the sensor image turned 180 degrees"},
+          {"orientation", "raw and white as a camera stores them (the sensor turned 180 degrees, the scene upright); "
+                          "(s, t) of ideal.lf.h5 and depth.pfm is microlens (i, j) = (s, t) of lattice_px"},
           {"depth", "depth.pfm: mm along z to the surface seen by the central ray through each microlens; inf: none"}};
     }
     LFCAM_TRY(writeText(temporary / "camera.json", json.dump(2) + "\n"));

@@ -322,8 +322,10 @@ SensorCapture simulateCapture(const Scene& scene, const CameraModel& camera, con
       for (std::size_t y = begin; y < end; ++y) {
         float* row = capture.irradiance.row(int(y), 0);
         std::uint64_t rays = 0;
+        // Raw pixel (x, y) is sensor pixel (width - 1 - x, height - 1 - y): the camera's readout
+        // turns the sensor image by 180 degrees (camera_model.hpp); the colour filter is the raw's.
         for (int x = 0; x < width; ++x)
-          row[x] = float(pixelIrradiance(optics, prepared, x, int(y), n,
+          row[x] = float(pixelIrradiance(optics, prepared, width - 1 - x, height - 1 - int(y), n,
                                          colorFilterChannel(camera.sensor.colorFilter, x, int(y)), seed, rays));
         rowRays[y] = rays;
       }

@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include "cli_support.hpp"
+#include "lfcam/image_io.hpp"
 
 namespace lfcam {
 namespace {
@@ -128,6 +129,33 @@ TEST(BadInput, UnwritableOutputLeavesNothing) {
   EXPECT_NE(result.exitStatus, 0);
   EXPECT_EQ(result.errLines(), 1) << result.err;
   EXPECT_TRUE(fs::is_directory(dir / "a-folder.png"));
+}
+
+// A lenslet image without lfcam's description: views per lens that do not divide it are a usage
+// error (status 2); so is an image in which no period stands out (it asks for the count).
+TEST(BadInput, LensletViewsThatDoNotDivideTheImage) {
+  test::TempDir dir;
+  auto made = runLfcam({"synth", "--views", "5", "--size", "24", "-o", (dir / "lf.png").string()}, dir.path());
+  ASSERT_EQ(made.exitStatus, 0) << made.err;
+  auto image = readImage(dir / "lf.png");  // 120 x 120
+  ASSERT_TRUE(image.ok());
+  ASSERT_TRUE(writeImage(dir / "plain.png", *image).ok());  // the description dropped
+  for (const char* views : {"7", "0"}) {
+    const fs::path out = dir / "out.lf.h5";
+    const auto result =
+        runLfcam({"convert", (dir / "plain.png").string(), "--lenslet-views", views, "-o", out.string()}, dir.path());
+    EXPECT_EQ(result.exitStatus, 2) << views << ": " << result.err;
+    EXPECT_EQ(result.errLines(), 1) << result.err;
+    EXPECT_NE(result.err.find(views == std::string("7") ? "plain.png" : "--lenslet-views"), std::string::npos)
+        << result.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+  const auto told = runLfcam({"info", (dir / "plain.png").string(), "--lenslet-views", "5"}, dir.path());
+  EXPECT_EQ(told.exitStatus, 0) << told.err;
+  // Without the count the views are found.
+  const auto found = runLfcam({"info", (dir / "plain.png").string()}, dir.path());
+  EXPECT_EQ(found.exitStatus, 0) << found.err;
+  EXPECT_NE(found.out.find("5 x 5 views"), std::string::npos) << found.out;
 }
 
 }  // namespace

@@ -17,7 +17,8 @@ const std::vector<std::string> kCommands{
 TEST(CommandHelp, AloneListsEveryCommandOnOneLineEach) {
   TempDir dir;
   const auto result = runLfcam({}, dir.path());
-  EXPECT_EQ(result.exitStatus, 0) << result.err;
+  EXPECT_EQ(result.exitStatus, 2) << "no command is a usage error, as in git";
+  EXPECT_EQ(result.err, "");
   for (const auto& command : kCommands) EXPECT_NE(result.out.find("\n  " + command + " "), std::string::npos) << command;
 }
 

@@ -29,7 +29,6 @@ TEST(Cli, UsageErrorsExitTwoWithOneLine) {
   test::TempDir dir;
   const fs::path input = test::makeSynthLightField(dir);
   const std::vector<std::vector<std::string>> cases = {
-      {},
       {"frobnicate"},
       {"info", input.string(), "--no-such-flag"},
       {"refocus", input.string(), "-o", (dir / "a.png").string()},                              // no depth

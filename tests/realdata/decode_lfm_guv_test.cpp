@@ -4,17 +4,24 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "lfcam/calibrate.hpp"
 #include "lfcam/decode.hpp"
 #include "lfcam/raw_io.hpp"
+#include "lenslet_means.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {
 namespace {
 
-TEST(DecodeLfmGuv, ViewsArePlausible) {
-  LFCAM_REQUIRE_SHARED_DATA("lfm-guv", folder);
+struct LfmGuv {
+  RawImage raw, white, dark;
+  LensletGrid grid;
+};
+
+// The capture, its white image and dark frame, and the grid calibrated from the white image.
+void readLfmGuv(const std::filesystem::path& folder, LfmGuv& out) {
   RawReadOptions read;
   read.colorFilter = ColorFilter::Mono;
   read.blackLevel = 0;
@@ -23,15 +30,26 @@ TEST(DecodeLfmGuv, ViewsArePlausible) {
   auto white = readRaw(folder / "Radiometry_GUVExperim1.tif", read);
   auto dark = readRaw(folder / "DarkFrame_GUVExperim1.tif", read);
   ASSERT_TRUE(raw.ok() && white.ok() && dark.ok());
-  CalibrationOptions calibration;
-  auto grid = calibrateGrid(*white, calibration, "Radiometry_GUVExperim1.tif");
+  auto grid = calibrateGrid(*white, CalibrationOptions{}, "Radiometry_GUVExperim1.tif");
   ASSERT_TRUE(grid.ok()) << grid.error().message;
-  EXPECT_NEAR(grid->pitchX, 15.38, 0.15);
+  out = {std::move(*raw), std::move(*white), std::move(*dark), *grid};
+}
 
+Result<LightField> decodeLfmGuv(const LfmGuv& data) {
   DecodeOptions options;
-  options.white = &*white;
-  options.dark = &*dark;
-  auto lf = decodeLightField(*raw, *grid, options);
+  options.white = &data.white;
+  options.dark = &data.dark;
+  return decodeLightField(data.raw, data.grid, options);
+}
+
+TEST(DecodeLfmGuv, ViewsArePlausible) {
+  LFCAM_REQUIRE_SHARED_DATA("lfm-guv", folder);
+  LfmGuv data;
+  ASSERT_NO_FATAL_FAILURE(readLfmGuv(folder, data));
+  const LensletGrid& grid = data.grid;
+  EXPECT_NEAR(grid.pitchX, 15.38, 0.15);
+
+  auto lf = decodeLfmGuv(data);
   ASSERT_TRUE(lf.ok()) << lf.error().message;
   EXPECT_EQ(lf->channels(), 1);
   EXPECT_EQ(lf->nu(), 15);
@@ -64,11 +82,40 @@ TEST(DecodeLfmGuv, ViewsArePlausible) {
   const double mean = sum / count, deviation = std::sqrt(std::max(0.0, sumSquares / count - mean * mean));
   std::printf("[ decode  ] lfm-guv: grid %dx%d pitch %.3f x %.3f px, rotation %.4f deg; centre view mean %.4f, "
               "std %.4f, mean |dx| %.4f; weight centre %.3f corner %.3f\n",
-              grid->columns, grid->rows, grid->pitchX, grid->pitchY, grid->rotationRad * 180 / M_PI, mean, deviation,
+              grid.columns, grid.rows, grid.pitchX, grid.pitchY, grid.rotationRad * 180 / M_PI, mean, deviation,
               neighbour / count, centreWeight, cornerWeight);
   EXPECT_GT(mean, 0);
   EXPECT_GT(deviation / mean, 0.05);             // structure
   EXPECT_LT(neighbour / count, 2.0 * deviation);  // smoother than noise
+}
+
+// A photo decoded the right way up matches the raw's lenslet means (lenslet_means.hpp) as they
+// lie; one turned upside down matches them only once turned by 180 degrees.
+TEST(DecodeLfmGuv, CentreViewLiesAsTheLensletsDo) {
+  LFCAM_REQUIRE_SHARED_DATA("lfm-guv", folder);
+  LfmGuv data;
+  ASSERT_NO_FATAL_FAILURE(readLfmGuv(folder, data));
+  auto lf = decodeLfmGuv(data);
+  ASSERT_TRUE(lf.ok()) << lf.error().message;
+  ASSERT_EQ(lf->ns(), data.grid.columns);
+  ASSERT_EQ(lf->nt(), data.grid.rows);
+  const test::LensletMeans lenslets = test::lensletMeans(data.raw, data.white, data.grid, &data.dark);
+  const int centre = lf->nu() / 2;
+  const Image view = lf->subApertureImage(centre, centre);
+  const int w = view.width(), h = view.height();
+  // Over the microlenses wholly inside the raw, as they lie and turned.
+  test::Correlation asTheyLie, turned;
+  for (int t = 0; t < h; ++t)
+    for (int s = 0; s < w; ++s) {
+      if (!lenslets.complete[std::size_t(t) * w + s] || !lenslets.complete[std::size_t(h - 1 - t) * w + w - 1 - s]) continue;
+      asTheyLie.add(view.at(s, t, 0), lenslets.means.at(s, t, 0));
+      turned.add(view.at(w - 1 - s, h - 1 - t, 0), lenslets.means.at(s, t, 0));
+    }
+  std::printf("[ decode  ] lfm-guv: centre view against the raw's lenslet means: correlation %.3f as they lie, "
+              "%.3f turned by 180 degrees\n",
+              asTheyLie.value(), turned.value());
+  EXPECT_GT(asTheyLie.value(), 0.85);
+  EXPECT_GT(asTheyLie.value(), turned.value() + 0.1);
 }
 
 }  // namespace

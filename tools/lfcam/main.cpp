@@ -56,9 +56,9 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  if (app.get_subcommands().empty()) {  // `lfcam` alone, or with global options only
+  if (app.get_subcommands().empty()) {  // `lfcam` alone, or with global options only: usage, as git
     cli::printCommandList(app);
-    return 0;
+    return 2;
   }
   try {
     setThreadCount(threads);
