@@ -32,18 +32,20 @@ std::string shortest(double value) {
 }  // namespace
 
 std::optional<int> hciViewIndex(const std::string& filename) {
-  if (filename.size() <= kPrefix.size() + 4 || filename.compare(0, kPrefix.size(), kPrefix) != 0) return std::nullopt;
-  if (lowerExtension(filename) != ".png") return std::nullopt;
-  const std::string digits = filename.substr(kPrefix.size(), filename.size() - kPrefix.size() - 4);
+  const std::string extension = lowerExtension(filename);
+  if (filename.size() <= kPrefix.size() + extension.size() || filename.compare(0, kPrefix.size(), kPrefix) != 0)
+    return std::nullopt;
+  if (!isViewFileExtension(extension)) return std::nullopt;
+  const std::string digits = filename.substr(kPrefix.size(), filename.size() - kPrefix.size() - extension.size());
   if (digits.empty() || digits.size() > 6 || !std::all_of(digits.begin(), digits.end(), [](unsigned char ch) { return std::isdigit(ch); })) return std::nullopt;
   return std::stoi(digits);
 }
 
-std::string hciViewName(int index, int views) {
+std::string hciViewName(int index, int views, const std::string& extension) {
   std::string digits = std::to_string(index);
   const std::size_t width = std::max<std::size_t>(3, std::to_string(std::max(views - 1, 0)).size());
   if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
-  return std::string(kPrefix) + digits + ".png";
+  return std::string(kPrefix) + digits + extension;
 }
 
 Result<ViewGrid> placeHciViews(const fs::path& folder, const fs::path& configFolder,
