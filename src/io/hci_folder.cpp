@@ -23,12 +23,6 @@ namespace {
 
 constexpr std::string_view kPrefix = "input_Cam";
 
-std::string shortest(double value) {
-  char buffer[32];
-  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, end);
-}
-
 }  // namespace
 
 std::optional<int> hciViewIndex(const std::string& filename) {
@@ -128,10 +122,10 @@ std::string hciParameters(const LightField& lightField) {
   if (const auto& optics = metadata.optics; optics && optics->focalLengthMm && optics->lensToMicrolensMm > 0) {
     const double inverseFocus = 1.0 / *optics->focalLengthMm - 1.0 / optics->lensToMicrolensMm;
     if (inverseFocus > 0 && optics->lensStepMm > 0 && optics->spatialStepMm > 0) {
-      intrinsics = "focal_length_mm = " + shortest(optics->lensToMicrolensMm) + "\nsensor_size_mm = " +
-                   shortest(optics->spatialStepMm * std::max(lightField.ns(), lightField.nt())) + "\n";
-      extrinsics = "baseline_mm = " + shortest(optics->lensStepMm) + "\nfocus_distance_m = " +
-                   shortest(1.0 / inverseFocus / 1000.0) + "\n";
+      intrinsics = "focal_length_mm = " + shortestNumber(optics->lensToMicrolensMm) + "\nsensor_size_mm = " +
+                   shortestNumber(optics->spatialStepMm * std::max(lightField.ns(), lightField.nt())) + "\n";
+      extrinsics = "baseline_mm = " + shortestNumber(optics->lensStepMm) + "\nfocus_distance_m = " +
+                   shortestNumber(1.0 / inverseFocus / 1000.0) + "\n";
     }
   }
   std::ostringstream text;
@@ -146,8 +140,8 @@ std::string hciParameters(const LightField& lightField) {
        << extrinsics;
   if (metadata.disparityMin || metadata.disparityMax) {
     text << "\n[meta]\n";
-    if (metadata.disparityMin) text << "disp_min = " << shortest(*metadata.disparityMin) << "\n";
-    if (metadata.disparityMax) text << "disp_max = " << shortest(*metadata.disparityMax) << "\n";
+    if (metadata.disparityMin) text << "disp_min = " << shortestNumber(*metadata.disparityMin) << "\n";
+    if (metadata.disparityMax) text << "disp_max = " << shortestNumber(*metadata.disparityMax) << "\n";
   }
   return text.str();
 }
