@@ -3,6 +3,7 @@
 // round it to a few dozen grey levels; every command honours the flag; bad depths write nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -78,6 +79,64 @@ TEST(CliExportDepth, LowContrastViewsReadBackAtSixteenBitsAndFloatButNotAtEight)
     EXPECT_GE(figure, c.minPsnr) << testing::PrintToString(c.flags);
     EXPECT_LE(figure, c.maxPsnr) << testing::PrintToString(c.flags);
   }
+}
+
+// The same for a decoded simulator capture: what its exported views lose against the decoded
+// light field itself, over the samples the decoder trusts (weight >= 0.5; views carry no weight).
+// Decoded radiance leaves [0, 1] (interpolation overshoot at edges, patches brighter than the
+// white image): integer files clamp it, so over all samples only float views keep everything;
+// over the samples inside [0, 1], 16-bit views keep what 8-bit ones round away.
+TEST(CliExportDepth, DecodedCaptureViewsKeepWhatTheLightFieldHolds) {
+  test::TempDir dir;
+  const std::string sim = (dir / "sim").string(), decoded = (dir / "decoded.lf.h5").string();
+  ASSERT_EQ(runLfcam({"simulate", "chart", "--size", "160", "--samples", "1", "--noise", "off", "--no-ground-truth",
+                      "-o", sim},
+                     dir.path())
+                .exitStatus,
+            0);
+  const auto decode = runLfcam({"decode", sim + "/raw.png", "--white", sim + "/white.png", "-o", decoded}, dir.path());
+  ASSERT_EQ(decode.exitStatus, 0) << decode.err;
+  auto truth = readLightField(decoded);
+  ASSERT_TRUE(truth) << truth.error().message;
+  const std::vector<std::vector<std::string>> depths = {{"--bit-depth", "8"}, {"--bit-depth", "16"},
+                                                        {"--format", "exr", "--bit-depth", "float"}};
+  std::vector<double> figures, inRangeFigures;
+  for (const auto& flags : depths) {
+    const fs::path folder = dir / ("views" + std::to_string(figures.size()));
+    std::vector<std::string> args{"views", decoded, "-o", folder.string()};
+    args.insert(args.end(), flags.begin(), flags.end());
+    ASSERT_EQ(runLfcam(args, dir.path()).exitStatus, 0);
+    auto read = readLightField(folder);
+    ASSERT_TRUE(read) << read.error().message;
+    double sum = 0, inRangeSum = 0, lowest = INFINITY, highest = -INFINITY;
+    std::size_t count = 0, inRange = 0;
+    for (int v = 0; v < truth->nv(); ++v)
+      for (int u = 0; u < truth->nu(); ++u)
+        for (int t = 0; t < truth->nt(); ++t)
+          for (int s = 0; s < truth->ns(); ++s) {
+            if (truth->weightPlane(u, v)[std::size_t(t) * truth->ns() + s] < 0.5f) continue;
+            for (int c = 0; c < truth->channels(); ++c) {
+              const double value = truth->at(u, v, s, t, c), d = read->at(u, v, s, t, c) - value;
+              sum += d * d;
+              lowest = std::min(lowest, value), highest = std::max(highest, value);
+              ++count;
+              if (value >= 0 && value <= 1) inRangeSum += d * d, ++inRange;
+            }
+          }
+    ASSERT_GT(count, 0u);
+    const auto decibels = [](double squares, std::size_t n) {
+      return squares == 0 ? INFINITY : 10 * std::log10(double(n) / squares);
+    };
+    figures.push_back(decibels(sum, count));
+    inRangeFigures.push_back(decibels(inRangeSum, inRange));
+    std::printf("[ export  ] decoded capture (radiance %.2f to %.2f), views %s: PSNR %.2f dB against the decoded "
+                "light field; %.2f dB over the %.1f%% of samples inside [0, 1]\n",
+                lowest, highest, testing::PrintToString(flags).c_str(), figures.back(), inRangeFigures.back(),
+                100.0 * double(inRange) / double(count));
+  }
+  EXPECT_LT(inRangeFigures[0], 60);
+  EXPECT_GT(inRangeFigures[1], 90);
+  EXPECT_EQ(figures[2], INFINITY);
 }
 
 TEST(CliExportDepth, EveryImageCommandWritesTheDepthAsked) {
