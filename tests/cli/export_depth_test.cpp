@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -74,8 +75,9 @@ TEST(CliExportDepth, LowContrastViewsReadBackAtSixteenBitsAndFloatButNotAtEight)
     ASSERT_TRUE(read) << read.error().message;
     ASSERT_EQ(read->shape(), truth.shape());
     const double figure = psnr(*read, truth);
-    std::printf("[ export  ] views %s: PSNR %.2f dB against the light field (radiance 0.3-0.5)\n",
-                testing::PrintToString(c.flags).c_str(), figure);
+    const std::set<float> levels(read->samples().begin(), read->samples().end());
+    std::printf("[ export  ] views %s: PSNR %.2f dB against the light field (radiance 0.3-0.5), %zu distinct levels\n",
+                testing::PrintToString(c.flags).c_str(), figure, levels.size());
     EXPECT_GE(figure, c.minPsnr) << testing::PrintToString(c.flags);
     EXPECT_LE(figure, c.maxPsnr) << testing::PrintToString(c.flags);
   }
