@@ -22,6 +22,7 @@
 
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/disparity_scores.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/light_field_io.hpp"

@@ -8,6 +8,7 @@
 
 #include "lfcam/colour_map.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/disparity_scores.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
 

@@ -14,6 +14,7 @@
 
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/disparity_scores.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/scene.hpp"
 #include "lfcam/simulate.hpp"

@@ -1,6 +1,5 @@
 // Depth from a light field: the disparity seen through the centre of the aperture, estimated from
-// the two cues a plenoptic camera offers (Adelson and Wang 1992; Ng et al. 2005, section 5.2),
-// and the HCI benchmark's scores for a disparity map.
+// the two cues a plenoptic camera offers (Adelson and Wang 1992; Ng et al. 2005, section 5.2).
 //
 // Units and conventions are those of light_field.hpp: disparity ("slope") in pixels of (s, t) per
 // view step, positive nearer than the plane in focus at capture; the map is ns x nt, one channel,
@@ -137,19 +136,5 @@ std::optional<double> disparityFromDistance(const Optics& optics, double distanc
 // The map of distances for a disparity map (mm; +infinity beyond infinity). Usage error without
 // optics or focal length.
 Result<Image> distanceMap(const LightFieldMetadata& metadata, const Image& disparity);
-
-// The HCI 4D light field benchmark's scores (Honauer et al. 2016, toolkit `evaluate`): over the
-// pixels at least `border` pixels inside the image (15 in the benchmark) whose ground truth is
-// finite,
-//   badPix = 100 * fraction with |estimate - truth| > threshold   (BadPix(0.07) for 0.07)
-//   mse100 = 100 * mean (estimate - truth)^2                      (MSE x 100)
-// A non-finite estimate is scored as an error of |truth| + 1, so that a hole cannot flatter.
-struct DisparityScores {
-  double badPix = 0;
-  double mse100 = 0;
-  long pixels = 0;
-};
-Result<DisparityScores> scoreDisparity(const Image& estimate, const Image& truth, double threshold = 0.07,
-                                       int border = 15);
 
 }  // namespace lfcam

@@ -619,29 +619,4 @@ Result<Image> distanceMap(const LightFieldMetadata& metadata, const Image& dispa
   return out;
 }
 
-Result<DisparityScores> scoreDisparity(const Image& estimate, const Image& truth, double threshold, int border) {
-  if (estimate.width() != truth.width() || estimate.height() != truth.height() || estimate.channels() < 1 ||
-      truth.channels() < 1)
-    return makeError(ErrorCode::Usage, "scores: the estimate is " + std::to_string(estimate.width()) + "x" +
-                                           std::to_string(estimate.height()) + " but the ground truth " +
-                                           std::to_string(truth.width()) + "x" + std::to_string(truth.height()));
-  DisparityScores scores;
-  long bad = 0;
-  double squares = 0;
-  for (int y = border; y < truth.height() - border; ++y)
-    for (int x = border; x < truth.width() - border; ++x) {
-      const double t = truth.at(x, y, 0);
-      if (!std::isfinite(t)) continue;
-      const double e = estimate.at(x, y, 0);
-      const double error = std::isfinite(e) ? std::abs(e - t) : std::abs(t) + 1;
-      bad += error > threshold;
-      squares += error * error;
-      ++scores.pixels;
-    }
-  if (scores.pixels == 0) return makeError(ErrorCode::Usage, "scores: no pixel with ground truth inside the border");
-  scores.badPix = 100.0 * double(bad) / double(scores.pixels);
-  scores.mse100 = 100.0 * squares / double(scores.pixels);
-  return scores;
-}
-
 }  // namespace lfcam
