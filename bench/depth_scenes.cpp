@@ -2,6 +2,7 @@
 #include "depth_scenes.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -110,17 +111,20 @@ std::vector<DepthScene> developmentScenes(int size) {
     scene.planes.push_back(floor);
     scenes.push_back(simulated("slanted floor", scene, model));
   }
-  {  // A cylinder bulging towards the camera, 24 narrow facets (curved to within 0.3 % of its radius).
+  {  // Half an elliptic cylinder bulging towards the camera (from 0.8 to 1.1 times the focus
+     // distance), 32 facets: deep enough along z for its disparity to curve by 0.6 px.
     Scene scene = emptyScene(model);
     scene.planes.push_back(backdrop(model, 2.0 * d, 4));
-    const double radius = 0.5 * halfField(model, 1.1 * d), axisZ = 1.1 * d + radius;
-    const int facets = 24;
+    const double across = 0.6 * halfField(model, d), deep = 0.4 * d, axisZ = 1.2 * d, end = 75 * M_PI / 180;
+    const int facets = 32;
+    const auto point = [&](double angle) {
+      return std::array<double, 2>{across * std::sin(angle), axisZ - deep * std::cos(angle)};
+    };
     for (int i = 0; i < facets; ++i) {
-      const double angle = -M_PI / 2 + (i + 0.5) * M_PI / facets;  // from the cylinder's left edge to its right
-      Plane facet = plane("facet", {radius * std::sin(angle), 0, axisZ - radius * std::cos(angle)},
-                          2 * radius * std::sin(M_PI / (2 * facets)) * 1.02, 2.5 * radius,
-                          noise(radius / 12, {0.15f, 0.1f, 0.3f}, {0.85f, 0.8f, 0.9f}, 6));
-      facet.tiltYDeg = angle * 180 / M_PI;  // its right side away on the right of the axis
+      const auto a = point(-end + 2 * end * i / facets), b = point(-end + 2 * end * (i + 1) / facets);
+      Plane facet = plane("facet", {(a[0] + b[0]) / 2, 0, (a[1] + b[1]) / 2}, 1.02 * std::hypot(b[0] - a[0], b[1] - a[1]),
+                          2.5 * across, noise(across / 12, {0.15f, 0.1f, 0.3f}, {0.85f, 0.8f, 0.9f}, 6));
+      facet.tiltYDeg = std::atan2(b[1] - a[1], b[0] - a[0]) * 180 / M_PI;  // its right side away right of the axis
       scene.planes.push_back(facet);
     }
     scenes.push_back(simulated("curved surface", scene, model));
