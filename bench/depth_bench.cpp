@@ -6,7 +6,8 @@
 //   BM_DepthWithoutFill  the same without the edge-aware fill (fillLambda = 0); counter
 //                   fill_cost = default time / this time - 1, CPU time of both in this run
 //                   (the time shown is of both runs).
-//   BM_DepthSubsetsApart  estimateDepth with and without aggregateSubsetsApart, alternating;
+//   BM_DepthSubsetsApart  estimateDepth with and without the cost volume's subsets aggregated apart
+//                   (src/edof/depth_experiment.hpp), alternating;
 //                   counter apart_cost = CPU time with / without - 1 (this run).
 //   BM_DepthOcclusionEdges  the same for the occlusion-edge step (occlusionBand 0):
 //                   occlusion_cost. These three also show cpu_default_s, CPU seconds per
@@ -24,6 +25,7 @@
 #include <string>
 
 #include "depth_scenes.hpp"
+#include "edof/depth_experiment.hpp"
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/disparity_scores.hpp"
@@ -87,18 +89,19 @@ double processCpuSeconds() {
 
 // Process CPU time of estimateDepth with `without` and with the default options, alternating
 // (the state's iterations each run both); returns with / without - 1.
-double extraCpuOfDefault(benchmark::State& state, const lfcam::DepthOptions& without) {
+double extraCpuOfDefault(benchmark::State& state, const lfcam::DepthOptions& without,
+                         const lfcam::edof::DepthExperiment& experiment = {}) {
   const LightField& lightField = antinous();
-  auto timeDepth = [&](const lfcam::DepthOptions& options) {
+  auto timeDepth = [&](const lfcam::DepthOptions& options, const lfcam::edof::DepthExperiment& switches) {
     const double start = processCpuSeconds();
-    auto depth = lfcam::estimateDepth(lightField, options);
+    auto depth = lfcam::edof::estimateDepth(lightField, options, switches);
     if (!depth) state.SkipWithError(depth.error().message.c_str());
     return processCpuSeconds() - start;
   };
   double withSeconds = 0, withoutSeconds = 0;
   for (auto _ : state) {
-    withSeconds += timeDepth({});
-    withoutSeconds += timeDepth(without);
+    withSeconds += timeDepth({}, {});
+    withoutSeconds += timeDepth(without, experiment);
   }
   state.counters["cpu_default_s"] = withSeconds / double(state.iterations());
   return withoutSeconds > 0 ? withSeconds / withoutSeconds - 1 : 0.0;
@@ -109,7 +112,7 @@ void BM_DepthWithoutFill(benchmark::State& state) {
 }
 
 void BM_DepthSubsetsApart(benchmark::State& state) {
-  state.counters["apart_cost"] = extraCpuOfDefault(state, {.aggregateSubsetsApart = false});
+  state.counters["apart_cost"] = extraCpuOfDefault(state, {}, {.aggregateSubsetsApart = false});
 }
 
 // The occlusion-edge step (src/edof/occlusion_edges.cpp): CPU with it over without, same run.

@@ -42,9 +42,9 @@ TEST(HciAntinousDepth, ScoresAndAllInFocus) {
   // Measured 6.8 % and 6.0 (the issue's goal of 7 %; 8.7 % and 11.8 with occlusionBand 0), 7.4 %
   // and 6.7 before issue 6's sixth round (defaults: defocus weight 0.75, filter epsilon 3e-5,
   // smoothness 0.7, median radius 5); 10.3 % and 10.3 before the cost volume aggregated each subset of views on its
-  // own (DepthOptions::aggregateSubsetsApart) and the fine search's radius went from 4 to 2;
+  // own (edof::DepthExperiment::aggregateSubsetsApart) and the fine search's radius went from 4 to 2;
   // 14.2 % and 9.1 before the fine search aggregated each subset of views on its own,
-  // DepthOptions::refineAggregateHalves; 15.8 % and 28.1 before issue 6's second round: strict
+  // edof::DepthExperiment::refineAggregateHalves; 15.8 % and 28.1 before issue 6's second round: strict
   // half-apertures, defocus weight 0.5, median radius 6, the fine search from the map's local
   // mean; 17.6 % and 31.2 before the edge-aware fill).
   EXPECT_LT(scores->badPix007, 8.0);
