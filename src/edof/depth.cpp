@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "core/parabola.hpp"
 #include "edof/depth_experiment.hpp"
 #include "edof/edof_internal.hpp"
 #include "lfcam/image_io.hpp"
@@ -379,7 +380,7 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
         const double left = cost[std::size_t(best - 1) * n + p], centre = cost[std::size_t(best) * n + p],
                      right = cost[std::size_t(best + 1) * n + p];
         curvature = left - 2 * centre + right;
-        if (curvature > 0) offset = std::clamp(0.5 * (left - right) / curvature, -0.5, 0.5);
+        offset = parabolaVertex(left, centre, right);
       }
       disparity[p] += float((best - steps + offset) * delta);
       curvatureOut[p] = float(std::max(curvature, 0.0));
@@ -546,10 +547,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
         const int best = std::clamp(int(std::lround(label[p])), 0, labels - 1);
         const float* c = &volume[p * labels];
         double offset = 0;
-        if (best > 0 && best + 1 < labels) {
-          const double curvature = c[best - 1] - 2.0 * c[best] + c[best + 1];
-          if (curvature > 0) offset = std::clamp(0.5 * (c[best - 1] - c[best + 1]) / curvature, -0.5, 0.5);
-        }
+        if (best > 0 && best + 1 < labels) offset = parabolaVertex(c[best - 1], c[best], c[best + 1]);
         label[p] = float(best + offset);
       }
     });
