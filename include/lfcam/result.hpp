@@ -66,6 +66,15 @@ using Status = Result<void>;
 
 }  // namespace lfcam
 
+// Declares `declaration` (e.g. `auto image`) from the value of `expr`, a Result<T>, or returns its
+// error from the enclosing function: LFCAM_ASSIGN_OR_RETURN(auto image, readImage(path));
+#define LFCAM_ASSIGN_OR_RETURN(declaration, ...) \
+  LFCAM_ASSIGN_OR_RETURN_NAMED(declaration, LFCAM_CONCAT(lfcam_assign_result_, __COUNTER__), __VA_ARGS__)
+#define LFCAM_ASSIGN_OR_RETURN_NAMED(declaration, name, ...) \
+  auto name = (__VA_ARGS__);                                  \
+  if (!name) return name.error();                             \
+  declaration = std::move(name).value()
+
 // Propagates an error from an expression returning Result<...> / Status. Each use gets its own
 // variable name, so uses nested in lambdas inside another use do not shadow it.
 #define LFCAM_TRY(expr) LFCAM_TRY_NAMED(expr, LFCAM_CONCAT(lfcam_try_result_, __COUNTER__))

@@ -233,7 +233,7 @@ Result<Calibration> calibrateGridDetailed(const Image& image, const CalibrationO
   const double minPeak = options.target == CalibrationTarget::White ? 0.78 : 0.7;
   auto measured = calibrate_detail::latticeFromAutocorrelation(centre, where, minPeak);
   if (!options.hint) {
-    if (!measured) return measured.error();
+    LFCAM_TRY(measured);
     return calibrateFrom(image, gains, *measured, options, where);
   }
   const LensletHint& hint = *options.hint;
@@ -258,9 +258,8 @@ Result<Calibration> calibrateGridDetailed(const Image& image, const CalibrationO
 }
 
 Result<LensletGrid> calibrateGrid(const Image& image, const CalibrationOptions& options, const std::string& where) {
-  auto result = calibrateGridDetailed(image, options, where);
-  if (!result) return result.error();
-  return std::move(result->grid);
+  LFCAM_ASSIGN_OR_RETURN(auto result, calibrateGridDetailed(image, options, where));
+  return std::move(result.grid);
 }
 
 Result<LensletGrid> calibrateGrid(const RawImage& raw, CalibrationOptions options, const std::string& where) {

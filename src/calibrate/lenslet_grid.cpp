@@ -104,9 +104,8 @@ Result<nlohmann::json> calibrate_detail::readJsonFile(const std::filesystem::pat
 }
 
 Result<LensletGrid> readGrid(const std::filesystem::path& path) {
-  auto json = calibrate_detail::readJsonFile(path, "a grid file (.json)");
-  if (!json) return json.error();
-  return gridFromJson(*json, path.string());
+  LFCAM_ASSIGN_OR_RETURN(auto json, calibrate_detail::readJsonFile(path, "a grid file (.json)"));
+  return gridFromJson(json, path.string());
 }
 
 Status writeGrid(const std::filesystem::path& path, const LensletGrid& grid) {

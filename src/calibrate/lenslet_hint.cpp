@@ -69,9 +69,8 @@ Result<LensletHint> lensletHintFromJson(const nlohmann::json& json, const std::s
 }
 
 Result<LensletHint> readLensletHint(const std::filesystem::path& path) {
-  auto json = calibrate_detail::readJsonFile(path, "a metadata file (.json)");
-  if (!json) return json.error();
-  return lensletHintFromJson(*json, path.string());
+  LFCAM_ASSIGN_OR_RETURN(auto json, calibrate_detail::readJsonFile(path, "a metadata file (.json)"));
+  return lensletHintFromJson(json, path.string());
 }
 
 }  // namespace lfcam

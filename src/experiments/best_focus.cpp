@@ -9,9 +9,8 @@
 namespace lfcam::experiments {
 
 Result<double> cutoffOf(const Image& photo) {
-  auto transfer = transferFunction(photo);
-  if (!transfer) return transfer.error();
-  return cutoffFrequency(*transfer, 0.75);
+  LFCAM_ASSIGN_OR_RETURN(auto transfer, transferFunction(photo));
+  return cutoffFrequency(transfer, 0.75);
 }
 
 namespace {
@@ -45,11 +44,9 @@ Result<Focused> search(const LightField& lightField, const RenderOptions& method
     for (int k = 0; k < count; ++k) {
       SyntheticCamera camera;
       camera.slope = centre - halfWidth + 2 * halfWidth * k / (count - 1);
-      auto photo = renderSyntheticPhoto(lightField, camera, method);
-      if (!photo) return photo.error();
-      auto cutoff = measure(*photo);
-      if (!cutoff) return cutoff.error();
-      if (*cutoff > best.cutoff) best = {camera.slope, *cutoff, std::move(*photo)};
+      LFCAM_ASSIGN_OR_RETURN(auto photo, renderSyntheticPhoto(lightField, camera, method));
+      LFCAM_ASSIGN_OR_RETURN(auto cutoff, measure(photo));
+      if (cutoff > best.cutoff) best = {camera.slope, cutoff, std::move(photo)};
     }
     centre = best.slope;
     halfWidth *= 2.0 / (count - 1) * 1.5;
@@ -66,18 +63,15 @@ Result<BestFocus> refocusToSharpest(const LightField& lightField) {
   // supersampled aperture spreads fewer ghosts): the cutoff alone is fooled far from focus by
   // ghost copies and Monte Carlo speckle, whose fine structure it counts as detail.
   const RenderOptions quadratureMethod{RenderMethod::Quadrature, 0}, viewsMethod{RenderMethod::Quadrature, 1};
-  auto coarse = search(lightField, quadratureMethod, 0, std::min(range, 12.0), 61, 3, concentrationOf);
-  if (!coarse) return coarse.error();
+  LFCAM_ASSIGN_OR_RETURN(auto coarse, search(lightField, quadratureMethod, 0, std::min(range, 12.0), 61, 3, concentrationOf));
   // Then the paper's criterion, the highest cutoff, within +-0.5 pixel per view step of it: by the
   // quadrature method, and by the views alone (shift-and-add, one term per view), which line up
   // there and need no blending of neighbouring views, the quadrilinear filter's blur in u that
   // section 6.3 names among the paper's losses.
-  auto quadrature = search(lightField, quadratureMethod, coarse->slope, 0.5, 41, 2, cutoffOf);
-  if (!quadrature) return quadrature.error();
-  auto views = search(lightField, viewsMethod, coarse->slope, 0.5, 41, 2, cutoffOf);
-  if (!views) return views.error();
-  return BestFocus{views->slope, views->cutoff, std::move(views->photo), quadrature->slope, quadrature->cutoff,
-                   std::move(quadrature->photo)};
+  LFCAM_ASSIGN_OR_RETURN(auto quadrature, search(lightField, quadratureMethod, coarse.slope, 0.5, 41, 2, cutoffOf));
+  LFCAM_ASSIGN_OR_RETURN(auto views, search(lightField, viewsMethod, coarse.slope, 0.5, 41, 2, cutoffOf));
+  return BestFocus{views.slope, views.cutoff, std::move(views.photo), quadrature.slope, quadrature.cutoff,
+                   std::move(quadrature.photo)};
 }
 
 }  // namespace lfcam::experiments

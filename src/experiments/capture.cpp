@@ -101,9 +101,8 @@ Result<LightField> captureLightField(const TracedCapture& traced, bool noise, st
   optics.lensToMicrolensMm = camera.mainLens.imageDistanceMm();
   optics.focalLengthMm = camera.mainLens.focalLengthMm;
   options.optics = optics;
-  auto lf = decodeLightField(raw, gridFromCamera(camera), options);
-  if (!lf) return lf.error();
-  lf->metadata.source = "lfcam experiment: simulated raw frame, decoded";
+  LFCAM_ASSIGN_OR_RETURN(auto lf, decodeLightField(raw, gridFromCamera(camera), options));
+  lf.metadata.source = "lfcam experiment: simulated raw frame, decoded";
   return lf;
 }
 

@@ -15,9 +15,8 @@ namespace {
 Result<bool> unvignetted(const LightField& lf, double u, double beta) {
   const Optics& optics = *lf.metadata.optics;
   Observer observer{.u = u, .v = 0, .beta = beta, .parallax = optics.lensStepMm / optics.spatialStepMm, .clampToLens = false};
-  auto photo = observe(lf, observer);
-  if (!photo) return photo.error();
-  for (float value : photo->pixels())
+  LFCAM_ASSIGN_OR_RETURN(auto photo, observe(lf, observer));
+  for (float value : photo.pixels())
     if (!(value > 0.5f)) return false;
   return true;
 }
@@ -35,29 +34,25 @@ Status runObserverRange(const std::filesystem::path& folder, const ExperimentOpt
   std::vector<Region> regions;
   for (double focus : focusDistances) {
     const CameraModel camera = plenopticCamera(microlenses, n, focus);
-    auto traced = traceCapture(whiteScene(), camera, 4);
-    if (!traced) return traced.error();
-    auto lf = captureLightField(*traced, false, 1);
-    if (!lf) return lf.error();
+    LFCAM_ASSIGN_OR_RETURN(auto traced, traceCapture(whiteScene(), camera, 4));
+    LFCAM_ASSIGN_OR_RETURN(auto lf, captureLightField(traced, false, 1));
     Region region;
     region.focusMm = focus;
     region.imageDistanceMm = camera.mainLens.imageDistanceMm();
     region.magnification = region.imageDistanceMm / focus;
-    region.lensStepMm = lf->metadata.optics->lensStepMm;
+    region.lensStepMm = lf.metadata.optics->lensStepMm;
     for (int k = 0; k < betaSteps; ++k) {
       // beta from 1/2 to 2, evenly in log: the synthetic lens plane from F/2 to 2F before the microlenses.
       const double beta = std::pow(2.0, -1.0 + 2.0 * k / (betaSteps - 1));
       double half = -1;
-      auto centre = unvignetted(*lf, 0, beta);
-      if (!centre) return centre.error();
-      if (*centre) {
+      LFCAM_ASSIGN_OR_RETURN(auto centre, unvignetted(lf, 0, beta));
+      if (centre) {
         // Bisection for the farthest |u| (the region is symmetric about the axis).
         double lo = 0, hi = 0.5 * n + 1;
         for (int it = 0; it < 12; ++it) {
           const double mid = 0.5 * (lo + hi);
-          auto ok = unvignetted(*lf, mid, beta);
-          if (!ok) return ok.error();
-          (*ok ? lo : hi) = mid;
+          LFCAM_ASSIGN_OR_RETURN(auto ok, unvignetted(lf, mid, beta));
+          (ok ? lo : hi) = mid;
         }
         half = lo;
       }

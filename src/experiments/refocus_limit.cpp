@@ -42,15 +42,11 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
   };
 
   // The light field at f/4, refocused to its sharpest.
-  auto traced = traceCapture(pinhole, plenoptic, lfSamples);
-  if (!traced) return traced.error();
-  auto lightField = captureLightField(*traced, false, 1);
-  if (!lightField) return lightField.error();
-  auto best = refocusToSharpest(*lightField);
-  if (!best) return best.error();
+  LFCAM_ASSIGN_OR_RETURN(auto traced, traceCapture(pinhole, plenoptic, lfSamples));
+  LFCAM_ASSIGN_OR_RETURN(auto lightField, captureLightField(traced, false, 1));
+  LFCAM_ASSIGN_OR_RETURN(auto best, refocusToSharpest(lightField));
   progress();
-  auto lfTransfer = transferFunction(best->photo);
-  if (!lfTransfer) return lfTransfer.error();
+  LFCAM_ASSIGN_OR_RETURN(auto lfTransfer, transferFunction(best.photo));
 
   // Conventional photographs stopped down.
   std::vector<double> cutoffs;
@@ -59,15 +55,12 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
     // Enough traces that a pixel inside the blur disc gets about 50 rays that hit the pinhole.
     const double blurHere = blur * lfFNumber0 / stop;
     const int traces = std::clamp(int(std::ceil(50 * blurHere * blurHere / conventionalSamples)), 1, options.quick ? 4 : 16);
-    auto conventional = traceCapture(pinhole, conventionalCamera(plenoptic, stop), conventionalSamples, traces);
-    if (!conventional) return conventional.error();
-    auto photo = conventionalPhoto(*conventional, false, 1);
-    if (!photo) return photo.error();
-    auto transfer = transferFunction(*photo);
-    if (!transfer) return transfer.error();
-    cutoffs.push_back(cutoffFrequency(*transfer, 0.75));
-    photos.push_back(std::move(*photo));
-    transfers.push_back(std::move(*transfer));
+    LFCAM_ASSIGN_OR_RETURN(auto conventional, traceCapture(pinhole, conventionalCamera(plenoptic, stop), conventionalSamples, traces));
+    LFCAM_ASSIGN_OR_RETURN(auto photo, conventionalPhoto(conventional, false, 1));
+    LFCAM_ASSIGN_OR_RETURN(auto transfer, transferFunction(photo));
+    cutoffs.push_back(cutoffFrequency(transfer, 0.75));
+    photos.push_back(std::move(photo));
+    transfers.push_back(std::move(transfer));
     progress();
   }
 
@@ -91,7 +84,7 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
     }
     return m;
   };
-  const Match views = matchOf(best->cutoff), quadrature = matchOf(best->quadratureCutoff);
+  const Match views = matchOf(best.cutoff), quadrature = matchOf(best.quadratureCutoff);
   const std::size_t match = views.stop;
   const double equivalent = views.equivalent;
   auto fStop = [](double f) { return "f/" + fixed(f, f < 10 ? 1 : 0); };
@@ -125,8 +118,8 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
   std::vector<std::vector<std::string>> rows;
   for (std::size_t i = 0; i < stops.size(); ++i)
     rows.push_back({"conventional", "f/" + fixed(stops[i], stops[i] < 10 ? 1 : 0), fixed(cutoffs[i], 4)});
-  rows.push_back({"light field, refocused (quadrature, section 5.2)", "f/" + fixed(lfFNumber, 2), fixed(best->quadratureCutoff, 4)});
-  rows.push_back({"light field, refocused (shift-and-add of the views)", "f/" + fixed(lfFNumber, 2), fixed(best->cutoff, 4)});
+  rows.push_back({"light field, refocused (quadrature, section 5.2)", "f/" + fixed(lfFNumber, 2), fixed(best.quadratureCutoff, 4)});
+  rows.push_back({"light field, refocused (shift-and-add of the views)", "f/" + fixed(lfFNumber, 2), fixed(best.cutoff, 4)});
   report.table("cutoffs.csv", {"camera", "f-number", "cutoff (cycles/microlens)"}, rows);
   report.table("summary.csv", {"quantity", "lfcam", "paper"},
                {{"matched conventional f-number", fStop(stops[match]), "f/22"},
@@ -134,12 +127,12 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
                 {"matched, quadrature refocusing (the paper's filter)", fStop(stops[quadrature.stop]) + " (" +
                      equivalentText(quadrature.equivalent) + ")", "f/22"},
                 {"theory (N x f/4)", "f/" + fixed(stops[theoryStop], 0) + " (" + fixed(theoryExact, 1) + ")", "f/45"},
-                {"cutoff gain over conventional f/4", fixed(best->cutoff / cutoffs[0], 2) + "x", "-"},
-                {"refocus slope (pixels per view step)", fixed(best->slope, 3) + " (quadrature: " + fixed(best->quadratureSlope, 3) + ")", "-"}});
+                {"cutoff gain over conventional f/4", fixed(best.cutoff / cutoffs[0], 2) + "x", "-"},
+                {"refocus slope (pixels per view step)", fixed(best.slope, 3) + " (quadrature: " + fixed(best.quadratureSlope, 3) + ")", "-"}});
   Plot cutoffPlot{"Cutoff frequency against f-number (Figure 11)", "image-side f-number", "cutoff (cycles per microlens)", true, {}, {}, {}};
   cutoffPlot.series.push_back({"conventional", stops, cutoffs, true, true, false});
-  cutoffPlot.horizontalLines.push_back({"light field f/4, shift-and-add", best->cutoff});
-  cutoffPlot.horizontalLines.push_back({"light field f/4, quadrature", best->quadratureCutoff});
+  cutoffPlot.horizontalLines.push_back({"light field f/4, shift-and-add", best.cutoff});
+  cutoffPlot.horizontalLines.push_back({"light field f/4, quadrature", best.quadratureCutoff});
   report.plot("cutoff.svg", cutoffPlot, "Cutoff frequency (75% of the transfer function's energy) of the conventional "
                                         "photographs against f-number; dashed: the refocused light field at f/4, by each method.");
   Plot transferPlot{"Transfer functions, centre column (Figure 10, bottom)", "frequency (cycles per microlens)", "|H| (normalised)", false, {}, {}, {}};
@@ -147,37 +140,32 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
   const std::size_t f22 = 5;
   transferPlot.series.push_back(centreColumn(transfers[f22], "conventional f/22"));
   transferPlot.series.push_back(centreColumn(transfers[stops.size() - 1], "conventional f/45"));
-  transferPlot.series.push_back(centreColumn(*lfTransfer, "light field f/4 (shift-and-add)"));
+  transferPlot.series.push_back(centreColumn(lfTransfer, "light field f/4 (shift-and-add)"));
   report.plot("transfer.svg", transferPlot, "Magnitude of the centre column of each transfer function.");
   const int scale = std::max(1, 256 / microlenses);
   report.image("pinhole_conventional_f4.png", forDisplay(photos[0], scale), "Pinhole, conventional f/4");
   report.image("pinhole_conventional_f22.png", forDisplay(photos[f22], scale), "Pinhole, conventional f/22");
-  report.image("pinhole_lightfield_f4.png", forDisplay(best->photo, scale), "Pinhole, light field f/4 refocused (shift-and-add)");
-  report.image("pinhole_lightfield_f4_quadrature.png", forDisplay(best->quadraturePhoto, scale),
+  report.image("pinhole_lightfield_f4.png", forDisplay(best.photo, scale), "Pinhole, light field f/4 refocused (shift-and-add)");
+  report.image("pinhole_lightfield_f4_quadrature.png", forDisplay(best.quadraturePhoto, scale),
                "Pinhole, light field f/4 refocused (quadrature)");
 
   if (!options.quick) {
     // Figure 10, top: the resolution chart at the same distance, for the eye.
     const Scene chart = chartScene(plenoptic, target);
-    auto chartTraced = traceCapture(chart, plenoptic, 16);
-    if (!chartTraced) return chartTraced.error();
-    auto chartField = captureLightField(*chartTraced, false, 1);
-    if (!chartField) return chartField.error();
+    LFCAM_ASSIGN_OR_RETURN(auto chartTraced, traceCapture(chart, plenoptic, 16));
+    LFCAM_ASSIGN_OR_RETURN(auto chartField, captureLightField(chartTraced, false, 1));
     SyntheticCamera camera;
-    camera.slope = best->slope;
-    auto refocused = renderSyntheticPhoto(*chartField, camera, RenderOptions{RenderMethod::Quadrature, 1});
-    if (!refocused) return refocused.error();
+    camera.slope = best.slope;
+    LFCAM_ASSIGN_OR_RETURN(auto refocused, renderSyntheticPhoto(chartField, camera, RenderOptions{RenderMethod::Quadrature, 1}));
     progress();
     for (std::size_t i : {std::size_t(0), f22, stops.size() - 1}) {
-      auto conventional = traceCapture(chart, conventionalCamera(plenoptic, stops[i]), 64);
-      if (!conventional) return conventional.error();
-      auto photo = conventionalPhoto(*conventional, false, 1);
-      if (!photo) return photo.error();
-      report.image("chart_conventional_f" + fixed(stops[i], 0) + ".png", forDisplay(*photo, scale),
+      LFCAM_ASSIGN_OR_RETURN(auto conventional, traceCapture(chart, conventionalCamera(plenoptic, stops[i]), 64));
+      LFCAM_ASSIGN_OR_RETURN(auto photo, conventionalPhoto(conventional, false, 1));
+      report.image("chart_conventional_f" + fixed(stops[i], 0) + ".png", forDisplay(photo, scale),
                    "Resolution chart, conventional f/" + fixed(stops[i], 0));
       progress();
     }
-    report.image("chart_lightfield_f4.png", forDisplay(*refocused, scale), "Resolution chart, light field f/4 refocused");
+    report.image("chart_lightfield_f4.png", forDisplay(refocused, scale), "Resolution chart, light field f/4 refocused");
   }
 
   report.heading("Against the paper");
@@ -201,16 +189,16 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
   r["theory_f_number"] = stops[theoryStop];
   r["theory_f_number_exact"] = theoryExact;
   r["paper_matched_f_number"] = 22;
-  r["light_field_cutoff"] = best->cutoff;
-  r["refocus_slope"] = best->slope;
+  r["light_field_cutoff"] = best.cutoff;
+  r["refocus_slope"] = best.slope;
   r["matched_f_number_quadrature"] = stops[quadrature.stop];
   r["equivalent_f_number_quadrature"] =
       std::isfinite(quadrature.equivalent) ? nlohmann::json(quadrature.equivalent) : nlohmann::json(nullptr);
-  r["light_field_cutoff_quadrature"] = best->quadratureCutoff;
-  r["refocus_slope_quadrature"] = best->quadratureSlope;
+  r["light_field_cutoff_quadrature"] = best.quadratureCutoff;
+  r["refocus_slope_quadrature"] = best.quadratureSlope;
   r["conventional_f_numbers"] = stops;
   r["conventional_cutoffs"] = cutoffs;
-  r["cutoff_gain_over_f4"] = best->cutoff / cutoffs[0];
+  r["cutoff_gain_over_f4"] = best.cutoff / cutoffs[0];
   return report.write(folder);
 }
 

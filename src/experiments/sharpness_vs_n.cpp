@@ -29,19 +29,15 @@ Status runSharpnessVsN(const std::filesystem::path& folder, const ExperimentOpti
     const int rays = int(std::ceil(hits * footprint * footprint)), traces = (rays + 1023) / 1024;
     const int samples = (rays + traces - 1) / traces;
     samplesUsed.push_back(samples * traces);
-    auto traced = traceCapture(pinhole, plenoptic, samples, traces);
-    if (!traced) return traced.error();
-    auto lightField = captureLightField(*traced, false, 1);
-    if (!lightField) return lightField.error();
-    auto best = refocusToSharpest(*lightField);
-    if (!best) return best.error();
+    LFCAM_ASSIGN_OR_RETURN(auto traced, traceCapture(pinhole, plenoptic, samples, traces));
+    LFCAM_ASSIGN_OR_RETURN(auto lightField, captureLightField(traced, false, 1));
+    LFCAM_ASSIGN_OR_RETURN(auto best, refocusToSharpest(lightField));
     ns.push_back(n);
-    cutoffs.push_back(best->cutoff);
-    slopes.push_back(best->slope);
+    cutoffs.push_back(best.cutoff);
+    slopes.push_back(best.slope);
     if (options.progress) options.progress(double(k + 1) / counts.size());
   }
-  auto fit = fitLine(ns, cutoffs);
-  if (!fit) return fit.error();
+  LFCAM_ASSIGN_OR_RETURN(auto fit, fitLine(ns, cutoffs));
 
   Report report("Sharpness against pixels per microlens (section 4.2)");
   report.heading("Setup");
@@ -56,31 +52,31 @@ Status runSharpnessVsN(const std::filesystem::path& folder, const ExperimentOpti
   report.heading("Results");
   std::vector<std::vector<std::string>> rows;
   for (std::size_t i = 0; i < ns.size(); ++i)
-    rows.push_back({fixed(ns[i], 0), fixed(cutoffs[i], 4), fixed(slopes[i], 3), fixed(fit->slope * ns[i] + fit->intercept, 4),
+    rows.push_back({fixed(ns[i], 0), fixed(cutoffs[i], 4), fixed(slopes[i], 3), fixed(fit.slope * ns[i] + fit.intercept, 4),
                     std::to_string(samplesUsed[i])});
   report.table("sharpness.csv", {"N (pixels per microlens)", "cutoff (cycles/microlens)", "refocus slope", "linear fit",
                                  "ray samples per pixel"}, rows);
   report.table("summary.csv", {"quantity", "lfcam", "paper"},
-               {{"slope of the fit (cycles/microlens per pixel of N)", fixed(fit->slope, 5), "-"},
-                {"intercept", fixed(fit->intercept, 4), "-"},
-                {"R^2", fixed(fit->r2, 4), "linear (claimed, not measured)"}});
+               {{"slope of the fit (cycles/microlens per pixel of N)", fixed(fit.slope, 5), "-"},
+                {"intercept", fixed(fit.intercept, 4), "-"},
+                {"R^2", fixed(fit.r2, 4), "linear (claimed, not measured)"}});
   Plot plot{"Refocused sharpness against N", "N (pixels per microlens)", "cutoff (cycles per microlens)", false, {}, {}, {}};
   plot.series.push_back({"measured", ns, cutoffs, false, true, false});
-  plot.series.push_back({"fit, R^2 = " + fixed(fit->r2, 3), {ns.front(), ns.back()},
-                         {fit->slope * ns.front() + fit->intercept, fit->slope * ns.back() + fit->intercept}, true, false, false});
+  plot.series.push_back({"fit, R^2 = " + fixed(fit.r2, 3), {ns.front(), ns.back()},
+                         {fit.slope * ns.front() + fit.intercept, fit.slope * ns.back() + fit.intercept}, true, false, false});
   report.plot("sharpness.svg", plot, "Cutoff of the refocused pinhole against the number of pixels under each microlens, with the least-squares line.");
   report.heading("Against the paper");
   report.paragraph("Section 4.2 predicts sharpness growing linearly with N (the sub-aperture images' blur is N times "
-                   "narrower); the paper does not measure it. Here the fit gives slope " + fixed(fit->slope, 5) +
-                   " and R^2 = " + fixed(fit->r2, 4) + ". The line flattens once the refocused blur nears one microlens, "
+                   "narrower); the paper does not measure it. Here the fit gives slope " + fixed(fit.slope, 5) +
+                   " and R^2 = " + fixed(fit.r2, 4) + ". The line flattens once the refocused blur nears one microlens, "
                    "the spatial sampling of the light field (and the pinhole, itself a microlens across), and it wobbles where the " +
                    "refocus slope is not a whole number of pixels (bilinear taps).");
   auto& r = report.results();
   r["experiment"] = "sharpness-vs-n";
   r["quick"] = options.quick;
-  r["slope"] = fit->slope;
-  r["intercept"] = fit->intercept;
-  r["r2"] = fit->r2;
+  r["slope"] = fit.slope;
+  r["intercept"] = fit.intercept;
+  r["r2"] = fit.r2;
   r["n"] = ns;
   r["cutoffs"] = cutoffs;
   r["blur_microlenses"] = blur;

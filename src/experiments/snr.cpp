@@ -31,29 +31,25 @@ Result<std::vector<Measured>> measure(const std::function<Result<std::vector<Ima
                                       int standardFrames, int testFrames, const Image& mask) {
   std::vector<std::vector<Image>> frames;  // [way][frame]
   for (int k = 0; k < standardFrames; ++k) {
-    auto images = photos(1000 + std::uint64_t(k));
-    if (!images) return images.error();
-    frames.resize(images->size());
-    for (std::size_t i = 0; i < images->size(); ++i) frames[i].push_back(std::move((*images)[i]));
+    LFCAM_ASSIGN_OR_RETURN(auto images, photos(1000 + std::uint64_t(k)));
+    frames.resize(images.size());
+    for (std::size_t i = 0; i < images.size(); ++i) frames[i].push_back(std::move(images[i]));
   }
   std::vector<Measured> measured(frames.size());
   std::vector<double> variance(frames.size(), 0.0);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     std::vector<const Image*> pointers;
     for (const Image& f : frames[i]) pointers.push_back(&f);
-    auto standard = averageImages(pointers);
-    if (!standard) return standard.error();
-    measured[i].standard = std::move(*standard);
+    LFCAM_ASSIGN_OR_RETURN(auto standard, averageImages(pointers));
+    measured[i].standard = std::move(standard);
   }
   for (int k = 0; k < testFrames; ++k) {
-    auto images = photos(1 + std::uint64_t(k));
-    if (!images) return images.error();
+    LFCAM_ASSIGN_OR_RETURN(auto images, photos(1 + std::uint64_t(k)));
     for (std::size_t i = 0; i < measured.size(); ++i) {
-      auto snr = signalToNoise((*images)[i], measured[i].standard, &mask);
-      if (!snr) return snr.error();
-      measured[i].snr.signal = snr->signal;
-      variance[i] += snr->noise * snr->noise / testFrames;
-      if (k == 0) measured[i].frame = std::move((*images)[i]);
+      LFCAM_ASSIGN_OR_RETURN(auto snr, signalToNoise(images[i], measured[i].standard, &mask));
+      measured[i].snr.signal = snr.signal;
+      variance[i] += snr.noise * snr.noise / testFrames;
+      if (k == 0) measured[i].frame = std::move(images[i]);
     }
   }
   for (std::size_t i = 0; i < measured.size(); ++i) {
@@ -77,18 +73,14 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
   const double target = defocusedDistanceMm(plenoptic, blur);
   const Scene chart = chartScene(plenoptic, target);
 
-  auto traced = traceCapture(chart, plenoptic, samples);
-  if (!traced) return traced.error();
+  LFCAM_ASSIGN_OR_RETURN(auto traced, traceCapture(chart, plenoptic, samples));
   // The refocus depth: where the pinhole target at the chart's distance is sharpest (section 6.1).
-  auto pinholeTraced = traceCapture(pinholeScene(plenoptic, target), plenoptic, options.quick ? 16 : 64);
-  if (!pinholeTraced) return pinholeTraced.error();
-  auto clean = captureLightField(*pinholeTraced, false, 1);
-  if (!clean) return clean.error();
-  auto best = refocusToSharpest(*clean);
-  if (!best) return best.error();
+  LFCAM_ASSIGN_OR_RETURN(auto pinholeTraced, traceCapture(pinholeScene(plenoptic, target), plenoptic, options.quick ? 16 : 64));
+  LFCAM_ASSIGN_OR_RETURN(auto clean, captureLightField(pinholeTraced, false, 1));
+  LFCAM_ASSIGN_OR_RETURN(auto best, refocusToSharpest(clean));
   if (options.progress) options.progress(0.3);
   // Borders, where refocusing has fewer views to add, are left out of every measurement.
-  const int border = std::min(microlenses / 4, int(std::ceil(std::abs(best->slope) * 0.5 * n)) + 1);
+  const int border = std::min(microlenses / 4, int(std::ceil(std::abs(best.slope) * 0.5 * n)) + 1);
   Image mask(microlenses, microlenses, 1);
   for (int y = border; y < microlenses - border; ++y)
     for (int x = border; x < microlenses - border; ++x) mask.at(x, y, 0) = 1;
@@ -96,44 +88,37 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
   // The paper's measurement adds the pixels as they are: the views shifted by whole pixels (the
   // sharpest slope rounded), no interpolation. Beside it, the quadrature method at its own
   // sharpest slope, whose blending of neighbouring samples also averages their noise.
-  const double wholeSlope = std::round(best->slope);
+  const double wholeSlope = std::round(best.slope);
   auto lightFieldPhotos = [&](std::uint64_t seed) -> Result<std::vector<Image>> {
-    auto lf = captureLightField(*traced, true, seed);
-    if (!lf) return lf.error();
+    LFCAM_ASSIGN_OR_RETURN(auto lf, captureLightField(traced, true, seed));
     SyntheticCamera camera;
     camera.slope = wholeSlope;
-    auto views = renderSyntheticPhoto(*lf, camera, RenderOptions{RenderMethod::Quadrature, 1});
-    if (!views) return views.error();
-    camera.slope = best->quadratureSlope;
-    auto quadrature = renderSyntheticPhoto(*lf, camera, RenderOptions{RenderMethod::Quadrature, 0});
-    if (!quadrature) return quadrature.error();
+    LFCAM_ASSIGN_OR_RETURN(auto views, renderSyntheticPhoto(lf, camera, RenderOptions{RenderMethod::Quadrature, 1}));
+    camera.slope = best.quadratureSlope;
+    LFCAM_ASSIGN_OR_RETURN(auto quadrature, renderSyntheticPhoto(lf, camera, RenderOptions{RenderMethod::Quadrature, 0}));
     std::vector<Image> both;
-    both.push_back(std::move(*views));
-    both.push_back(std::move(*quadrature));
+    both.push_back(std::move(views));
+    both.push_back(std::move(quadrature));
     return both;
   };
-  auto lfBoth = measure(lightFieldPhotos, standardFrames, testFrames, mask);
-  if (!lfBoth) return lfBoth.error();
-  const Measured& lfMeasured = (*lfBoth)[0];
-  const Measured& lfQuadrature = (*lfBoth)[1];
+  LFCAM_ASSIGN_OR_RETURN(auto lfBoth, measure(lightFieldPhotos, standardFrames, testFrames, mask));
+  const Measured& lfMeasured = lfBoth[0];
+  const Measured& lfQuadrature = lfBoth[1];
   if (options.progress) options.progress(0.7);
 
   std::vector<Measured> conventional;
   std::vector<double> lightRatio;
   for (double stop : stops) {
-    auto conventionalTraced = traceCapture(chart, conventionalCamera(plenoptic, stop), samples * 4);
-    if (!conventionalTraced) return conventionalTraced.error();
+    LFCAM_ASSIGN_OR_RETURN(auto conventionalTraced, traceCapture(chart, conventionalCamera(plenoptic, stop), samples * 4));
     auto photo = [&](std::uint64_t seed) -> Result<std::vector<Image>> {
-      auto image = conventionalPhoto(*conventionalTraced, true, seed);
-      if (!image) return image.error();
+      LFCAM_ASSIGN_OR_RETURN(auto image, conventionalPhoto(conventionalTraced, true, seed));
       std::vector<Image> one;
-      one.push_back(std::move(*image));
+      one.push_back(std::move(image));
       return one;
     };
-    auto m = measure(photo, standardFrames, testFrames, mask);
-    if (!m) return m.error();
-    conventional.push_back(std::move(m->front()));
-    lightRatio.push_back(totalElectrons(*traced) / totalElectrons(*conventionalTraced));
+    LFCAM_ASSIGN_OR_RETURN(auto m, measure(photo, standardFrames, testFrames, mask));
+    conventional.push_back(std::move(m.front()));
+    lightRatio.push_back(totalElectrons(traced) / totalElectrons(conventionalTraced));
   }
   if (options.progress) options.progress(1.0);
   const std::size_t f22 = stops.size() - 1;
@@ -149,8 +134,8 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
                    std::to_string(microlenses) + " x " + std::to_string(microlenses) + " microlenses, " + std::to_string(n) +
                    " pixels under each, f/4, refocused by adding the views shifted by whole pixels, at slope " +
                    fixed(wholeSlope, 0) + " (the sharpest slope for the pinhole target at that distance, " +
-                   fixed(best->slope, 3) + ", rounded): no interpolation, as the paper added its pixels. " +
-                   "Also measured: the quadrature method (section 5.2) at its sharpest slope, " + fixed(best->quadratureSlope, 3) +
+                   fixed(best.slope, 3) + ", rounded): no interpolation, as the paper added its pixels. " +
+                   "Also measured: the quadrature method (section 5.2) at its sharpest slope, " + fixed(best.quadratureSlope, 3) +
                    ". Conventional: the main lens stopped down, one pixel per microlens gathering the light of " +
                    "the pixels it replaces. Sensor: photon shot noise, " +
                    fixed(plenoptic.sensor.readNoiseElectrons, 0) + " e- read noise, 12-bit quantisation. Noise-free standard: " +
@@ -205,7 +190,7 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
   r["snr_ratio"] = ratio;
   r["snr_ratio_quadrature"] = ratioQuadrature;
   r["light_field_snr_quadrature"] = lfQuadrature.snr.snr;
-  r["refocus_slope_quadrature"] = best->quadratureSlope;
+  r["refocus_slope_quadrature"] = best.quadratureSlope;
   r["predicted_snr_ratio"] = predicted;
   r["paper_snr_ratio"] = 5.8;
   r["light_ratio"] = lightRatio[f22];

@@ -193,9 +193,8 @@ Result<LytroContainer> parseLytroContainer(std::span<const std::uint8_t> bytes, 
 }
 
 Result<LytroContainer> readLytroContainer(const std::filesystem::path& path) {
-  auto bytes = readFileBytes(path, kMaxLytroFileBytes);
-  if (!bytes) return bytes.error();
-  return parseLytroContainer(*bytes, path.string());
+  LFCAM_ASSIGN_OR_RETURN(auto bytes, readFileBytes(path, kMaxLytroFileBytes));
+  return parseLytroContainer(bytes, path.string());
 }
 
 std::vector<std::uint8_t> serializeLytroContainer(const LytroContainer& container) {

@@ -211,9 +211,8 @@ Status extractLytroContainer(const LytroContainer& container, const std::filesys
   std::optional<RawImage> raw;
   for (const LytroItem& item : contents.items)
     if (item.kind == LytroItemKind::RawFrame) {
-      auto read = rawFromLytroContainer(container, where);
-      if (!read) return read.error();
-      raw = std::move(*read);
+      LFCAM_ASSIGN_OR_RETURN(auto read, rawFromLytroContainer(container, where));
+      raw = std::move(read);
     }
   return writeFolderAtomically(folder, [&](const std::filesystem::path& dir) -> Status {
     json index = json::array();

@@ -46,29 +46,28 @@ Result<RawImage> rawFromLytroContainer(const LytroContainer& container, const st
   } else {
     return makeError(ErrorCode::Format, where + ": the raw frame has no metadata (metadataRef names no section)");
   }
-  auto format = parseLytroFrameMetadata(metadata, where);
-  if (!format) return format.error();
-  const std::size_t pixels = std::size_t(format->width) * std::size_t(format->height);
-  const std::size_t needed = *packedByteCount(format->packing, pixels);  // width, height <= 1e5: no overflow
+  LFCAM_ASSIGN_OR_RETURN(auto format, parseLytroFrameMetadata(metadata, where));
+  const std::size_t pixels = std::size_t(format.width) * std::size_t(format.height);
+  const std::size_t needed = *packedByteCount(format.packing, pixels);  // width, height <= 1e5: no overflow
   if (image->payload.size() < needed)
     return makeError(ErrorCode::Format, where + ": raw frame " + image->name + " has " +
                                             std::to_string(image->payload.size()) + " bytes; " +
-                                            std::to_string(format->width) + "x" + std::to_string(format->height) +
-                                            " pixels of " + std::to_string(rawPackingBits(format->packing)) +
+                                            std::to_string(format.width) + "x" + std::to_string(format.height) +
+                                            " pixels of " + std::to_string(rawPackingBits(format.packing)) +
                                             " bits need " + std::to_string(needed));
   LFCAM_TRY(checkMemory(where, checkedProduct({pixels, sizeof(float) + sizeof(std::uint16_t)}), "the raw frame"));
   RawImage raw;
   std::vector<std::uint16_t> samples(pixels);
-  unpackRaw(format->packing, image->payload, samples);
-  raw.mosaic = Image(format->width, format->height, 1);
+  unpackRaw(format.packing, image->payload, samples);
+  raw.mosaic = Image(format.width, format.height, 1);
   float* out = raw.mosaic.plane(0);
   for (std::size_t k = 0; k < pixels; ++k) out[k] = samples[k];
-  raw.colorFilter = format->colorFilter;
-  raw.blackLevel = format->blackLevel;
-  raw.whiteLevel = format->whiteLevel;
-  raw.lenslet = format->lenslet;
-  raw.whiteBalance = format->whiteBalance;
-  raw.colorMatrix = format->colorMatrix;
+  raw.colorFilter = format.colorFilter;
+  raw.blackLevel = format.blackLevel;
+  raw.whiteLevel = format.whiteLevel;
+  raw.lenslet = format.lenslet;
+  raw.whiteBalance = format.whiteBalance;
+  raw.colorMatrix = format.colorMatrix;
   raw.source = container.tableOfContents.contains("frames") ? "lytro-lfr" : "lytro-lfp";
   raw.metadata = std::move(metadata);
   return raw;
@@ -140,9 +139,8 @@ Result<LytroContainer> makeLytroRawContainer(const RawImage& raw, const LytroWri
 }
 
 Status writeLytroRaw(const std::filesystem::path& path, const RawImage& raw, const LytroWriteOptions& options) {
-  auto container = makeLytroRawContainer(raw, options, path.string());
-  if (!container) return container.error();
-  return writeLytroContainer(path, *container);
+  LFCAM_ASSIGN_OR_RETURN(auto container, makeLytroRawContainer(raw, options, path.string()));
+  return writeLytroContainer(path, container);
 }
 
 Status writeSimulationContainers(const std::filesystem::path& folder, LytroStyle style) {
@@ -158,18 +156,17 @@ Status writeSimulationContainers(const std::filesystem::path& folder, LytroStyle
     // The first generation's white images came with the desktop software, not in picture files:
     // only the Illum style gets a white container (its MOD_*.RAW equivalent).
     if (std::string(stem) == "white" && style == LytroStyle::FirstGeneration) continue;
-    auto raw = readRaw(source);
-    if (!raw) return raw.error();
-    if (raw->source != "simulator")
+    LFCAM_ASSIGN_OR_RETURN(auto raw, readRaw(source));
+    if (raw.source != "simulator")
       return makeError(ErrorCode::Format, (folder / "camera.json").string() + ": missing or not for " + source.string());
     LytroWriteOptions options;
     options.style = style;
     options.modulationFrame = std::string(stem) == "white";
-    const json& sensor = raw->metadata["sensor"];
+    const json& sensor = raw.metadata["sensor"];
     if (sensor.contains("pixel_pitch_mm") && sensor["pixel_pitch_mm"].is_number())
       options.pixelPitchMm = sensor["pixel_pitch_mm"].get<double>();
-    options.extra = raw->metadata;
-    LFCAM_TRY(writeLytroRaw(folder / (std::string(stem) + extension), *raw, options));
+    options.extra = raw.metadata;
+    LFCAM_TRY(writeLytroRaw(folder / (std::string(stem) + extension), raw, options));
   }
   return {};
 }

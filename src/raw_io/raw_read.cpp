@@ -55,21 +55,19 @@ void applyCameraJson(const std::filesystem::path& path, RawImage& raw) {
 }
 
 Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOptions& options) {
-  auto header = readImageHeader(path);
-  if (!header) return header.error();
-  auto image = readImage(path);
-  if (!image) return image.error();
-  const int colours = image->channels() == 2 || image->channels() == 4 ? image->channels() - 1 : image->channels();
+  LFCAM_ASSIGN_OR_RETURN(auto header, readImageHeader(path));
+  LFCAM_ASSIGN_OR_RETURN(auto image, readImage(path));
+  const int colours = image.channels() == 2 || image.channels() == 4 ? image.channels() - 1 : image.channels();
   RawImage raw;
-  raw.mosaic = Image(image->width(), image->height(), 1);
+  raw.mosaic = Image(image.width(), image.height(), 1);
   // Back to the file's codes: 8-bit files were sRGB-decoded by readImage (exactly invertible),
   // 16-bit ones scaled by 1/65535. Colour lenslet images become their channels' mean.
-  const SampleType type = header->sampleType;
+  const SampleType type = header.sampleType;
   float* out = raw.mosaic.plane(0);
   for (std::size_t k = 0; k < raw.mosaic.planeSize(); ++k) {
     double sum = 0;
     for (int c = 0; c < colours; ++c) {
-      const float v = image->plane(c)[k];
+      const float v = image.plane(c)[k];
       sum += type == SampleType::UInt8 ? std::round(linearToSrgb(v) * 255.0)
              : type == SampleType::UInt16 ? std::round(double(v) * 65535.0)
                                           : double(v);
@@ -118,9 +116,8 @@ Result<RawImage> readRaw(const std::filesystem::path& path, const RawReadOptions
     return makeError(ErrorCode::Usage, path.string() + ": is a folder, expected a raw image file");
   Result<RawImage> raw = makeError(ErrorCode::Format, "");
   if (looksLikeLytroContainer(path)) {
-    auto container = readLytroContainer(path);
-    if (!container) return container.error();
-    raw = rawFromLytroContainer(*container, path.string());
+    LFCAM_ASSIGN_OR_RETURN(auto container, readLytroContainer(path));
+    raw = rawFromLytroContainer(container, path.string());
   } else if (hasCameraRawExtension(path) || !looksLikeImageFile(path)) {
     raw = readCameraRaw(path);
     if (!raw && !hasCameraRawExtension(path))
@@ -130,7 +127,7 @@ Result<RawImage> readRaw(const std::filesystem::path& path, const RawReadOptions
   } else {
     raw = readImageRaw(path, options);
   }
-  if (!raw) return raw.error();
+  LFCAM_TRY(raw);
   if (options.colorFilter) raw->colorFilter = *options.colorFilter;
   if (options.blackLevel) {
     if (!(*options.blackLevel >= 0) || !std::isfinite(*options.blackLevel))

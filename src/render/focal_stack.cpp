@@ -21,9 +21,8 @@ Status renderFocalStack(const LightField& lightField, const std::vector<double>&
   SyntheticCamera slice = camera;
   for (std::size_t i = 0; i < slopes.size(); ++i) {
     slice.slope = slopes[i];
-    auto photo = renderSyntheticPhoto(lightField, slice, options);
-    if (!photo) return photo.error();
-    LFCAM_TRY(sink(int(i), slopes[i], std::move(*photo)));
+    LFCAM_ASSIGN_OR_RETURN(auto photo, renderSyntheticPhoto(lightField, slice, options));
+    LFCAM_TRY(sink(int(i), slopes[i], std::move(photo)));
   }
   return {};
 }

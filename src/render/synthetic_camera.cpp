@@ -207,8 +207,7 @@ Image renderShiftAndAdd(const LightField& lightField, double slope, const std::v
 
 Result<Image> renderSyntheticPhoto(const LightField& lightField, const SyntheticCamera& camera,
                                    const RenderOptions& options) {
-  auto map = rayMap(camera.slope, camera.beta, camera.parallax);
-  if (!map) return map.error();
+  LFCAM_ASSIGN_OR_RETURN(auto map, rayMap(camera.slope, camera.beta, camera.parallax));
   const int supersampling = supersamplingFor(camera, options);
   const std::vector<ApertureSample> samples = apertureSamples(lightField, camera.aperture, supersampling);
   LFCAM_TRY(checkInput(lightField, samples));
@@ -217,16 +216,15 @@ Result<Image> renderSyntheticPhoto(const LightField& lightField, const Synthetic
     if (camera.aperture.shape == Aperture::Shape::Full && supersampling == 1) return refocus(lightField, camera.slope);
     return renderShiftAndAdd(lightField, camera.slope, samples);
   }
-  return renderGeneral<float>(lightField, *map, samples, false, true);
+  return renderGeneral<float>(lightField, map, samples, false, true);
 }
 
 Result<Image> renderSyntheticPhotoReference(const LightField& lightField, const SyntheticCamera& camera,
                                             int supersampling) {
-  auto map = rayMap(camera.slope, camera.beta, camera.parallax);
-  if (!map) return map.error();
+  LFCAM_ASSIGN_OR_RETURN(auto map, rayMap(camera.slope, camera.beta, camera.parallax));
   const std::vector<ApertureSample> samples = apertureSamples(lightField, camera.aperture, supersampling);
   LFCAM_TRY(checkInput(lightField, samples));
-  return renderGeneral<double>(lightField, *map, samples, false, false);
+  return renderGeneral<double>(lightField, map, samples, false, false);
 }
 
 namespace {
@@ -235,10 +233,10 @@ Result<Image> observeWith(const LightField& lightField, const Observer& observer
   if (lightField.empty()) return makeError(ErrorCode::Usage, "observer: empty light field");
   if (!std::isfinite(observer.u) || !std::isfinite(observer.v))
     return makeError(ErrorCode::Usage, "observer: the position must be finite");
-  auto map = rayMap(0.0, observer.beta, observer.parallax);  // alpha = 1: the real film plane
-  if (!map) return map.error();
+  // alpha = 1: the real film plane.
+  LFCAM_ASSIGN_OR_RETURN(const auto map, rayMap(0.0, observer.beta, observer.parallax));
   const std::vector<ApertureSample> pinhole{{observer.u, observer.v, 1.0}};
-  if (reference) return renderGeneral<double>(lightField, *map, pinhole, observer.clampToLens, false);
+  if (reference) return renderGeneral<double>(lightField, map, pinhole, observer.clampToLens, false);
   if (observer.beta == 1) {
     // On the real lens plane the pinhole's ray lands on the same (u, v) for every pixel: a blend
     // of the (at most) four views around it, at no shift, which the shift-and-add kernel streams
@@ -250,7 +248,7 @@ Result<Image> observeWith(const LightField& lightField, const Observer& observer
     }
     return renderShiftAndAdd(lightField, 0.0, {sample});
   }
-  return renderGeneral<float>(lightField, *map, pinhole, observer.clampToLens, true);
+  return renderGeneral<float>(lightField, map, pinhole, observer.clampToLens, true);
 }
 
 }  // namespace

@@ -181,9 +181,8 @@ Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, 
     const SensorCapture capture = simulateCapture(scene, camera, options, report(0, shares));
     LFCAM_TRY(writeRaw(temporary / ("raw" + outputs.rawExtension), capture.raw, "raw sensor image of scene \"" + scene.name + "\""));
     if (outputs.white) {
-      auto white = builtinScene("white", camera);
-      if (!white) return white.error();
-      const SensorCapture whiteCapture = simulateCapture(*white, camera, options, report(shares, shares));
+      LFCAM_ASSIGN_OR_RETURN(auto white, builtinScene("white", camera));
+      const SensorCapture whiteCapture = simulateCapture(white, camera, options, report(shares, shares));
       LFCAM_TRY(writeRaw(temporary / ("white" + outputs.rawExtension), whiteCapture.raw, "white image"));
     }
     nlohmann::json json = cameraToJson(camera);
@@ -203,12 +202,10 @@ Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, 
     }
     LFCAM_TRY(writeText(temporary / "camera.json", json.dump(2) + "\n"));
     if (outputs.groundTruth && camera.microlenses) {
-      auto depth = idealDepth(scene, camera);
-      if (!depth) return depth.error();
-      LFCAM_TRY(writeImage(temporary / "depth.pfm", *depth));
-      auto lf = idealLightField(scene, camera);
-      if (!lf) return lf.error();
-      LFCAM_TRY(writeLightField(temporary / "ideal.lf.h5", *lf));
+      LFCAM_ASSIGN_OR_RETURN(auto depth, idealDepth(scene, camera));
+      LFCAM_TRY(writeImage(temporary / "depth.pfm", depth));
+      LFCAM_ASSIGN_OR_RETURN(auto lf, idealLightField(scene, camera));
+      LFCAM_TRY(writeLightField(temporary / "ideal.lf.h5", lf));
     }
     if (progress) progress(1.0);
     return {};

@@ -287,9 +287,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& where, cons
   LFCAM_TRY(root.colour("background", scene.background));
   CameraModel camera = CameraModel::paperPrototype();
   if (root.has("camera")) {
-    auto parsed = cameraFromJson(root.at("camera"), camera, where);
-    if (!parsed) return parsed.error();
-    camera = std::move(*parsed);
+    LFCAM_ASSIGN_OR_RETURN(auto parsed, cameraFromJson(root.at("camera"), camera, where));
+    camera = std::move(parsed);
   }
   root.markSeen("camera");
   scene.camera = camera;
@@ -299,11 +298,10 @@ Result<Scene> parseScene(const std::string& text, const std::string& where, cons
     std::string name;
     LFCAM_TRY(root.string("builtin", name));
     if (!isBuiltinSceneName(name)) return root.fail("builtin", "unknown built-in scene \"" + name + "\"");
-    auto base = builtinScene(name, camera);
-    if (!base) return base.error();
+    LFCAM_ASSIGN_OR_RETURN(auto base, builtinScene(name, camera));
     const std::string keepName = scene.name;
     const Rgb background = scene.background;
-    scene = std::move(*base);
+    scene = std::move(base);
     scene.name = keepName;
     if (root.has("background")) scene.background = background;
   }
@@ -331,9 +329,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& where, cons
       plane.tiltXDeg = tilt[0];
       plane.tiltYDeg = tilt[1];
       if (o.has("texture")) {
-        auto texture = parseTexture(o.at("texture"), where, o.keyPath("texture"), baseFolder);
-        if (!texture) return texture.error();
-        plane.texture = std::move(*texture);
+        LFCAM_ASSIGN_OR_RETURN(auto texture, parseTexture(o.at("texture"), where, o.keyPath("texture"), baseFolder));
+        plane.texture = std::move(texture);
       } else {
         plane.texture.kind = TextureKind::Constant;
         plane.texture.light = {1, 1, 1};

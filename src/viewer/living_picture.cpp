@@ -20,9 +20,8 @@ namespace {
 constexpr std::string_view placeholder = "{{LFCAM_DATA}}";
 
 Result<std::string> dataUrl(const Image& image, int quality) {
-  auto jpeg = encodeImage(image, {.format = EncodedFormat::Jpeg, .jpegQuality = quality});
-  if (!jpeg) return jpeg.error();
-  return "data:image/jpeg;base64," + base64Encode(*jpeg);
+  LFCAM_ASSIGN_OR_RETURN(auto jpeg, encodeImage(image, {.format = EncodedFormat::Jpeg, .jpegQuality = quality}));
+  return "data:image/jpeg;base64," + base64Encode(jpeg);
 }
 
 }  // namespace
@@ -43,12 +42,11 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   // The labels of the all-in-focus photograph say which slice is sharpest at each pixel.
   AllInFocusOptions focusOptions;
   focusOptions.maxSlices = options.maxSlices;
-  auto composite = allInFocus(lightField, focusOptions);
-  if (!composite) return composite.error();
+  LFCAM_ASSIGN_OR_RETURN(auto composite, allInFocus(lightField, focusOptions));
   report(0.4);
-  const std::vector<double>& slopes = composite->slopes;
+  const std::vector<double>& slopes = composite.slopes;
   std::string index(std::size_t(width) * height, '\0');
-  const float* labelSlope = composite->slope.plane(0);
+  const float* labelSlope = composite.slope.plane(0);
   for (std::size_t i = 0; i < index.size(); ++i) {
     const auto nearest = std::lower_bound(slopes.begin(), slopes.end(), double(labelSlope[i]) - 1e-6);
     index[i] = char(std::min<std::ptrdiff_t>(nearest - slopes.begin(), std::ptrdiff_t(slopes.size()) - 1));
@@ -56,16 +54,14 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
 
   nlohmann::json data = {{"title", options.title}, {"width", width}, {"height", height},
                          {"nu", lightField.nu()}, {"nv", lightField.nv()}, {"index", base64Encode(index)}};
-  auto allInFocusUrl = dataUrl(composite->photo, options.jpegQuality);
-  if (!allInFocusUrl) return allInFocusUrl.error();
-  data["allInFocus"] = *allInFocusUrl;
+  LFCAM_ASSIGN_OR_RETURN(auto allInFocusUrl, dataUrl(composite.photo, options.jpegQuality));
+  data["allInFocus"] = allInFocusUrl;
 
   nlohmann::json slices = nlohmann::json::array();
   LFCAM_TRY(renderFocalStack(lightField, slopes, SyntheticCamera{}, RenderOptions{},
                              [&](int i, double slope, Image&& photo) -> Status {
-                               auto url = dataUrl(photo, options.jpegQuality);
-                               if (!url) return url.error();
-                               slices.push_back({{"slope", slope}, {"image", *url}});
+                               LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(photo, options.jpegQuality));
+                               slices.push_back({{"slope", slope}, {"image", url}});
                                report(0.4 + 0.4 * (i + 1) / double(slopes.size()));
                                return {};
                              }));
@@ -78,11 +74,9 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   for (int k = 0; k < options.sweepFrames; ++k) {
     const double angle = 2 * std::numbers::pi * k / options.sweepFrames;
     Observer observer{.u = ru * std::cos(angle), .v = rv * std::sin(angle), .clampToLens = true};
-    auto view = observe(lightField, observer);
-    if (!view) return view.error();
-    auto url = dataUrl(*view, options.jpegQuality);
-    if (!url) return url.error();
-    sweep.push_back({{"u", observer.u}, {"v", observer.v}, {"image", *url}});
+    LFCAM_ASSIGN_OR_RETURN(auto view, observe(lightField, observer));
+    LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(view, options.jpegQuality));
+    sweep.push_back({{"u", observer.u}, {"v", observer.v}, {"image", url}});
     report(0.8 + 0.2 * (k + 1) / options.sweepFrames);
   }
   data["sweep"] = std::move(sweep);

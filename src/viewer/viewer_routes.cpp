@@ -68,37 +68,31 @@ Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>
   // Slopes beyond the image's width shift every view out of the picture: nothing to see there.
   const double slopeLimit = std::max(8.0, double(std::max(lf.ns(), lf.nt())));
   if (auto* slope = param(params, "slope")) {
-    auto value = numberIn("slope", *slope, -slopeLimit, slopeLimit);
-    if (!value) return value.error();
-    view.slope = *value;
+    LFCAM_ASSIGN_OR_RETURN(auto value, numberIn("slope", *slope, -slopeLimit, slopeLimit));
+    view.slope = value;
   }
   if (auto* focus = param(params, "focus")) {
     const auto comma = focus->find(',');
     if (comma == std::string::npos) return makeError(ErrorCode::Usage, "parameter focus: expected X,Y");
-    auto x = numberIn("focus", focus->substr(0, comma), 0, std::nextafter(double(lf.ns()), 0.0));
-    auto y = numberIn("focus", focus->substr(comma + 1), 0, std::nextafter(double(lf.nt()), 0.0));
-    if (!x) return x.error();
-    if (!y) return y.error();
-    view.focusAt = std::pair{*x, *y};
+    LFCAM_ASSIGN_OR_RETURN(const double x, numberIn("focus", focus->substr(0, comma), 0, std::nextafter(double(lf.ns()), 0.0)));
+    LFCAM_ASSIGN_OR_RETURN(const double y, numberIn("focus", focus->substr(comma + 1), 0, std::nextafter(double(lf.nt()), 0.0)));
+    view.focusAt = std::pair{x, y};
   }
   if (auto* f = param(params, "f")) {
-    auto value = numberIn("f", *f, 1, 1000);
-    if (!value) return value.error();
-    view.fNumber = *value;
+    LFCAM_ASSIGN_OR_RETURN(auto value, numberIn("f", *f, 1, 1000));
+    view.fNumber = value;
   }
   // The observer stays on the lens: clamped to its views rather than refused, as a drag overshoots.
   for (const char* axis : {"u", "v"}) {
     if (auto* text = param(params, axis)) {
-      auto value = numberIn(axis, *text, -1000, 1000);
-      if (!value) return value.error();
+      LFCAM_ASSIGN_OR_RETURN(auto value, numberIn(axis, *text, -1000, 1000));
       const double half = 0.5 * ((axis[0] == 'u' ? lf.nu() : lf.nv()) - 1);
-      (axis[0] == 'u' ? view.u : view.v) = std::clamp(*value, -half, half);
+      (axis[0] == 'u' ? view.u : view.v) = std::clamp(value, -half, half);
     }
   }
   if (auto* q = param(params, "q")) {
-    auto value = numberIn("q", *q, 10, 100);
-    if (!value) return value.error();
-    view.quality = int(std::lround(*value));
+    LFCAM_ASSIGN_OR_RETURN(auto value, numberIn("q", *q, 10, 100));
+    view.quality = int(std::lround(value));
   }
   return view;
 }

@@ -209,9 +209,8 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
   if (lf.empty()) return makeError(ErrorCode::Usage, "empty light field");
   ViewerView view = request;
   if (view.layer == ViewerLayer::Photo && view.focusAt) {
-    auto slope = focusAt(view.focusAt->first, view.focusAt->second);
-    if (!slope) return slope.error();
-    view.slope = *slope;
+    LFCAM_ASSIGN_OR_RETURN(auto slope, focusAt(view.focusAt->first, view.focusAt->second));
+    view.slope = slope;
   }
   if (view.layer != ViewerLayer::Photo) view.slope = view.fNumber = view.u = view.v = 0;
   const std::string key = cacheKey(view);
@@ -223,27 +222,23 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
   Image computed;
   const Image* image = nullptr;
   if (view.layer == ViewerLayer::AllInFocus) {
-    auto layer = lazyLayer(s.mutex, s.allInFocus, [&]() -> Result<Image> {
+    auto compute = [&]() -> Result<Image> {
       AllInFocusOptions options;
       options.disparityMin = s.slopeMin;
       options.disparityMax = s.slopeMax;
-      auto result = allInFocus(lf, options);
-      if (!result) return result.error();
-      return std::move(result->photo);
-    });
-    if (!layer) return layer.error();
-    image = *layer;
+      LFCAM_ASSIGN_OR_RETURN(auto result, allInFocus(lf, options));
+      return std::move(result.photo);
+    };
+    LFCAM_ASSIGN_OR_RETURN(image, lazyLayer(s.mutex, s.allInFocus, compute));
   } else if (view.layer == ViewerLayer::Depth) {
-    auto layer = lazyLayer(s.mutex, s.depth, [&]() -> Result<Image> {
+    auto compute = [&]() -> Result<Image> {
       DepthOptions options;
       options.disparityMin = s.slopeMin;
       options.disparityMax = s.slopeMax;
-      auto result = estimateDepth(lf, options);
-      if (!result) return result.error();
-      return colourMap(result->disparity, result->disparityMin, result->disparityMax);
-    });
-    if (!layer) return layer.error();
-    image = *layer;
+      LFCAM_ASSIGN_OR_RETURN(auto result, estimateDepth(lf, options));
+      return colourMap(result.disparity, result.disparityMin, result.disparityMax);
+    };
+    LFCAM_ASSIGN_OR_RETURN(image, lazyLayer(s.mutex, s.depth, compute));
   } else {
     // A render slot, or 503 after waiting: bounds the memory and CPU of concurrent renders.
     if (!s.renderSlots.try_acquire_for(std::chrono::duration<double>(s.limits.renderWaitSeconds)))
@@ -253,7 +248,7 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
       ~Release() { slots.release(); }
     } release{s.renderSlots};
     const double radius = s.lensRadius / view.fNumber;
-    Result<Image> photo = [&]() -> Result<Image> {
+    auto render = [&]() -> Result<Image> {
       // A circle narrower than half a view diagonal can fall between the views: below that the
       // aperture is a pinhole, one ray per pixel interpolated between the views.
       if (radius < 0.71) return observe(lf, Observer{.u = view.u, .v = view.v, .clampToLens = true});
@@ -261,16 +256,14 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
       camera.slope = view.slope;
       camera.aperture = Aperture::circle(radius, view.u, view.v);
       return renderSyntheticPhoto(lf, camera);
-    }();
-    if (!photo) return photo.error();
-    computed = std::move(*photo);
+    };
+    LFCAM_ASSIGN_OR_RETURN(computed, render());
     image = &computed;
   }
-  auto jpeg = encodeImage(*image, {.format = EncodedFormat::Jpeg, .jpegQuality = view.quality});
-  if (!jpeg) return jpeg.error();
+  LFCAM_ASSIGN_OR_RETURN(auto jpeg, encodeImage(*image, {.format = EncodedFormat::Jpeg, .jpegQuality = view.quality}));
   std::lock_guard lock(s.mutex);
-  s.cache.insert(key, *jpeg, view.slope);
-  return Photo{std::move(*jpeg), view.slope, false};
+  s.cache.insert(key, jpeg, view.slope);
+  return Photo{std::move(jpeg), view.slope, false};
 }
 
 }  // namespace lfcam

@@ -57,9 +57,8 @@ void addAnimateCommand(CLI::App& app, Job& job) {
       };
       std::optional<ImageWriteOptions> stillOptions;
       if (options->stills) {
-        auto checked = imageWriteOptionsFor(std::filesystem::path(options->output) / frameName(0), options->depth);
-        if (!checked) return checked.error();
-        stillOptions = *checked;
+        LFCAM_ASSIGN_OR_RETURN(auto checked, imageWriteOptionsFor(std::filesystem::path(options->output) / frameName(0), options->depth));
+        stillOptions = checked;
       }
       std::optional<std::pair<double, double>> range;
       if (!options->slopes.empty()) {
@@ -69,30 +68,28 @@ void addAnimateCommand(CLI::App& app, Job& job) {
           return makeError(ErrorCode::Usage, "--slopes: expected FIRST:LAST, got '" + options->slopes + "'");
         range = std::pair{a, b};
       }
-      auto lightField = loadInput(options->input);
-      if (!lightField) return lightField.error();
+      LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
       std::vector<Image> frames;
       ProgressBar bar("animating");
       if (options->focusPull) {
-        const double first = range ? range->first : lightField->metadata.disparityMin.value_or(-2.0);
-        const double last = range ? range->second : lightField->metadata.disparityMax.value_or(2.0);
+        const double first = range ? range->first : lightField.metadata.disparityMin.value_or(-2.0);
+        const double last = range ? range->second : lightField.metadata.disparityMax.value_or(2.0);
         // There and back: the sweep, then its inner frames reversed, so the loop has no jump.
         std::vector<double> slopes = evenlySpaced(first, last, options->frames / 2 + 1);
         for (int i = int(slopes.size()) - 2; i > 0; --i) slopes.push_back(slopes[i]);
-        LFCAM_TRY(renderFocalStack(*lightField, slopes, {}, {}, [&](int index, double, Image&& photo) -> Status {
+        LFCAM_TRY(renderFocalStack(lightField, slopes, {}, {}, [&](int index, double, Image&& photo) -> Status {
           frames.push_back(std::move(photo));
           bar(double(index + 1) / double(slopes.size()));
           return {};
         }));
       } else {
         const double radius =
-            options->radius.value_or(0.8 * 0.5 * (std::min(lightField->nu(), lightField->nv()) - 1));
+            options->radius.value_or(0.8 * 0.5 * (std::min(lightField.nu(), lightField.nv()) - 1));
         for (int i = 0; i < options->frames; ++i) {
           const double angle = 2 * std::numbers::pi * i / options->frames;
-          auto photo = observe(*lightField, {.u = radius * std::cos(angle), .v = radius * std::sin(angle),
-                                             .clampToLens = true});
-          if (!photo) return photo.error();
-          frames.push_back(std::move(*photo));
+          LFCAM_ASSIGN_OR_RETURN(auto photo, observe(lightField, {.u = radius * std::cos(angle), .v = radius * std::sin(angle),
+                                             .clampToLens = true}));
+          frames.push_back(std::move(photo));
           bar(double(i + 1) / options->frames);
         }
       }

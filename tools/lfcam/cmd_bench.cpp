@@ -85,9 +85,8 @@ void addBenchCommand(CLI::App& app, Job& job) {
       ->check(CLI::Range(0, 10000));
   command->callback([options, &job] {
     job = [options]() -> Status {
-      auto loaded = loadInput(options->input);
-      if (!loaded) return loaded.error();
-      const LightField& lightField = *loaded;
+      LFCAM_ASSIGN_OR_RETURN(auto loaded, loadInput(options->input));
+      const LightField& lightField = loaded;
       const double bytes = double(lightField.samples().size() + lightField.weights().size()) * sizeof(float);
       MemoryFloor floor(bytes);
       for (int i = 0; i < 3; ++i) floor.measure();  // warm-up, and the bandwidth of the header line
@@ -124,33 +123,31 @@ void addBenchCommand(CLI::App& app, Job& job) {
         std::printf("%s: %.1f MB, memory copy %.2f GB/s (read + write, median), floor measured before each photo\n",
                     options->input.path.c_str(), bytes / 1e6, floor.medianBandwidth() / 1e9);
       for (const Method& method : methods) {
-        auto timing = timeAgainstFloor(options->repeat, floor, [&]() -> Status {
-          auto photo = method.render();
-          if (!photo) return photo.error();
+        auto render = [&]() -> Status {
+          LFCAM_TRY(method.render());
           return {};
-        });
-        if (!timing) return timing.error();
-        report(method.name, *timing, "photo");
+        };
+        LFCAM_ASSIGN_OR_RETURN(const auto timing, timeAgainstFloor(options->repeat, floor, render));
+        report(method.name, timing, "photo");
       }
       // Fourier slice: the 4D FFT once (reported apart), then per photo a slice and a 2D FFT.
       if (!options->noFourier) {
         const auto start = std::chrono::steady_clock::now();
-        auto refocuser = FourierRefocuser::create(lightField);
-        if (!refocuser) return refocuser.error();
+        LFCAM_ASSIGN_OR_RETURN(auto refocuser, FourierRefocuser::create(lightField));
         const double setup = secondsSince(start);
-        auto timing = timeAgainstFloor(options->repeat, floor, [&]() -> Status {
-          Image photo = refocuser->refocus(slope);
+        auto render = [&]() -> Status {
+          Image photo = refocuser.refocus(slope);
           return {};
-        });
-        if (!timing) return timing.error();
-        nlohmann::json& entry = report("fourier", *timing, "photo");
+        };
+        LFCAM_ASSIGN_OR_RETURN(const auto timing, timeAgainstFloor(options->repeat, floor, render));
+        nlohmann::json& entry = report("fourier", timing, "photo");
         entry["setup_seconds"] = setup;
-        entry["spectrum_bytes"] = refocuser->spectrumBytes();
+        entry["spectrum_bytes"] = refocuser.spectrumBytes();
         if (!options->json) {
-          std::printf("%-16s 4D FFT once: %.2f s, %.0f MB\n", "", setup, refocuser->spectrumBytes() / 1e6);
+          std::printf("%-16s 4D FFT once: %.2f s, %.0f MB\n", "", setup, refocuser.spectrumBytes() / 1e6);
           const double fast = results[0]["seconds_per_photo"];
-          if (timing->seconds < fast)
-            std::printf("fourier beats fast from %.0f photos on\n", std::ceil(setup / (fast - timing->seconds)));
+          if (timing.seconds < fast)
+            std::printf("fourier beats fast from %.0f photos on\n", std::ceil(setup / (fast - timing.seconds)));
           else
             std::printf("fourier is never faster than fast here\n");
         }
@@ -176,9 +173,8 @@ void addBenchCommand(CLI::App& app, Job& job) {
         }));
         if (!options->noFourier)
           LFCAM_TRY(timeStack("stack-fourier", [&]() -> Status {
-            auto refocuser = FourierRefocuser::create(lightField);
-            if (!refocuser) return refocuser.error();
-            for (double sliceSlope : slopes) Image photo = refocuser->refocus(sliceSlope);
+            LFCAM_ASSIGN_OR_RETURN(auto refocuser, FourierRefocuser::create(lightField));
+            for (double sliceSlope : slopes) Image photo = refocuser.refocus(sliceSlope);
             return {};
           }));
       }

@@ -43,17 +43,14 @@ void addCalibrateCommand(CLI::App& app, Job& job) {
       if (options->pinhole) calibration.target = CalibrationTarget::Pinhole;
       if (options->scene) calibration.target = CalibrationTarget::Scene;
       if (!options->metadata.empty()) {
-        auto hint = readLensletHint(options->metadata);
-        if (!hint) return hint.error();
-        calibration.hint = *hint;
+        LFCAM_ASSIGN_OR_RETURN(auto hint, readLensletHint(options->metadata));
+        calibration.hint = hint;
       }
       // camera.json is not consulted: --metadata says where the starting guess comes from.
-      auto raw = readRaw(options->white, {.blackLevel = options->black, .useCameraJson = false});
-      if (!raw) return raw.error();
-      auto grid = calibrateGrid(*raw, calibration, options->white);
-      if (!grid) return grid.error();
-      LFCAM_TRY(writeGrid(options->output, *grid));
-      const LensletGrid& g = *grid;
+      LFCAM_ASSIGN_OR_RETURN(auto raw, readRaw(options->white, {.blackLevel = options->black, .useCameraJson = false}));
+      LFCAM_ASSIGN_OR_RETURN(auto grid, calibrateGrid(raw, calibration, options->white));
+      LFCAM_TRY(writeGrid(options->output, grid));
+      const LensletGrid& g = grid;
       std::printf("%s grid, %d x %d microlenses; pitch %.4f x %.4f px; rotation %.4f deg; origin (%.3f, %.3f) px%s\n",
                   packingName(g.packing), g.columns, g.rows, g.pitchX, g.pitchY, g.rotationRad * 180.0 / M_PI,
                   g.origin[0], g.origin[1], g.packing == Packing::Hexagonal ? (g.hexParity ? ", row 0 shifted" : ", row 1 shifted") : "");

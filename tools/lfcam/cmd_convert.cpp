@@ -29,15 +29,14 @@ void addConvertCommand(CLI::App& app, Job& job) {
   command->add_flag("--16bit", options->sixteenBit, "the same as --bit-depth 16")->excludes(depth);
   command->callback([options, &job] {
     job = [options]() -> Status {
-      auto lightField = loadInput(options->input);
-      if (!lightField) return lightField.error();
+      LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
       if (options->sixteenBit) options->depth = "16";
       LightFieldWriteOptions writeOptions{.sampleType = sampleTypeOfDepth(options->depth),
                                           .viewExtension = "." + options->extension};
       if (options->layout)
         writeOptions.format = *options->layout == "rowcol" ? LightFieldFormat::RowColumnFolder : LightFieldFormat::HciFolder;
       ProgressBar bar("writing " + options->output);
-      return writeLightField(options->output, *lightField, writeOptions, [&](double f) { bar(f); });
+      return writeLightField(options->output, lightField, writeOptions, [&](double f) { bar(f); });
     };
   });
 }

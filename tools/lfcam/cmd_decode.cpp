@@ -28,13 +28,11 @@ void addDecodeCommand(CLI::App& app, Job& job) {
   command->callback([options, &job] {
     job = [options]() -> Status {
       if (!options->bayer.empty()) {
-        auto filter = parseBayerOption(options->bayer);
-        if (!filter) return filter.error();
-        options->input.bayer = *filter;
+        LFCAM_ASSIGN_OR_RETURN(auto filter, parseBayerOption(options->bayer));
+        options->input.bayer = filter;
       }
-      auto lf = decodeRawInput(options->input);
-      if (!lf) return lf.error();
-      return writeLightField(options->output, *lf);
+      LFCAM_ASSIGN_OR_RETURN(auto lf, decodeRawInput(options->input));
+      return writeLightField(options->output, lf);
     };
   });
 }

@@ -87,29 +87,24 @@ Image rawCloseUp(const Image& raw, int size) {
 // refocused. The ideal light field is kept beside it for comparison, not used.
 Status captureWithTheCamera(const fs::path& out) {
   const CameraModel camera = CameraModel::paperPrototype(1400, 1400);
-  auto scene = builtinScene("people", camera);
-  if (!scene) return scene.error();
+  LFCAM_ASSIGN_OR_RETURN(auto scene, builtinScene("people", camera));
   const fs::path folder = out / "camera";
   {
     ProgressBar bar("simulating the camera");
-    LFCAM_TRY(writeSimulation(folder, *scene, camera, {}, {}, [&](double f) { bar(f); }));
+    LFCAM_TRY(writeSimulation(folder, scene, camera, {}, {}, [&](double f) { bar(f); }));
   }
-  auto raw = readImage(folder / "raw.png");
-  if (!raw) return raw.error();
-  LFCAM_TRY(writeImage(folder / "raw-closeup.png", rawCloseUp(*raw, 160)));
-  auto white = readRaw(folder / "white.png");
-  if (!white) return white.error();
-  auto grid = calibrateGrid(*white, CalibrationOptions{}, (folder / "white.png").string());
-  if (!grid) return grid.error();
-  LFCAM_TRY(writeGrid(folder / "grid.json", *grid));
-  auto decoded = decodeRawInput({.raw = (folder / "raw.png").string(), .white = (folder / "white.png").string(),
-                                 .grid = (folder / "grid.json").string()});
-  if (!decoded) return decoded.error();
-  LFCAM_TRY(writeLightField(folder / "decoded.lf.h5", *decoded));
-  for (double slope : kCameraSlopes) LFCAM_TRY(writeImage(out / cameraSlopeName(slope), refocus(*decoded, slope)));
+  LFCAM_ASSIGN_OR_RETURN(auto raw, readImage(folder / "raw.png"));
+  LFCAM_TRY(writeImage(folder / "raw-closeup.png", rawCloseUp(raw, 160)));
+  LFCAM_ASSIGN_OR_RETURN(auto white, readRaw(folder / "white.png"));
+  LFCAM_ASSIGN_OR_RETURN(auto grid, calibrateGrid(white, CalibrationOptions{}, (folder / "white.png").string()));
+  LFCAM_TRY(writeGrid(folder / "grid.json", grid));
+  LFCAM_ASSIGN_OR_RETURN(auto decoded, decodeRawInput({.raw = (folder / "raw.png").string(), .white = (folder / "white.png").string(),
+                                 .grid = (folder / "grid.json").string()}));
+  LFCAM_TRY(writeLightField(folder / "decoded.lf.h5", decoded));
+  for (double slope : kCameraSlopes) LFCAM_TRY(writeImage(out / cameraSlopeName(slope), refocus(decoded, slope)));
   std::printf("  simulated the plenoptic camera, calibrated its microlens grid (%dx%d, pitch %.3f px, fit rms %.3f px)\n"
               "  and decoded its raw image -> camera/ (raw.png, white.png, grid.json, decoded.lf.h5)\n",
-              grid->columns, grid->rows, grid->pitchX, grid->fit.rmsResidualPx);
+              grid.columns, grid.rows, grid.pitchX, grid.fit.rmsResidualPx);
   return {};
 }
 
@@ -192,13 +187,11 @@ Status runDemo(const fs::path& dir) {
     LFCAM_TRY(writeImage(out / "disparity.pfm", made.disparity));
     LFCAM_TRY(writeImage(out / "disparity.png", colourMap(made.disparity, slopes.back(), slopes.front())));
     // Range finding and extended depth of field from the light field alone.
-    auto depth = estimateDepth(lf);
-    if (!depth) return depth.error();
-    LFCAM_TRY(writeImage(out / "depth-estimate.pfm", depth->disparity));
-    LFCAM_TRY(writeImage(out / "depth-estimate.png", colourMap(depth->disparity, slopes.back(), slopes.front())));
-    auto sharp = allInFocus(lf, {.disparity = &depth->disparity});
-    if (!sharp) return sharp.error();
-    LFCAM_TRY(writeImage(out / "all-in-focus.png", sharp->photo));
+    LFCAM_ASSIGN_OR_RETURN(auto depth, estimateDepth(lf));
+    LFCAM_TRY(writeImage(out / "depth-estimate.pfm", depth.disparity));
+    LFCAM_TRY(writeImage(out / "depth-estimate.png", colourMap(depth.disparity, slopes.back(), slopes.front())));
+    LFCAM_ASSIGN_OR_RETURN(auto sharp, allInFocus(lf, {.disparity = &depth.disparity}));
+    LFCAM_TRY(writeImage(out / "all-in-focus.png", sharp.photo));
     std::printf("  estimated depth -> depth-estimate.png, extended depth of field -> all-in-focus.png\n");
     LFCAM_TRY(captureWithTheCamera(out));
     LFCAM_TRY(writeText(out / "index.html", indexPage(lf, slopes)));

@@ -33,20 +33,17 @@ void addEdofCommand(CLI::App& app, Job& job) {
       ->check(CLI::PositiveNumber);
   command->callback([options, &job] {
     job = [options]() -> Status {
-      auto writeOptions = imageWriteOptionsFor(options->output, options->bitDepth);
-      if (!writeOptions) return writeOptions.error();
-      auto lightField = loadInput(options->input);
-      if (!lightField) return lightField.error();
+      LFCAM_ASSIGN_OR_RETURN(auto writeOptions, imageWriteOptionsFor(options->output, options->bitDepth));
+      LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
       std::optional<Image> disparity;
       if (!options->depth.empty()) {
-        auto read = readImage(options->depth);
-        if (!read) return read.error();
-        disparity = std::move(*read);
+        LFCAM_ASSIGN_OR_RETURN(auto read, readImage(options->depth));
+        disparity = std::move(read);
         options->edof.disparity = &*disparity;
       }
-      auto result = allInFocus(*lightField, options->edof);
+      auto result = allInFocus(lightField, options->edof);
       if (!result) return makeError(result.error().code, options->input.path + ": " + result.error().message);
-      LFCAM_TRY(writeImage(options->output, result->photo, *writeOptions));
+      LFCAM_TRY(writeImage(options->output, result->photo, writeOptions));
       if (!options->labels.empty())
         LFCAM_TRY(writeImage(options->labels,
                              colourMap(result->slope, result->slopes.front(), result->slopes.back())));

@@ -27,17 +27,16 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
   command->add_option("--title", options->page.title, "the page's title");
   command->callback([options, &job] {
     job = [options]() -> Status {
-      auto lightField = loadInput(options->input);
-      if (!lightField) return lightField.error();
-      Result<std::string> html = [&] {
+      LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
+      auto make = [&] {
         ProgressBar bar("making " + options->output);
-        return makeLivingPicture(*lightField, options->page, [&](double f) { bar(f); });
-      }();
-      if (!html) return html.error();
+        return makeLivingPicture(lightField, options->page, [&](double f) { bar(f); });
+      };
+      LFCAM_ASSIGN_OR_RETURN(const std::string html, make());
       return writeFileAtomically(options->output, [&](const std::filesystem::path& temporary) -> Status {
         std::FILE* file = std::fopen(temporary.c_str(), "wb");
         if (!file) return makeError(ErrorCode::Io, options->output + ": cannot write");
-        const bool written = std::fwrite(html->data(), 1, html->size(), file) == html->size();
+        const bool written = std::fwrite(html.data(), 1, html.size(), file) == html.size();
         if (std::fclose(file) != 0 || !written) return makeError(ErrorCode::Io, options->output + ": cannot write");
         return {};
       });

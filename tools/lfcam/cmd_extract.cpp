@@ -17,9 +17,8 @@ void addExtractCommand(CLI::App& app, Job& job) {
   command->add_option("-o,--output", options->output, "output folder (index.json lists what was written)")->required();
   command->callback([options, &job] {
     job = [options]() -> Status {
-      auto container = readLytroContainer(options->input);
-      if (!container) return container.error();
-      return extractLytroContainer(*container, options->output, options->input);
+      LFCAM_ASSIGN_OR_RETURN(auto container, readLytroContainer(options->input));
+      return extractLytroContainer(container, options->output, options->input);
     };
   });
 }

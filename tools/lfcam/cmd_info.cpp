@@ -63,12 +63,11 @@ void addInfoCommand(CLI::App& app, Job& job) {
   command->callback([options, &job] {
     job = [options]() -> Status {
       if (looksLikeLytroContainer(options->input.path)) return printLytroInfo(options->input.path, options->json);
-      auto info = probeLightField(options->input.path, options->input.readOptions());
-      if (!info) return info.error();
+      LFCAM_ASSIGN_OR_RETURN(auto info, probeLightField(options->input.path, options->input.readOptions()));
       if (options->json)
-        std::printf("%s\n", infoJson(options->input.path, *info).dump(2).c_str());
+        std::printf("%s\n", infoJson(options->input.path, info).dump(2).c_str());
       else
-        printText(options->input.path, *info);
+        printText(options->input.path, info);
       return {};
     };
   });

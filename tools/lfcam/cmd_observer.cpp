@@ -28,21 +28,18 @@ void addObserverCommand(CLI::App& app, Job& job) {
   addBitDepthOption(*command, options->depth);
   command->callback([options, &job] {
     job = [options]() -> Status {
-      auto writeOptions = imageWriteOptionsFor(options->output, options->depth);
-      if (!writeOptions) return writeOptions.error();
-      auto lightField = loadInput(options->input);
-      if (!lightField) return lightField.error();
+      LFCAM_ASSIGN_OR_RETURN(auto writeOptions, imageWriteOptionsFor(options->output, options->depth));
+      LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
       Observer observer{.u = options->u, .v = options->v, .beta = options->beta, .clampToLens = options->clamp};
       if (options->beta != 1) {
-        const auto& optics = lightField->metadata.optics;
+        const auto& optics = lightField.metadata.optics;
         if (!optics)
           return makeError(ErrorCode::Usage,
                            options->input.path + ": no optics metadata, so the observer cannot move along the axis (--beta)");
         observer.parallax = optics->lensStepMm / optics->spatialStepMm;
       }
-      auto photo = observe(*lightField, observer);
-      if (!photo) return photo.error();
-      return writeImage(options->output, *photo, *writeOptions);
+      LFCAM_ASSIGN_OR_RETURN(auto photo, observe(lightField, observer));
+      return writeImage(options->output, photo, writeOptions);
     };
   });
 }

@@ -39,21 +39,17 @@ void addRefocusCommand(CLI::App& app, Job& job) {
     job = [options]() -> Status {
       if (!options->slope && !options->alpha && options->focusAt.empty())
         return makeError(ErrorCode::Usage, "refocus: give the focus depth with --slope, --alpha or --focus-at");
-      auto writeOptions = imageWriteOptionsFor(options->output, options->depth);
-      if (!writeOptions) return writeOptions.error();
+      LFCAM_ASSIGN_OR_RETURN(auto writeOptions, imageWriteOptionsFor(options->output, options->depth));
       std::optional<std::pair<double, double>> point;
       if (!options->focusAt.empty()) {
-        auto parsed = parsePair(options->focusAt, "--focus-at");
-        if (!parsed) return parsed.error();
-        point = *parsed;
+        LFCAM_ASSIGN_OR_RETURN(auto parsed, parsePair(options->focusAt, "--focus-at"));
+        point = parsed;
       }
-      auto lightField = loadInput(options->input);
-      if (!lightField) return lightField.error();
-      auto camera = cameraFrom(options->camera, *lightField, options->input.path);
-      if (!camera) return camera.error();
+      LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
+      LFCAM_ASSIGN_OR_RETURN(auto camera, cameraFrom(options->camera, lightField, options->input.path));
       double slopeValue = options->slope.value_or(0.0);
       if (options->alpha) {
-        const auto& optics = lightField->metadata.optics;
+        const auto& optics = lightField.metadata.optics;
         if (!optics)
           return makeError(ErrorCode::Usage, options->input.path +
                                                  ": no optics metadata, so --alpha cannot be converted to a "
@@ -61,13 +57,13 @@ void addRefocusCommand(CLI::App& app, Job& job) {
         slopeValue = optics->slopeFromAlpha(*options->alpha);
       }
       if (point) {
-        auto found = slopeAtPixel(*lightField, point->first, point->second);
+        auto found = slopeAtPixel(lightField, point->first, point->second);
         if (!found) return makeError(found.error().code, "--focus-at: " + found.error().message);
         slopeValue = *found;
         std::printf("slope %.4f\n", slopeValue);
       }
-      return renderSlopes(*lightField, options->camera, camera->first, camera->second, {slopeValue},
-                          [&](int, double, Image&& photo) { return writeImage(options->output, photo, *writeOptions); });
+      return renderSlopes(lightField, options->camera, camera.first, camera.second, {slopeValue},
+                          [&](int, double, Image&& photo) { return writeImage(options->output, photo, writeOptions); });
     };
   });
 }

@@ -62,9 +62,8 @@ void addSimulateCommand(CLI::App& app, Job& job) {
       CameraModel camera = CameraModel::paperPrototype();
       Scene scene;
       if (!builtin) {
-        auto loaded = loadScene(o.scene);
-        if (!loaded) return loaded.error();
-        scene = std::move(*loaded);
+        LFCAM_ASSIGN_OR_RETURN(auto loaded, loadScene(o.scene));
+        scene = std::move(loaded);
         camera = scene.camera;
       }
       // Flags over the scene's camera.
@@ -87,9 +86,8 @@ void addSimulateCommand(CLI::App& app, Job& job) {
       LFCAM_TRY(camera.validate("--focus-mm/--f-number/--size"));
       if (o.imageFNumber) camera.mainLens.setImageSideFNumber(*o.imageFNumber);
       if (builtin) {
-        auto made = builtinScene(o.scene, camera);
-        if (!made) return made.error();
-        scene = std::move(*made);
+        LFCAM_ASSIGN_OR_RETURN(auto made, builtinScene(o.scene, camera));
+        scene = std::move(made);
       }
       scene.camera = camera;
       SimulationOptions simulation;

@@ -29,12 +29,11 @@ void addViewCommand(CLI::App& app, Job& job) {
   command->add_option("--max-renders", options->renders, "photographs rendered at once")->check(CLI::Range(1, 64));
   command->callback([options, &job] {
     job = [options]() -> Status {
-      auto lightField = loadInput(options->input);
-      if (!lightField) return lightField.error();
+      LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
       ViewerLimits limits;
       limits.cacheBytes = std::size_t(options->cacheMb) << 20;
       limits.concurrentRenders = options->renders;
-      ViewerSession session(std::move(*lightField), limits);
+      ViewerSession session(std::move(lightField), limits);
       ViewerServer server(session);
       LFCAM_TRY(server.bind(options->server));
       std::printf("lfcam view: serving %s on http://%s:%d/ (Ctrl-C to stop)\n", options->input.path.c_str(),

@@ -35,23 +35,19 @@ void addViewsCommand(CLI::App& app, Job& job) {
                                                 .sampleType = sampleTypeOfDepth(options->depth),
                                                 .viewExtension = "." + options->extension};
       // Refused here, before the input is read, as writeLightField would refuse it after.
-      auto viewOptions =
-          imageWriteOptionsFor(std::filesystem::path(options->output) / ("view_01_01." + options->extension),
-                               options->depth);
-      if (!viewOptions) return viewOptions.error();
+      LFCAM_TRY(imageWriteOptionsFor(std::filesystem::path(options->output) / ("view_01_01." + options->extension),
+                                     options->depth));
       std::optional<ImageWriteOptions> mosaicOptions;
       if (!options->mosaic.empty()) {
-        auto checked = imageWriteOptionsFor(options->mosaic, options->depth);
-        if (!checked) return checked.error();
-        mosaicOptions = *checked;
+        LFCAM_ASSIGN_OR_RETURN(auto checked, imageWriteOptionsFor(options->mosaic, options->depth));
+        mosaicOptions = checked;
       }
-      auto lightField = loadInput(options->input);
-      if (!lightField) return lightField.error();
+      LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
       {
         ProgressBar bar("writing views");
-        LFCAM_TRY(writeLightField(options->output, *lightField, writeOptions, [&](double f) { bar(f); }));
+        LFCAM_TRY(writeLightField(options->output, lightField, writeOptions, [&](double f) { bar(f); }));
       }
-      if (mosaicOptions) LFCAM_TRY(writeImage(options->mosaic, contactSheet(*lightField), *mosaicOptions));
+      if (mosaicOptions) LFCAM_TRY(writeImage(options->mosaic, contactSheet(lightField), *mosaicOptions));
       return {};
     };
   });

@@ -8,9 +8,8 @@
 namespace lfcam::cli {
 
 Status printLytroInfo(const std::string& path, bool asJson) {
-  auto container = readLytroContainer(path);
-  if (!container) return container.error();
-  const LytroContents contents = describeLytroContainer(*container);
+  LFCAM_ASSIGN_OR_RETURN(auto container, readLytroContainer(path));
+  const LytroContents contents = describeLytroContainer(container);
   if (asJson) {
     nlohmann::json sections = nlohmann::json::array();
     for (const LytroItem& item : contents.items) {
@@ -26,7 +25,7 @@ Status printLytroInfo(const std::string& path, bool asJson) {
     std::printf("%s\n", out.dump(2).c_str());
     return {};
   }
-  std::printf("%s: Lytro container, %zu sections\n", path.c_str(), container->sections.size());
+  std::printf("%s: Lytro container, %zu sections\n", path.c_str(), container.sections.size());
   if (contents.summary.contains("frame")) {
     const nlohmann::json& f = contents.summary["frame"];
     std::printf("  frame: %s%s%d x %d, %d-bit, %s, black %g, white %g\n",

@@ -69,46 +69,41 @@ Result<LightField> decodeRawInput(RawDecodeInput input) {
   readOptions.colorFilter = input.bayer;
   // A dark frame is subtracted instead of any black level, so a given level is then not used.
   if (input.dark.empty()) readOptions.blackLevel = input.blackLevel;
-  auto raw = readRaw(input.raw, readOptions);
-  if (!raw) return raw.error();
+  LFCAM_ASSIGN_OR_RETURN(auto raw, readRaw(input.raw, readOptions));
   bar(0.1);
   RawImage dark, white;
   if (!input.dark.empty()) {
-    auto read = readRaw(input.dark, readOptions);
-    if (!read) return read.error();
-    dark = std::move(*read);
+    LFCAM_ASSIGN_OR_RETURN(auto read, readRaw(input.dark, readOptions));
+    dark = std::move(read);
     input.decode.dark = &dark;
   }
   if (!input.white.empty()) {
-    auto read = readRaw(input.white, readOptions);
-    if (!read) return read.error();
-    white = std::move(*read);
+    LFCAM_ASSIGN_OR_RETURN(auto read, readRaw(input.white, readOptions));
+    white = std::move(read);
     input.decode.white = &white;
   }
   // Checked here as well as in decodeLightField, so that the message names the file that is wrong.
   for (const auto& [file, image, what] : {std::tuple{&input.dark, &dark, "dark frame"}, std::tuple{&input.white, &white, "white image"}}) {
     const Image& mosaic = image->mosaic;
-    if (file->empty() || (mosaic.width() == raw->mosaic.width() && mosaic.height() == raw->mosaic.height())) continue;
+    if (file->empty() || (mosaic.width() == raw.mosaic.width() && mosaic.height() == raw.mosaic.height())) continue;
     return makeError(ErrorCode::Usage, *file + ": " + what + " of " + std::to_string(mosaic.width()) + "x" +
                                            std::to_string(mosaic.height()) + " pixels does not match the raw's " +
-                                           std::to_string(raw->mosaic.width()) + "x" + std::to_string(raw->mosaic.height()) +
+                                           std::to_string(raw.mosaic.width()) + "x" + std::to_string(raw.mosaic.height()) +
                                            " (" + input.raw + ")");
   }
   bar(0.2);
   LensletGrid grid;
   if (!input.grid.empty()) {
-    auto read = readGrid(input.grid);
-    if (!read) return read.error();
-    grid = *read;
+    LFCAM_ASSIGN_OR_RETURN(auto read, readGrid(input.grid));
+    grid = read;
   } else {
     if (input.white.empty()) return makeError(ErrorCode::Usage, input.raw + ": decoding needs --grid or a --white image to calibrate from");
-    auto calibrated = calibrateGrid(white, CalibrationOptions{}, input.white);
-    if (!calibrated) return calibrated.error();
-    grid = *calibrated;
+    LFCAM_ASSIGN_OR_RETURN(auto calibrated, calibrateGrid(white, CalibrationOptions{}, input.white));
+    grid = calibrated;
   }
   bar(0.4);
-  if (!input.decode.optics) input.decode.optics = opticsFromMetadata(raw->metadata);
-  auto lf = decodeLightField(*raw, grid, input.decode);
+  if (!input.decode.optics) input.decode.optics = opticsFromMetadata(raw.metadata);
+  auto lf = decodeLightField(raw, grid, input.decode);
   if (!lf) return makeError(lf.error().code, input.raw + ": " + lf.error().message);
   bar(1.0);
   return lf;

@@ -79,16 +79,14 @@ inline Result<std::pair<SyntheticCamera, RenderOptions>> cameraFrom(const Camera
   SyntheticCamera camera;
   double u = 0, v = 0;
   if (!options.centre.empty()) {
-    auto centre = parsePair(options.centre, "--aperture-center");
-    if (!centre) return centre.error();
-    u = centre->first, v = centre->second;
+    LFCAM_ASSIGN_OR_RETURN(auto centre, parsePair(options.centre, "--aperture-center"));
+    u = centre.first, v = centre.second;
   }
   if (!options.mask.empty()) {
     if (options.radius)
       return makeError(ErrorCode::Usage, "--aperture and --aperture-mask exclude each other");
-    auto mask = readImage(options.mask);
-    if (!mask) return mask.error();
-    camera.aperture = Aperture::fromMask(std::move(*mask), u, v);
+    LFCAM_ASSIGN_OR_RETURN(auto mask, readImage(options.mask));
+    camera.aperture = Aperture::fromMask(std::move(mask), u, v);
   } else if (options.radius) {
     camera.aperture = options.shape == "square" ? Aperture::square(*options.radius, u, v)
                                                 : Aperture::circle(*options.radius, u, v);
@@ -117,9 +115,8 @@ inline Status renderSlopes(const LightField& lightField, const CameraOptions& op
                            const RenderOptions& render, const std::vector<double>& slopes,
                            const std::function<Status(int, double, Image&&)>& sink) {
   if (options.method != "fourier") return renderFocalStack(lightField, slopes, camera, render, sink);
-  auto refocuser = FourierRefocuser::create(lightField);
-  if (!refocuser) return refocuser.error();
-  for (std::size_t i = 0; i < slopes.size(); ++i) LFCAM_TRY(sink(int(i), slopes[i], refocuser->refocus(slopes[i])));
+  LFCAM_ASSIGN_OR_RETURN(auto refocuser, FourierRefocuser::create(lightField));
+  for (std::size_t i = 0; i < slopes.size(); ++i) LFCAM_TRY(sink(int(i), slopes[i], refocuser.refocus(slopes[i])));
   return {};
 }
 
