@@ -186,6 +186,27 @@ TEST(ImageIoJpeg, LossyButClose) {
   EXPECT_FALSE(writeImage(dir / "c.jpg", image, {.jpegQuality = 0}));
 }
 
+TEST(ImageIoJpeg, GreyRoundTripsAndDamageIsAnError) {
+  test::TempDir dir;
+  const Image grey = randomImage(40, 30, 1, 11);
+  ASSERT_TRUE(writeImage(dir / "grey.jpg", grey, {.jpegQuality = 100}));
+  auto header = readImageHeader(dir / "grey.jpg");
+  ASSERT_TRUE(header) << header.error().message;
+  EXPECT_EQ(header->channels, 1);
+  EXPECT_EQ(header->width, 40);
+  auto read = readImage(dir / "grey.jpg");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->channels(), 1);
+
+  // A JPEG cut short, and one whose entropy-coded data is garbled: errors naming the file, not
+  // an image padded with grey.
+  const std::string bytes = test::readBytes(dir / "grey.jpg");
+  test::writeBytes(dir / "half.jpg", bytes.substr(0, bytes.size() / 2));
+  expectErrorNaming(readImage(dir / "half.jpg"), dir / "half.jpg");
+  test::writeBytes(dir / "header.jpg", bytes.substr(0, 20));
+  expectErrorNaming(readImage(dir / "header.jpg"), dir / "header.jpg");
+}
+
 TEST(ImageIoDescription, RoundTripsInEveryFormatThatHasOne) {
   test::TempDir dir;
   const Image image = randomImage(8, 8, 3, 5);
