@@ -344,7 +344,7 @@ TEST(LightFieldIoHci, EightBitRoundTripIsExactWithParameters) {
 TEST(LightFieldIoHci, SixteenBitIsLinearWithinOneCode) {
   test::TempDir dir;
   const LightField lf = randomLightField(kSmall, 7);
-  ASSERT_TRUE(writeLightField(dir / "hci16", lf, {.sixteenBit = true}));
+  ASSERT_TRUE(writeLightField(dir / "hci16", lf, {.sampleType = SampleType::UInt16}));
   auto header = readImageHeader(dir / "hci16" / "input_Cam000.png");
   ASSERT_TRUE(header);
   EXPECT_EQ(header->sampleType, SampleType::UInt16);
@@ -452,10 +452,42 @@ TEST(LightFieldIoRowColumn, RoundTripAndNames) {
   EXPECT_EQ(*format, LightFieldFormat::RowColumnFolder);
 
   const LightField deep = randomLightField(kSmall, 11, Quantise::Linear16);
-  ASSERT_TRUE(writeLightField(dir / "rc16", deep, {.format = LightFieldFormat::RowColumnFolder, .sixteenBit = true}));
+  ASSERT_TRUE(writeLightField(dir / "rc16", deep, {.format = LightFieldFormat::RowColumnFolder, .sampleType = SampleType::UInt16}));
   read = readLightField(dir / "rc16");
   ASSERT_TRUE(read) << read.error().message;
   EXPECT_EQ(maxDifference(*read, deep), 0.0f);
+}
+
+// Float views (TIFF, OpenEXR) in either layout read back exactly, beyond [0, 1] too; a folder
+// holding the same view twice (view_01_01.png and .tif) is refused, not silently resolved.
+TEST(LightFieldIoFolders, FloatViewsInTiffAndExrReadBackExactly) {
+  test::TempDir dir;
+  LightField lf = randomLightField(kSmall, 12);
+  lf.samples()[0] = 1.75f;
+  lf.samples()[1] = -0.25f;
+  for (const char* extension : {".tif", ".tiff", ".exr"})
+    for (const LightFieldFormat format : {LightFieldFormat::HciFolder, LightFieldFormat::RowColumnFolder}) {
+      const fs::path folder = dir / (std::string(formatName(format)) + extension);
+      ASSERT_TRUE(writeLightField(folder, lf, {.format = format, .sampleType = SampleType::Float32, .viewExtension = extension}));
+      auto read = readLightField(folder);
+      ASSERT_TRUE(read) << read.error().message;
+      EXPECT_EQ(maxDifference(*read, lf), 0.0f) << folder;
+    }
+  const fs::path folder = dir / "rowcol-folder.exr";
+  fs::copy_file(folder / "view_01_01.exr", folder / "view_01_01.png");
+  auto both = readLightField(folder);
+  ASSERT_FALSE(both);
+  EXPECT_NE(both.error().message.find("same view"), std::string::npos) << both.error().message;
+  // A depth or an extension the views cannot have is a usage error before anything is written.
+  for (const LightFieldWriteOptions& bad :
+       {LightFieldWriteOptions{.sampleType = SampleType::Float32},
+        LightFieldWriteOptions{.sampleType = SampleType::UInt8, .viewExtension = ".exr"},
+        LightFieldWriteOptions{.viewExtension = ".jpg"}}) {
+    const Status status = writeLightField(dir / "bad", lf, bad);
+    ASSERT_FALSE(status);
+    EXPECT_EQ(status.error().code, ErrorCode::Usage) << status.error().message;
+    EXPECT_FALSE(fs::exists(dir / "bad"));
+  }
 }
 
 // Names as the LF Toolbox export of the Lytro set makes them: IMG_0001_NNN_SS_TT.png, SS the
@@ -603,7 +635,7 @@ TEST(LightFieldIoLenslet, FloatAndSixteenBitFormats) {
     ASSERT_TRUE(read) << read.error().message;
     EXPECT_LE(maxDifference(*read, lf), std::string(name) == "l.exr" ? 0.0f : 0.5f / 65535.0f + 1e-7f) << name;
   }
-  ASSERT_TRUE(writeLightField(dir / "l16.png", lf, {.sixteenBit = true}));
+  ASSERT_TRUE(writeLightField(dir / "l16.png", lf, {.sampleType = SampleType::UInt16}));
   auto read = readLightField(dir / "l16.png");
   ASSERT_TRUE(read) << read.error().message;
   EXPECT_LE(maxDifference(*read, lf), 0.5f / 65535.0f + 1e-7f);

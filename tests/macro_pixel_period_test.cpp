@@ -145,7 +145,7 @@ TEST(MacroPixelPeriod, ScenesTexturedAtTwoLensesDoNotDoubleThePeriod) {
 // A light field written as a lenslet image without lfcam's description (as other tools write
 // them), 16-bit.
 std::filesystem::path writtenWithoutDescription(const LightField& lightField, const std::filesystem::path& path) {
-  EXPECT_TRUE(writeLightField(path, lightField, {.sixteenBit = true}).ok());
+  EXPECT_TRUE(writeLightField(path, lightField, {.sampleType = SampleType::UInt16}).ok());
   auto image = readImage(path);
   EXPECT_TRUE(image.ok());
   EXPECT_TRUE(writeImage(path, *image, {.sampleType = SampleType::UInt16}).ok());

@@ -12,6 +12,7 @@
 #include "lfcam/raw_io.hpp"
 #include "lfcam/simulate.hpp"
 #include "test_support.hpp"
+#include "tiff_with_levels.hpp"
 
 namespace lfcam {
 namespace {
@@ -52,6 +53,61 @@ TEST(RawIo, SixteenBitPngHoldsDnAndOptionsNameTheRest) {
   auto impossible = readRaw(dir / "lenslet.png", {.blackLevel = 100, .whiteLevel = 50});
   ASSERT_FALSE(impossible);
   EXPECT_EQ(impossible.error().code, ErrorCode::Usage);
+}
+
+// A black level given by the caller is checked against the file: negative, at the white level or
+// at the largest value the file holds (every sample would be black) are usage errors.
+TEST(RawIo, GivenBlackLevelOutOfRangeIsAUsageError) {
+  test::TempDir dir;
+  Image dn = randomMosaic(40, 30, 4095, 3);
+  dn.pixels()[0] = 4095;
+  Image codes = dn.copy();
+  for (float& v : codes.pixels()) v /= 65535.0f;
+  ASSERT_TRUE(writeImage(dir / "lenslet.png", codes, {.sampleType = SampleType::UInt16}));
+  for (const double black : {-1.0, double(NAN), 4095.0, 5000.0, 65535.0, 70000.0}) {
+    auto raw = readRaw(dir / "lenslet.png", {.blackLevel = black});
+    ASSERT_FALSE(raw) << black;
+    EXPECT_EQ(raw.error().code, ErrorCode::Usage) << raw.error().message;
+    EXPECT_EQ(raw.error().message.rfind((dir / "lenslet.png").string() + ": black level", 0), 0u) << raw.error().message;
+    EXPECT_EQ(raw.error().message.find('\n'), std::string::npos);
+  }
+  auto highest = readRaw(dir / "lenslet.png", {.blackLevel = 4094});
+  ASSERT_TRUE(highest) << highest.error().message;
+  EXPECT_EQ(highest->blackLevel, 4094);
+}
+
+// The DNG BlackLevel and WhiteLevel tags of a plain TIFF (OpenImageIO does not pass them on):
+// one value or a pattern (its mean), SHORT or RATIONAL, either byte order; a given level wins.
+TEST(RawIo, TiffBlackAndWhiteLevelTags) {
+  test::TempDir dir;
+  const Image dn = randomMosaic(24, 16, 4095, 4);
+  struct Case {
+    test::TiffLevelTags tags;
+    double black, white;
+  };
+  const std::vector<Case> cases = {{{.black = {64}}, 64, 65535},
+                                   {{.black = {64}, .white = 4095, .bigEndian = true}, 64, 4095},
+                                   {{.black = {60, 62, 66, 68}, .white = 4095}, 64, 4095},
+                                   {{.black = {64.5}, .rational = true}, 64.5, 65535},
+                                   {{.black = {200, 201}, .rational = true, .bigEndian = true}, 200.5, 65535},
+                                   {{}, 0, 65535}};
+  for (const Case& c : cases) {
+    const auto path = dir / "tagged.tif";
+    test::writeTiffWithLevels(path, dn, c.tags);
+    auto raw = readRaw(path);
+    ASSERT_TRUE(raw) << raw.error().message;
+    expectSameMosaic(raw->mosaic, dn);
+    EXPECT_DOUBLE_EQ(raw->blackLevel, c.black);
+    EXPECT_DOUBLE_EQ(raw->whiteLevel, c.white);
+    auto given = readRaw(path, {.blackLevel = 10});
+    ASSERT_TRUE(given);
+    EXPECT_EQ(given->blackLevel, 10);
+  }
+  // A tagged level above the file's white level is the file's fault, not the caller's.
+  test::writeTiffWithLevels(dir / "wrong.tif", dn, {.black = {5000}, .white = 4095});
+  auto wrong = readRaw(dir / "wrong.tif");
+  ASSERT_FALSE(wrong);
+  EXPECT_EQ(wrong.error().code, ErrorCode::Format) << wrong.error().message;
 }
 
 TEST(RawIo, EightBitPngGivesItsCodes) {

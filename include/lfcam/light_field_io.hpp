@@ -8,14 +8,15 @@
 // Reading recognises the kind by content (HDF5 signature, folder listing, image signature), not
 // by name. Writing picks it from the name: `.h5` -> Hdf5; an image extension -> LensletImage;
 // otherwise a folder (HCI layout unless options say RowColumn).
-// Folder and lenslet outputs hold what their image type holds (8-bit sRGB PNG by default) and
-// no weight; only Hdf5 keeps everything.
+// Folder and lenslet outputs hold what their image type holds (8-bit sRGB PNG by default; 16-bit
+// and float files linear radiance, image_io.hpp) and no weight; only Hdf5 keeps everything.
 #pragma once
 
 #include <filesystem>
 #include <optional>
 #include <string>
 
+#include "lfcam/image_io.hpp"
 #include "lfcam/light_field.hpp"
 #include "lfcam/progress.hpp"
 #include "lfcam/result.hpp"
@@ -42,7 +43,10 @@ struct LightFieldReadOptions {
 
 struct LightFieldWriteOptions {
   std::optional<LightFieldFormat> format;  // overrides the choice by name
-  bool sixteenBit = false;                 // folders and lenslet PNGs: 16-bit linear PNGs
+  // Folders and lenslet images: the image files' sample type (default: their format's natural
+  // one, image_io.hpp); a type the format cannot hold is a Usage error. Ignored by Hdf5.
+  std::optional<SampleType> sampleType;
+  std::string viewExtension = ".png";  // folders: the views' .png, .tif, .tiff or .exr
 };
 
 // What a light-field input is, without reading its samples where the format allows.

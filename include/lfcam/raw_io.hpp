@@ -6,7 +6,8 @@
 //   - a PNG or TIFF lenslet image, 8 or 16 bit: values in DN (a 16-bit file holds DN directly,
 //     an 8-bit file its codes 0-255). Black/white levels and the Bayer pattern come from the
 //     options, else from a camera.json beside the file written by `lfcam simulate` (with the
-//     lattice as the lenslet hint), else black 0, white = the largest code, monochrome;
+//     lattice as the lenslet hint), else from a TIFF's DNG BlackLevel / WhiteLevel tags, else
+//     black 0, white = the largest code, monochrome;
 //   - a camera raw (DNG, CR2, NEF, ARW, ...) through LibRaw: the un-demosaiced mosaic of the
 //     visible area, black/white levels, CFA pattern, as-shot white balance, camera -> sRGB matrix.
 // Errors name the file in one line; nothing is printed.
@@ -26,7 +27,9 @@ namespace lfcam {
 
 struct RawReadOptions {
   std::optional<ColorFilter> colorFilter;  // for images: the Bayer pattern (default: camera.json, else mono)
-  std::optional<double> blackLevel;        // DN, overrides what the file says
+  // DN of the file, overrides what the file says. Usage error when negative, not below the white
+  // level, or not below the file's largest value (every sample would be black).
+  std::optional<double> blackLevel;
   std::optional<double> whiteLevel;        // DN, overrides what the file says
   bool useCameraJson = true;               // images: read camera.json beside the file
 };

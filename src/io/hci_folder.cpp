@@ -23,27 +23,23 @@ namespace {
 
 constexpr std::string_view kPrefix = "input_Cam";
 
-std::string shortest(double value) {
-  char buffer[32];
-  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, end);
-}
-
 }  // namespace
 
 std::optional<int> hciViewIndex(const std::string& filename) {
-  if (filename.size() <= kPrefix.size() + 4 || filename.compare(0, kPrefix.size(), kPrefix) != 0) return std::nullopt;
-  if (lowerExtension(filename) != ".png") return std::nullopt;
-  const std::string digits = filename.substr(kPrefix.size(), filename.size() - kPrefix.size() - 4);
+  const std::string extension = lowerExtension(filename);
+  if (filename.size() <= kPrefix.size() + extension.size() || filename.compare(0, kPrefix.size(), kPrefix) != 0)
+    return std::nullopt;
+  if (!isViewFileExtension(extension)) return std::nullopt;
+  const std::string digits = filename.substr(kPrefix.size(), filename.size() - kPrefix.size() - extension.size());
   if (digits.empty() || digits.size() > 6 || !std::all_of(digits.begin(), digits.end(), [](unsigned char ch) { return std::isdigit(ch); })) return std::nullopt;
   return std::stoi(digits);
 }
 
-std::string hciViewName(int index, int views) {
+std::string hciViewName(int index, int views, const std::string& extension) {
   std::string digits = std::to_string(index);
   const std::size_t width = std::max<std::size_t>(3, std::to_string(std::max(views - 1, 0)).size());
   if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
-  return std::string(kPrefix) + digits + ".png";
+  return std::string(kPrefix) + digits + extension;
 }
 
 Result<ViewGrid> placeHciViews(const fs::path& folder, const fs::path& configFolder,
@@ -126,10 +122,10 @@ std::string hciParameters(const LightField& lightField) {
   if (const auto& optics = metadata.optics; optics && optics->focalLengthMm && optics->lensToMicrolensMm > 0) {
     const double inverseFocus = 1.0 / *optics->focalLengthMm - 1.0 / optics->lensToMicrolensMm;
     if (inverseFocus > 0 && optics->lensStepMm > 0 && optics->spatialStepMm > 0) {
-      intrinsics = "focal_length_mm = " + shortest(optics->lensToMicrolensMm) + "\nsensor_size_mm = " +
-                   shortest(optics->spatialStepMm * std::max(lightField.ns(), lightField.nt())) + "\n";
-      extrinsics = "baseline_mm = " + shortest(optics->lensStepMm) + "\nfocus_distance_m = " +
-                   shortest(1.0 / inverseFocus / 1000.0) + "\n";
+      intrinsics = "focal_length_mm = " + shortestNumber(optics->lensToMicrolensMm) + "\nsensor_size_mm = " +
+                   shortestNumber(optics->spatialStepMm * std::max(lightField.ns(), lightField.nt())) + "\n";
+      extrinsics = "baseline_mm = " + shortestNumber(optics->lensStepMm) + "\nfocus_distance_m = " +
+                   shortestNumber(1.0 / inverseFocus / 1000.0) + "\n";
     }
   }
   std::ostringstream text;
@@ -144,8 +140,8 @@ std::string hciParameters(const LightField& lightField) {
        << extrinsics;
   if (metadata.disparityMin || metadata.disparityMax) {
     text << "\n[meta]\n";
-    if (metadata.disparityMin) text << "disp_min = " << shortest(*metadata.disparityMin) << "\n";
-    if (metadata.disparityMax) text << "disp_max = " << shortest(*metadata.disparityMax) << "\n";
+    if (metadata.disparityMin) text << "disp_min = " << shortestNumber(*metadata.disparityMin) << "\n";
+    if (metadata.disparityMax) text << "disp_max = " << shortestNumber(*metadata.disparityMax) << "\n";
   }
   return text.str();
 }

@@ -320,24 +320,32 @@ bool looksLikeImageFile(const fs::path& path) {
   return fs::is_regular_file(path, ec) && kindFromContent(path) != Kind::Other;
 }
 
-Status writeImage(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
+Status checkImageWriteOptions(const fs::path& path, const ImageWriteOptions& options) {
   const Kind kind = kindFromName(path);
   if (kind == Kind::Other)
     return fileError(ErrorCode::Usage, path,
                      "unknown image extension '" + path.extension().string() +
                          "' (use .png, .tif, .tiff, .exr, .jpg, .jpeg or .pfm)");
-  if (image.empty()) return fileError(ErrorCode::Usage, path, "nothing to write: the image is empty");
   const FormatRules rules = rulesFor(kind);
   const SampleType type = options.sampleType.value_or(rules.natural);
   if (std::find(rules.types.begin(), rules.types.end(), type) == rules.types.end())
     return fileError(ErrorCode::Usage, path,
                      std::string(rules.name) + " cannot hold " + sampleTypeName(type) + " samples");
+  if (kind == Kind::Jpeg && (options.jpegQuality < 1 || options.jpegQuality > 100))
+    return fileError(ErrorCode::Usage, path, "JPEG quality must be in 1..100, not " + std::to_string(options.jpegQuality));
+  return {};
+}
+
+Status writeImage(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
+  LFCAM_TRY(checkImageWriteOptions(path, options));
+  if (image.empty()) return fileError(ErrorCode::Usage, path, "nothing to write: the image is empty");
+  const Kind kind = kindFromName(path);
+  const FormatRules rules = rulesFor(kind);
+  const SampleType type = options.sampleType.value_or(rules.natural);
   const int channels = image.channels();
   if (channels > rules.maxChannels || (!rules.twoOrFourChannels && channels != 1 && channels != 3))
     return fileError(ErrorCode::Usage, path,
                      std::string(rules.name) + " cannot hold " + std::to_string(channels) + " channels");
-  if (kind == Kind::Jpeg && (options.jpegQuality < 1 || options.jpegQuality > 100))
-    return fileError(ErrorCode::Usage, path, "JPEG quality must be in 1..100, not " + std::to_string(options.jpegQuality));
 
   return writeFileAtomically(path, [&](const fs::path& temporary) -> Status {
     if (kind == Kind::Pfm) return io::writePfm(temporary, image, path);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <system_error>
 
@@ -62,6 +63,12 @@ std::string lowerExtension(const fs::path& path) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char ch) { return char(std::tolower(ch)); });
   return extension;
+}
+
+std::string shortestNumber(double value) {
+  char buffer[32];
+  auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, end);
 }
 
 }  // namespace lfcam::io

@@ -39,4 +39,7 @@ Status checkReadableFile(const std::filesystem::path& path);
 // Lower case copy of an extension such as ".PNG".
 std::string lowerExtension(const std::filesystem::path& path);
 
+// The shortest text that reads back as `value` ("100", "0.25"), for files and messages.
+std::string shortestNumber(double value);
+
 }  // namespace lfcam::io

@@ -141,7 +141,7 @@ Result<LightField> readLensletImage(const fs::path& path, const LightFieldReadOp
   return lightField;
 }
 
-Status writeLensletImage(const fs::path& path, const LightField& lightField, bool sixteenBit,
+Status writeLensletImage(const fs::path& path, const LightField& lightField, std::optional<SampleType> sampleType,
                          const ProgressCallback& progress) {
   const LightFieldShape& shape = lightField.shape();
   const auto width = checkedProduct({std::uint64_t(shape.ns), std::uint64_t(shape.nu)});
@@ -160,13 +160,7 @@ Status writeLensletImage(const fs::path& path, const LightField& lightField, boo
       // Arranging is quick; the file write is the slow half.
       if (progress) progress(0.5 * double(v * shape.nu + u + 1) / double(shape.views()));
     }
-  ImageWriteOptions options{.description = describe(shape.nu, shape.nv)};
-  const std::string extension = lowerExtension(path);
-  if (sixteenBit && (extension == ".png" || extension == ".tif" || extension == ".tiff"))
-    options.sampleType = SampleType::UInt16;
-  else if (extension == ".png")
-    options.sampleType = SampleType::UInt8;
-  LFCAM_TRY(writeImage(path, image, options));
+  LFCAM_TRY(writeImage(path, image, {.sampleType = sampleType, .description = describe(shape.nu, shape.nv)}));
   if (progress) progress(1.0);
   return {};
 }

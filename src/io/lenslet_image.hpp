@@ -16,8 +16,8 @@ namespace lfcam::io {
 Result<LightFieldInfo> probeLensletImage(const std::filesystem::path& path, const LightFieldReadOptions& options);
 Result<LightField> readLensletImage(const std::filesystem::path& path, const LightFieldReadOptions& options,
                                     const ProgressCallback& progress);
-// Atomic, through writeImage. 16-bit linear PNG or TIFF when sixteenBit.
-Status writeLensletImage(const std::filesystem::path& path, const LightField& lightField, bool sixteenBit,
-                         const ProgressCallback& progress);
+// Atomic, through writeImage, in `sampleType` (default: the format's natural one).
+Status writeLensletImage(const std::filesystem::path& path, const LightField& lightField,
+                         std::optional<SampleType> sampleType, const ProgressCallback& progress);
 
 }  // namespace lfcam::io

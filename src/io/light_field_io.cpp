@@ -66,6 +66,12 @@ LightFieldFormat formatFromName(const fs::path& path) {
 
 Status writeFolder(const fs::path& path, const LightField& lightField, LightFieldFormat format,
                    const LightFieldWriteOptions& options, const ProgressCallback& progress) {
+  if (!io::isViewFileExtension(options.viewExtension))
+    return fileError(ErrorCode::Usage, path,
+                     "views are written as .png, .tif, .tiff or .exr, not '" + options.viewExtension + "'");
+  const fs::path someView = path / ("view" + options.viewExtension);
+  if (Status usable = checkImageWriteOptions(someView, {.sampleType = options.sampleType}); !usable)
+    return io::renamedInMessage(usable.error(), someView, path);
   std::error_code ec;
   if (fs::is_directory(path, ec))
     if (auto other = io::otherLayoutIn(path, format))
@@ -74,7 +80,7 @@ Status writeFolder(const fs::path& path, const LightField& lightField, LightFiel
                            "); write to a new folder or remove them");
   std::vector<std::string> written;
   LFCAM_TRY(writeFolderAtomically(path, [&](const fs::path& temporary) -> Status {
-    auto names = io::writeViewFolder(temporary, lightField, format, options.sixteenBit, progress, path);
+    auto names = io::writeViewFolder(temporary, lightField, format, options, progress, path);
     if (!names) return names.error();
     written = std::move(*names);
     return {};
@@ -146,7 +152,7 @@ Status writeLightField(const fs::path& path, const LightField& lightField, const
       return writeFileAtomically(path, [&](const fs::path& temporary) {
         return io::writeHdf5(temporary, lightField, progress, path);
       });
-    case LightFieldFormat::LensletImage: return io::writeLensletImage(path, lightField, options.sixteenBit, progress);
+    case LightFieldFormat::LensletImage: return io::writeLensletImage(path, lightField, options.sampleType, progress);
     case LightFieldFormat::HciFolder:
     case LightFieldFormat::RowColumnFolder: return writeFolder(path, lightField, format, options, progress);
   }

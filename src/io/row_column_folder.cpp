@@ -1,4 +1,4 @@
-// Folders of views named PREFIX_RR_CC.png, RR the view's row (v + 1) and CC its column (u + 1).
+// Folders of views named PREFIX_RR_CC.png (or .tif, .tiff, .exr), RR the view's row (v + 1) and CC its column (u + 1).
 // Anything before the last two fields is ignored (the Lytro export in the shared data puts a
 // serpentine frame counter there, IMG_0001_NNN_SS_TT.png, and numbers the column first: its
 // script loops over s, "the horizontal angular coordinate", and saves LF(t, s, :, :, :)).
@@ -33,8 +33,9 @@ std::string padded(int value, int largest) {
 }  // namespace
 
 std::optional<RowColumn> rowColumnOf(const std::string& filename, ViewNumberOrder order) {
-  if (lowerExtension(filename) != ".png") return std::nullopt;
-  const std::string stem = filename.substr(0, filename.size() - 4);
+  const std::string extension = lowerExtension(filename);
+  if (!isViewFileExtension(extension)) return std::nullopt;
+  const std::string stem = filename.substr(0, filename.size() - extension.size());
   const auto last = stem.rfind('_');
   if (last == std::string::npos || last == 0) return std::nullopt;
   const auto before = stem.rfind('_', last - 1);
@@ -46,8 +47,8 @@ std::optional<RowColumn> rowColumnOf(const std::string& filename, ViewNumberOrde
   return RowColumn{*row, *column};
 }
 
-std::string rowColumnViewName(int row, int column, int rows, int columns) {
-  return "view_" + padded(row, rows) + "_" + padded(column, columns) + ".png";
+std::string rowColumnViewName(int row, int column, int rows, int columns, const std::string& extension) {
+  return "view_" + padded(row, rows) + "_" + padded(column, columns) + extension;
 }
 
 Result<ViewGrid> placeRowColumnViews(const fs::path& folder, std::vector<std::pair<RowColumn, fs::path>> files,
@@ -74,8 +75,8 @@ Result<ViewGrid> placeRowColumnViews(const fs::path& folder, std::vector<std::pa
                                                                           : columnText + "_" + rowText;
           return fileError(ErrorCode::Format, folder,
                            "missing view at row " + std::to_string(row) + ", column " + std::to_string(column) +
-                               " (no *_" + expected + ".png) in a " + std::to_string(grid.nu) + "x" +
-                               std::to_string(grid.nv) + " grid");
+                               " (no *_" + expected + files.front().second.extension().string() + ") in a " +
+                               std::to_string(grid.nu) + "x" + std::to_string(grid.nv) + " grid");
         }
   }
   grid.files.resize(views);

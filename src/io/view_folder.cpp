@@ -127,24 +127,29 @@ Result<LightField> readViewGrid(const ViewGrid& grid, const ProgressCallback& pr
   return lightField;
 }
 
+bool isViewFileExtension(const std::string& extension) {
+  return extension == ".png" || extension == ".tif" || extension == ".tiff" || extension == ".exr";
+}
+
 Result<std::vector<std::string>> writeViewFolder(const fs::path& folder, const LightField& lightField,
-                                                 LightFieldFormat format, bool sixteenBit,
+                                                 LightFieldFormat format, const LightFieldWriteOptions& options,
                                                  const ProgressCallback& progress, const fs::path& reportAs) {
-  const ImageWriteOptions options{.sampleType = sixteenBit ? SampleType::UInt16 : SampleType::UInt8};
+  const ImageWriteOptions imageOptions{.sampleType = options.sampleType};
+  const std::string& extension = options.viewExtension;
   const int nu = lightField.nu(), nv = lightField.nv();
   const std::size_t views = lightField.shape().views();
   std::vector<std::string> written(views);
   for (std::size_t index = 0; index < views; ++index) {
     const int u = int(index % std::size_t(nu)), v = int(index / std::size_t(nu));
-    written[index] = format == LightFieldFormat::HciFolder ? hciViewName(int(index), int(views))
-                                                           : rowColumnViewName(v + 1, u + 1, nv, nu);
+    written[index] = format == LightFieldFormat::HciFolder ? hciViewName(int(index), int(views), extension)
+                                                           : rowColumnViewName(v + 1, u + 1, nv, nu, extension);
   }
   LFCAM_TRY(forEachViewInBatches(
       views,
       [&](std::size_t index) -> Status {
         const int u = int(index % std::size_t(nu)), v = int(index / std::size_t(nu));
         const fs::path file = folder / written[index];
-        Status status = writeImage(file, lightField.subApertureImage(u, v), options);
+        Status status = writeImage(file, lightField.subApertureImage(u, v), imageOptions);
         // Name the destination the caller gave, not the hidden temporary folder.
         if (!status) return renamedInMessage(status.error(), file, reportAs / written[index]);
         return {};

@@ -9,6 +9,7 @@
 #include "io/io_support.hpp"
 #include "lfcam/raw_io.hpp"
 #include "raw_io/libraw_read.hpp"
+#include "raw_io/tiff_levels.hpp"
 
 namespace lfcam {
 
@@ -77,9 +78,24 @@ Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOp
   }
   raw.blackLevel = 0;
   raw.whiteLevel = type == SampleType::UInt8 ? 255.0 : type == SampleType::UInt16 ? 65535.0 : 1.0;
+  const TiffLevels tags = readTiffLevels(path);
+  if (tags.black) raw.blackLevel = *tags.black;
+  if (tags.white) raw.whiteLevel = *tags.white;
   raw.source = "image";
   if (options.useCameraJson) applyCameraJson(path, raw);
   return raw;
+}
+
+// A black level at or above every sample would leave nothing once subtracted: a mistake (a level
+// in the wrong units, a wrong file), refused rather than decoded into a black light field.
+Status checkBlackLevelAgainstData(const std::filesystem::path& path, const RawImage& raw, ErrorCode code,
+                                  const std::string& given) {
+  float largest = 0;
+  for (const float value : raw.mosaic.pixels()) largest = std::max(largest, value);
+  if (raw.blackLevel < largest) return {};
+  return makeError(code, path.string() + ": black level " + io::shortestNumber(raw.blackLevel) + " DN (" + given +
+                             ") is not below the largest value in the file, " + io::shortestNumber(largest) +
+                             " DN: every sample would be black");
 }
 
 }  // namespace
@@ -116,11 +132,19 @@ Result<RawImage> readRaw(const std::filesystem::path& path, const RawReadOptions
   }
   if (!raw) return raw.error();
   if (options.colorFilter) raw->colorFilter = *options.colorFilter;
-  if (options.blackLevel) raw->blackLevel = *options.blackLevel;
+  if (options.blackLevel) {
+    if (!(*options.blackLevel >= 0) || !std::isfinite(*options.blackLevel))
+      return makeError(ErrorCode::Usage, path.string() + ": black level " + io::shortestNumber(*options.blackLevel) +
+                                             " DN must be a finite number of at least 0");
+    raw->blackLevel = *options.blackLevel;
+  }
   if (options.whiteLevel) raw->whiteLevel = *options.whiteLevel;
+  // Levels the caller gave are its usage; levels the file gave are the file's fault.
+  const ErrorCode code = options.blackLevel || options.whiteLevel ? ErrorCode::Usage : ErrorCode::Format;
   if (!(raw->whiteLevel > raw->blackLevel))
-    return makeError(ErrorCode::Usage, path.string() + ": white level " + std::to_string(raw->whiteLevel) +
-                                           " must be above the black level " + std::to_string(raw->blackLevel));
+    return makeError(code, path.string() + ": black level " + io::shortestNumber(raw->blackLevel) +
+                               " DN must be below the white level " + io::shortestNumber(raw->whiteLevel) + " DN");
+  if (options.blackLevel) LFCAM_TRY(checkBlackLevelAgainstData(path, *raw, ErrorCode::Usage, "as given"));
   return raw;
 }
 

@@ -1,12 +1,16 @@
 // lfcam animate INPUT (--focus-pull | --orbit) -o OUT.gif|OUT.mp4: a looping animation, either the
 // focus swept through the scene's depth and back, or the observer (Equation 7) moved round a
-// circle on the lens; a GIF or an MP4 video by the output's extension.
+// circle on the lens; a GIF or an MP4 video by the output's extension. With --stills, OUT is a
+// folder of frame_NNN.EXT images instead, as precise as --format and --bit-depth ask.
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numbers>
 
 #include "commands.hpp"
+#include "image_output.hpp"
 #include "lfcam/animation.hpp"
+#include "lfcam/atomic_file.hpp"
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/synthetic_camera.hpp"
 #include "progress_bar.hpp"
@@ -17,7 +21,8 @@ namespace lfcam::cli {
 void addAnimateCommand(CLI::App& app, Job& job) {
   struct Options {
     InputOptions input;
-    bool focusPull = false, orbit = false;
+    bool focusPull = false, orbit = false, stills = false;
+    std::string extension = "png", depth;
     std::string slopes;
     std::optional<double> radius;
     int frames = 24, fps = 12;
@@ -35,11 +40,27 @@ void addAnimateCommand(CLI::App& app, Job& job) {
       ->check(CLI::NonNegativeNumber);
   command->add_option("--frames", options->frames, "frames (a focus pull goes there and back)")->check(CLI::Range(2, 1000));
   command->add_option("--fps", options->fps, "frames per second")->check(CLI::Range(1, 100));
-  command->add_option("-o,--output", options->output, "output .gif or .mp4")->required();
+  command->add_option("-o,--output", options->output, "output .gif or .mp4 (with --stills: a folder)")->required();
+  auto* stills = command->add_flag("--stills", options->stills, "write the frames as images frame_NNN.EXT into the -o folder");
+  command->add_option("--format", options->extension, "--stills: image format of the frames")
+      ->check(CLI::IsMember({"png", "tif", "exr", "jpg", "pfm"}))
+      ->needs(stills);
+  addBitDepthOption(*command, options->depth)->needs(stills);
   command->callback([options, &job] {
     job = [options]() -> Status {
       if (!options->focusPull && !options->orbit)
         return makeError(ErrorCode::Usage, "animate: choose --focus-pull or --orbit");
+      const auto frameName = [&](std::size_t index) {
+        char name[64];
+        std::snprintf(name, sizeof name, "frame_%03zu.%s", index, options->extension.c_str());
+        return std::string(name);
+      };
+      std::optional<ImageWriteOptions> stillOptions;
+      if (options->stills) {
+        auto checked = imageWriteOptionsFor(std::filesystem::path(options->output) / frameName(0), options->depth);
+        if (!checked) return checked.error();
+        stillOptions = *checked;
+      }
       std::optional<std::pair<double, double>> range;
       if (!options->slopes.empty()) {
         double a = 0, b = 0;
@@ -75,7 +96,12 @@ void addAnimateCommand(CLI::App& app, Job& job) {
           bar(double(i + 1) / options->frames);
         }
       }
-      return writeAnimation(options->output, frames, options->fps);
+      if (!stillOptions) return writeAnimation(options->output, frames, options->fps);
+      return writeFolderAtomically(options->output, [&](const std::filesystem::path& folder) -> Status {
+        for (std::size_t i = 0; i < frames.size(); ++i)
+          LFCAM_TRY(writeImage(folder / frameName(i), frames[i], *stillOptions));
+        return {};
+      });
     };
   });
 }

@@ -1,5 +1,6 @@
-// lfcam calibrate WHITE [--metadata FILE] [--pinhole | --scene] [--bayer PATTERN] -o grid.json:
-// finds the microlens lattice and writes it as grid.json (docs/formats.md).
+// lfcam calibrate WHITE [--metadata FILE] [--pinhole | --scene] [--bayer PATTERN] [--black-level N]
+// -o grid.json: finds the microlens lattice and writes it as grid.json (docs/formats.md). WHITE is
+// read as a raw (raw_io.hpp): values in DN, the black level as the file says unless given.
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -7,8 +8,8 @@
 
 #include "commands.hpp"
 #include "lfcam/calibrate.hpp"
-#include "lfcam/image_io.hpp"
 #include "lfcam/raw_io.hpp"
+#include "raw_input.hpp"
 
 namespace lfcam::cli {
 
@@ -20,7 +21,8 @@ void addCalibrateCommand(CLI::App& app, Job& job) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("calibrate", "find the microlens grid in a white image; write grid.json");
-  command->add_option("WHITE", options->white, "white image (PNG or TIFF, 8 or 16 bit)")->required();
+  command->add_option("WHITE", options->white, "white image (PNG or TIFF, 8 or 16 bit; or a raw lfcam decodes)")
+      ->required();
   command->add_option("--metadata", options->metadata,
                       "starting guess: the simulator's camera.json or a Lytro frame metadata JSON");
   auto* pinhole = command->add_flag("--pinhole", options->pinhole,
@@ -28,7 +30,7 @@ void addCalibrateCommand(CLI::App& app, Job& job) {
   auto* scene = command->add_flag("--scene", options->scene, "no white image: estimate the grid from a raw scene");
   pinhole->excludes(scene);
   command->add_option("--bayer", options->bayer, "the image is a Bayer mosaic: RGGB, BGGR, GRBG or GBRG");
-  command->add_option("--black", options->black, "black level, in the image's units (16-bit: code / 65535)");
+  addBlackLevelOption(*command, options->black);
   command->add_option("-o,--output", options->output, "grid file to write (.json)")->required();
   command->callback([options, &job] {
     job = [options]() -> Status {
@@ -40,15 +42,15 @@ void addCalibrateCommand(CLI::App& app, Job& job) {
       }
       if (options->pinhole) calibration.target = CalibrationTarget::Pinhole;
       if (options->scene) calibration.target = CalibrationTarget::Scene;
-      calibration.blackLevel = options->black.value_or(0.0);
       if (!options->metadata.empty()) {
         auto hint = readLensletHint(options->metadata);
         if (!hint) return hint.error();
         calibration.hint = *hint;
       }
-      auto image = readImage(options->white);
-      if (!image) return image.error();
-      auto grid = calibrateGrid(*image, calibration, options->white);
+      // camera.json is not consulted: --metadata says where the starting guess comes from.
+      auto raw = readRaw(options->white, {.blackLevel = options->black, .useCameraJson = false});
+      if (!raw) return raw.error();
+      auto grid = calibrateGrid(*raw, calibration, options->white);
       if (!grid) return grid.error();
       LFCAM_TRY(writeGrid(options->output, *grid));
       const LensletGrid& g = *grid;

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "image_output.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {
@@ -12,6 +13,7 @@ void addConvertCommand(CLI::App& app, Job& job) {
     InputOptions input;
     std::string output;
     std::optional<std::string> layout;
+    std::string extension = "png", depth;
     bool sixteenBit = false;
   };
   auto options = std::make_shared<Options>();
@@ -21,12 +23,17 @@ void addConvertCommand(CLI::App& app, Job& job) {
       ->required();
   command->add_option("--layout", options->layout, "write a view folder in this layout (default: chosen by the output name, HCI for folders)")
       ->check(CLI::IsMember({"hci", "rowcol"}));
-  command->add_flag("--16bit", options->sixteenBit, "16-bit linear PNGs in folder and lenslet outputs");
+  command->add_option("--format", options->extension, "image format of a folder's views")
+      ->check(CLI::IsMember({"png", "tif", "exr"}));
+  CLI::Option* depth = addBitDepthOption(*command, options->depth);
+  command->add_flag("--16bit", options->sixteenBit, "the same as --bit-depth 16")->excludes(depth);
   command->callback([options, &job] {
     job = [options]() -> Status {
       auto lightField = loadInput(options->input);
       if (!lightField) return lightField.error();
-      LightFieldWriteOptions writeOptions{.sixteenBit = options->sixteenBit};
+      if (options->sixteenBit) options->depth = "16";
+      LightFieldWriteOptions writeOptions{.sampleType = sampleTypeOfDepth(options->depth),
+                                          .viewExtension = "." + options->extension};
       if (options->layout)
         writeOptions.format = *options->layout == "rowcol" ? LightFieldFormat::RowColumnFolder : LightFieldFormat::HciFolder;
       ProgressBar bar("writing " + options->output);

@@ -1,4 +1,4 @@
-// lfcam decode RAW [--white W] [--dark D] [--grid grid.json] [--bayer P] [--demosaic M]
+// lfcam decode RAW [--white W] [--dark D] [--black-level N] [--grid grid.json] [--bayer P] [--demosaic M]
 //                  [--sampling S] [--views N] -o OUT.lf.h5: a raw lenslet image -> L(u, v, s, t).
 #include <memory>
 
@@ -18,6 +18,7 @@ void addDecodeCommand(CLI::App& app, Job& job) {
   command->add_option("RAW", options->input.raw, "raw lenslet image: PNG/TIFF, Lytro .lfp/.lfr, camera raw")->required();
   command->add_option("--white", options->input.white, "white image of the same camera (devignetting, weights)");
   command->add_option("--dark", options->input.dark, "dark frame, subtracted instead of the black level");
+  addBlackLevelOption(*command, options->input.blackLevel);
   command->add_option("--grid", options->input.grid, "grid.json from lfcam calibrate (default: calibrate the white image)");
   command->add_option("--bayer", options->bayer, "colour filter of a PNG/TIFF raw: RGGB, BGGR, GRBG, GBRG or mono");
   addDecodeMethodOptions(*command, options->input.decode);

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "image_output.hpp"
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/colour_map.hpp"
 #include "lfcam/image_io.hpp"
@@ -15,7 +16,7 @@ namespace lfcam::cli {
 void addEdofCommand(CLI::App& app, Job& job) {
   struct Options {
     InputOptions input;
-    std::string output, depth, labels;
+    std::string output, depth, labels, bitDepth;
     AllInFocusOptions edof;
   };
   auto options = std::make_shared<Options>();
@@ -23,6 +24,7 @@ void addEdofCommand(CLI::App& app, Job& job) {
       app.add_subcommand("edof", "extended depth of field: all-in-focus photomontage of a focal stack (Figure 15)");
   addInputOptions(*command, options->input);
   command->add_option("-o,--output", options->output, "output image (.png, .tif, .exr, .jpg, .pfm)")->required();
+  addBitDepthOption(*command, options->bitDepth);
   command->add_option("--depth", options->depth, "disparity map of the aperture centre (as `lfcam depth` writes)");
   command->add_option("--slices-png", options->labels, "the slope chosen per pixel, colour-mapped, for people");
   command->add_option("--min", options->edof.disparityMin, "smallest slope of the focal stack");
@@ -31,6 +33,8 @@ void addEdofCommand(CLI::App& app, Job& job) {
       ->check(CLI::PositiveNumber);
   command->callback([options, &job] {
     job = [options]() -> Status {
+      auto writeOptions = imageWriteOptionsFor(options->output, options->bitDepth);
+      if (!writeOptions) return writeOptions.error();
       auto lightField = loadInput(options->input);
       if (!lightField) return lightField.error();
       std::optional<Image> disparity;
@@ -42,7 +46,7 @@ void addEdofCommand(CLI::App& app, Job& job) {
       }
       auto result = allInFocus(*lightField, options->edof);
       if (!result) return makeError(result.error().code, options->input.path + ": " + result.error().message);
-      LFCAM_TRY(writeImage(options->output, result->photo));
+      LFCAM_TRY(writeImage(options->output, result->photo, *writeOptions));
       if (!options->labels.empty())
         LFCAM_TRY(writeImage(options->labels,
                              colourMap(result->slope, result->slopes.front(), result->slopes.back())));

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "lfcam/image_io.hpp"
+#include "image_output.hpp"
 #include "lfcam/synthetic_camera.hpp"
 
 namespace lfcam::cli {
@@ -13,7 +13,7 @@ void addObserverCommand(CLI::App& app, Job& job) {
     InputOptions input;
     double u = 0, v = 0, beta = 1;
     bool clamp = false;
-    std::string output;
+    std::string output, depth;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("observer", "move the observer: a pinhole view from anywhere (Equation 7)");
@@ -24,9 +24,12 @@ void addObserverCommand(CLI::App& app, Job& job) {
       ->check(CLI::PositiveNumber);
   command->add_flag("--clamp", options->clamp,
                     "rays outside the lens take the closest available ray (Figure 7) instead of going black");
-  command->add_option("-o,--output", options->output, "output image")->required();
+  command->add_option("-o,--output", options->output, "output image (.png, .tif, .exr, .jpg, .pfm)")->required();
+  addBitDepthOption(*command, options->depth);
   command->callback([options, &job] {
     job = [options]() -> Status {
+      auto writeOptions = imageWriteOptionsFor(options->output, options->depth);
+      if (!writeOptions) return writeOptions.error();
       auto lightField = loadInput(options->input);
       if (!lightField) return lightField.error();
       Observer observer{.u = options->u, .v = options->v, .beta = options->beta, .clampToLens = options->clamp};
@@ -39,7 +42,7 @@ void addObserverCommand(CLI::App& app, Job& job) {
       }
       auto photo = observe(*lightField, observer);
       if (!photo) return photo.error();
-      return writeImage(options->output, *photo);
+      return writeImage(options->output, *photo, *writeOptions);
     };
   });
 }

@@ -5,8 +5,8 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "image_output.hpp"
 #include "lfcam/focal_stack.hpp"
-#include "lfcam/image_io.hpp"
 #include "lfcam/synthetic_camera.hpp"
 #include "render_cli.hpp"
 
@@ -18,7 +18,7 @@ void addRefocusCommand(CLI::App& app, Job& job) {
     std::optional<double> slope, alpha;
     std::string focusAt;
     CameraOptions camera;
-    std::string output;
+    std::string output, depth;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("refocus", "refocus a light field (Equations 5 and 6)");
@@ -34,10 +34,13 @@ void addRefocusCommand(CLI::App& app, Job& job) {
   focusAt->excludes(slope)->excludes(alpha);
   addCameraOptions(*command, options->camera);
   command->add_option("-o,--output", options->output, "output image (.png, .tif, .exr, .jpg, .pfm)")->required();
+  addBitDepthOption(*command, options->depth);
   command->callback([options, &job] {
     job = [options]() -> Status {
       if (!options->slope && !options->alpha && options->focusAt.empty())
         return makeError(ErrorCode::Usage, "refocus: give the focus depth with --slope, --alpha or --focus-at");
+      auto writeOptions = imageWriteOptionsFor(options->output, options->depth);
+      if (!writeOptions) return writeOptions.error();
       std::optional<std::pair<double, double>> point;
       if (!options->focusAt.empty()) {
         auto parsed = parsePair(options->focusAt, "--focus-at");
@@ -64,7 +67,7 @@ void addRefocusCommand(CLI::App& app, Job& job) {
         std::printf("slope %.4f\n", slopeValue);
       }
       return renderSlopes(*lightField, options->camera, camera->first, camera->second, {slopeValue},
-                          [&](int, double, Image&& photo) { return writeImage(options->output, photo); });
+                          [&](int, double, Image&& photo) { return writeImage(options->output, photo, *writeOptions); });
     };
   });
 }

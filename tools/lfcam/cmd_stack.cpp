@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "image_output.hpp"
 #include "lfcam/atomic_file.hpp"
 #include "lfcam/focal_stack.hpp"
-#include "lfcam/image_io.hpp"
 #include "progress_bar.hpp"
 #include "render_cli.hpp"
 
@@ -20,7 +20,7 @@ void addStackCommand(CLI::App& app, Job& job) {
     InputOptions input;
     std::string slopes, alphas;
     CameraOptions camera;
-    std::string extension = "png";
+    std::string extension = "png", depth;
     std::string output;
   };
   auto options = std::make_shared<Options>();
@@ -32,6 +32,7 @@ void addStackCommand(CLI::App& app, Job& job) {
   addCameraOptions(*command, options->camera);
   command->add_option("--format", options->extension, "image format of the slices")
       ->check(CLI::IsMember({"png", "tif", "exr", "jpg", "pfm"}));
+  addBitDepthOption(*command, options->depth);
   command->add_option("-o,--output", options->output, "output folder")->required();
   command->callback([options, &job] {
     job = [options]() -> Status {
@@ -40,6 +41,13 @@ void addStackCommand(CLI::App& app, Job& job) {
       auto values = parseRange(options->slopes.empty() ? options->alphas : options->slopes,
                                options->slopes.empty() ? "--alphas" : "--slopes");
       if (!values) return values.error();
+      const auto sliceName = [&](int index) {
+        char name[64];
+        std::snprintf(name, sizeof name, "slice_%03d.%s", index, options->extension.c_str());
+        return std::string(name);
+      };
+      auto writeOptions = imageWriteOptionsFor(std::filesystem::path(options->output) / sliceName(0), options->depth);
+      if (!writeOptions) return writeOptions.error();
       auto lightField = loadInput(options->input);
       if (!lightField) return lightField.error();
       auto camera = cameraFrom(options->camera, *lightField, options->input.path);
@@ -61,14 +69,12 @@ void addStackCommand(CLI::App& app, Job& job) {
         nlohmann::json slices = nlohmann::json::array();
         LFCAM_TRY(renderSlopes(*lightField, options->camera, camera->first, camera->second, slopeValues,
                                      [&](int index, double slope, Image&& photo) -> Status {
-                                     char name[64];
-                                     std::snprintf(name, sizeof name, "slice_%03d.%s", index,
-                                                   options->extension.c_str());
+                                     const std::string name = sliceName(index);
                                      nlohmann::json slice{{"file", name}, {"slope", slope}};
                                      if (optics) slice["alpha"] = optics->alphaFromSlope(slope);
                                      slices.push_back(slice);
                                      bar(double(index + 1) / double(slopeValues.size()));
-                                     return writeImage(folder / name, photo);
+                                     return writeImage(folder / name, photo, *writeOptions);
                                    }));
         std::ofstream out(folder / "stack.json");
         out << nlohmann::json{{"slices", slices}}.dump(2) << "\n";

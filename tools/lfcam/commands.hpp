@@ -47,6 +47,7 @@ struct InputOptions {
   std::optional<int> lensletViews;
   ViewNumberOrder viewOrder = ViewNumberOrder::Auto;
   std::string white, dark, grid;  // a raw lenslet image, decoded on the way when --white is given
+  std::optional<double> blackLevel;  // its --black-level, DN
   DecodeOptions decode;           // its --demosaic and --sampling (the rest is filled in on the way)
   LightFieldReadOptions readOptions() const { return {.lensletViews = lensletViews, .viewNumberOrder = viewOrder}; }
 };

@@ -21,11 +21,16 @@ void addInputOptions(CLI::App& command, InputOptions& input) {
   command.add_option("--white", input.white, "INPUT is a raw lenslet image: its white image (decoded on the way)");
   command.add_option("--dark", input.dark, "with --white: dark frame of the raw");
   command.add_option("--grid", input.grid, "with --white: grid.json (default: calibrated from the white image)");
+  addBlackLevelOption(command, input.blackLevel);
   addDecodeMethodOptions(command, input.decode);
 }
 
 Result<LightField> loadInput(const InputOptions& input) {
-  if (!input.white.empty()) return decodeRawInput({.raw = input.path, .white = input.white, .dark = input.dark, .grid = input.grid, .decode = input.decode});
+  if (!input.white.empty())
+    return decodeRawInput({.raw = input.path, .white = input.white, .dark = input.dark, .grid = input.grid,
+                           .blackLevel = input.blackLevel, .decode = input.decode});
+  if (input.blackLevel)
+    return makeError(ErrorCode::Usage, input.path + ": --black-level applies to a raw decoded on the way (with --white)");
   ProgressBar bar("reading " + input.path);
   return readLightField(input.path, input.readOptions(),
                         [&](double fraction) { bar(fraction); });

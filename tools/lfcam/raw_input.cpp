@@ -1,5 +1,7 @@
 #include "raw_input.hpp"
 
+#include <cmath>
+#include <cstdlib>
 #include <map>
 #include <tuple>
 
@@ -41,6 +43,21 @@ void addDecodeMethodOptions(CLI::App& command, DecodeOptions& decode) {
           std::map<std::string, Sampling>{{"subpixel", Sampling::SubPixel}, {"integral", Sampling::IntegralPitch}}));
 }
 
+void addBlackLevelOption(CLI::App& command, std::optional<double>& blackLevel) {
+  command.add_option("--black-level", blackLevel,
+                     "black level (camera offset) in DN of the raw file, e.g. 64 of a 16-bit PNG/TIFF; default: "
+                     "what the file says (camera.json, TIFF BlackLevel tag, camera raw), else 0; not used when a "
+                     "--dark frame is given (it wins)")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            return *end == 0 && value >= 0 && std::isfinite(value) ? std::string()
+                                                                   : "expected a number of DN of at least 0, got " + text;
+          },
+          "DN"));
+}
+
 Result<ColorFilter> parseBayerOption(const std::string& text) {
   if (auto filter = parseColorFilterName(text)) return *filter;
   return makeError(ErrorCode::Usage, "--bayer: " + text + " is not one of RGGB, BGGR, GRBG, GBRG, mono");
@@ -50,6 +67,8 @@ Result<LightField> decodeRawInput(RawDecodeInput input) {
   ProgressBar bar("decoding " + input.raw);
   RawReadOptions readOptions;
   readOptions.colorFilter = input.bayer;
+  // A dark frame is subtracted instead of any black level, so a given level is then not used.
+  if (input.dark.empty()) readOptions.blackLevel = input.blackLevel;
   auto raw = readRaw(input.raw, readOptions);
   if (!raw) return raw.error();
   bar(0.1);

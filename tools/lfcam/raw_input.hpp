@@ -16,12 +16,16 @@ namespace lfcam::cli {
 struct RawDecodeInput {
   std::string raw, white, dark, grid;  // files; grid: grid.json, else calibrated from the white image
   std::optional<ColorFilter> bayer;    // overrides what the raw says
+  std::optional<double> blackLevel;    // DN, overrides what the raw and white say; a dark frame wins
   DecodeOptions decode;                // its white and dark are filled from the files
 };
 
 // --demosaic and --sampling, the decoder's method choices, on `command` (lfcam decode and every
 // command that decodes a raw on the way).
 void addDecodeMethodOptions(CLI::App& command, DecodeOptions& decode);
+// --black-level N, the camera's offset in DN of the raw file (decode, calibrate and every command
+// that decodes a raw on the way).
+void addBlackLevelOption(CLI::App& command, std::optional<double>& blackLevel);
 
 // "RGGB", "mono", ... (any case); Usage error naming the option otherwise.
 Result<ColorFilter> parseBayerOption(const std::string& text);
