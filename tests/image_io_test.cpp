@@ -157,7 +157,7 @@ TEST(ImageIoTiff, EightSixteenAndFloatRoundTrip) {
 
 TEST(ImageIoExr, FloatRoundTripIsExactIncludingValuesOutsideZeroOne) {
   test::TempDir dir;
-  for (int channels : {1, 3, 4, 5}) {
+  for (int channels : {1, 2, 3, 4, 5, 12}) {  // 12: channel10 and channel11 come after channel9
     Image image = randomImage(13, 9, channels, 30 + channels);
     image.at(0, 0, 0) = -2.5f;
     image.at(1, 0, 0) = 1e6f;
@@ -184,6 +184,16 @@ TEST(ImageIoJpeg, LossyButClose) {
   EXPECT_LT(maxDifference(*read, image), 0.03f);
   EXPECT_FALSE(writeImage(dir / "b.jpg", image, {.sampleType = SampleType::UInt16}));
   EXPECT_FALSE(writeImage(dir / "c.jpg", image, {.jpegQuality = 0}));
+}
+
+TEST(ImageIoExr, TruncatedFileIsAnErrorNamingIt) {
+  test::TempDir dir;
+  ASSERT_TRUE(writeImage(dir / "full.exr", randomImage(64, 64, 3, 12)));
+  const std::string bytes = test::readBytes(dir / "full.exr");
+  test::writeBytes(dir / "half.exr", bytes.substr(0, bytes.size() / 2));
+  expectErrorNaming(readImage(dir / "half.exr"), dir / "half.exr");
+  test::writeBytes(dir / "header.exr", bytes.substr(0, 40));
+  expectErrorNaming(readImage(dir / "header.exr"), dir / "header.exr");
 }
 
 TEST(ImageIoJpeg, GreyRoundTripsAndDamageIsAnError) {
