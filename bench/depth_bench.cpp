@@ -1,11 +1,13 @@
 // Depth and all-in-focus speed on the HCI "antinous" light field (9x9 views, 512x512 RGB), with
-// the scores of the depth map against its ground truth printed first.
+// the table of depth scores printed first: every development scene (depth_scenes.hpp), on which
+// the defaults are chosen, and antinous, held out (never used to choose a parameter).
 //   BM_Refocus      one full-colour refocus: the floor, the unit of work of both operations.
 //   BM_Depth        estimateDepth with default options. Counter ratio = time / refocus time.
 //   BM_DepthWithoutFill  the same without the edge-aware fill (fillLambda = 0); counter
 //                   fill_cost = default time / this time - 1, CPU time of both in this run
 //                   (the time shown is of both runs).
-//   BM_DepthSubsetsApart  estimateDepth with and without aggregateSubsetsApart, alternating;
+//   BM_DepthSubsetsApart  estimateDepth with and without the cost volume's subsets aggregated apart
+//                   (src/edof/depth_experiment.hpp), alternating;
 //                   counter apart_cost = CPU time with / without - 1 (this run).
 //   BM_DepthOcclusionEdges  the same for the occlusion-edge step (occlusionBand 0):
 //                   occlusion_cost. These three also show cpu_default_s, CPU seconds per
@@ -18,10 +20,15 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
+#include <string>
 
+#include "depth_scenes.hpp"
+#include "edof/depth_experiment.hpp"
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/disparity_scores.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/light_field_io.hpp"
@@ -31,14 +38,16 @@ namespace {
 
 using lfcam::LightField;
 
-const char* kFolder = LFCAM_SHARED_DATA_DIR "/hci-antinous";
+// The real data: LFCAM_DATA_DIR, as the tests take it, else the folder beside the repository.
+const std::string kFolder = std::string(std::getenv("LFCAM_DATA_DIR") ? std::getenv("LFCAM_DATA_DIR")
+                                                                       : LFCAM_SHARED_DATA_DIR) + "/hci-antinous";
 
 const LightField& antinous() {
   static const LightField lightField = [] {
     auto read = lfcam::readLightField(kFolder);
     if (read) return std::move(read).value();
     std::fprintf(stderr, "depth_bench: cannot read %s (%s);\n  using a layered-planes light field of 9x9 views, 512x512\n",
-                 kFolder, read.error().message.c_str());
+                 kFolder.c_str(), read.error().message.c_str());
     return std::move(lfcam::renderLayeredPlanes(lfcam::defaultLayeredPlanesScene(9, 512)).lightField);
   }();
   return lightField;
@@ -80,18 +89,19 @@ double processCpuSeconds() {
 
 // Process CPU time of estimateDepth with `without` and with the default options, alternating
 // (the state's iterations each run both); returns with / without - 1.
-double extraCpuOfDefault(benchmark::State& state, const lfcam::DepthOptions& without) {
+double extraCpuOfDefault(benchmark::State& state, const lfcam::DepthOptions& without,
+                         const lfcam::edof::DepthExperiment& experiment = {}) {
   const LightField& lightField = antinous();
-  auto timeDepth = [&](const lfcam::DepthOptions& options) {
+  auto timeDepth = [&](const lfcam::DepthOptions& options, const lfcam::edof::DepthExperiment& switches) {
     const double start = processCpuSeconds();
-    auto depth = lfcam::estimateDepth(lightField, options);
+    auto depth = lfcam::edof::estimateDepth(lightField, options, switches);
     if (!depth) state.SkipWithError(depth.error().message.c_str());
     return processCpuSeconds() - start;
   };
   double withSeconds = 0, withoutSeconds = 0;
   for (auto _ : state) {
-    withSeconds += timeDepth({});
-    withoutSeconds += timeDepth(without);
+    withSeconds += timeDepth({}, {});
+    withoutSeconds += timeDepth(without, experiment);
   }
   state.counters["cpu_default_s"] = withSeconds / double(state.iterations());
   return withoutSeconds > 0 ? withSeconds / withoutSeconds - 1 : 0.0;
@@ -102,7 +112,7 @@ void BM_DepthWithoutFill(benchmark::State& state) {
 }
 
 void BM_DepthSubsetsApart(benchmark::State& state) {
-  state.counters["apart_cost"] = extraCpuOfDefault(state, {.aggregateSubsetsApart = false});
+  state.counters["apart_cost"] = extraCpuOfDefault(state, {}, {.aggregateSubsetsApart = false});
 }
 
 // The occlusion-edge step (src/edof/occlusion_edges.cpp): CPU with it over without, same run.
@@ -142,18 +152,32 @@ BENCHMARK(BM_DepthOcclusionEdges)->Unit(benchmark::kMillisecond)->UseRealTime()-
 BENCHMARK(BM_AllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_DepthAndAllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 
-// The depth map's scores against the ground truth, when it is there (depth.hpp).
+// One row of the scores table.
+void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam::Image& truth, double seconds) {
+  auto scores = lfcam::scoreHci(depth.disparity, truth);
+  if (!scores) return (void)std::printf("%-28s %s\n", name.c_str(), scores.error().message.c_str());
+  std::printf("%-28s %8.2f %8.2f %9.3f %9.3f %7.2f\n", name.c_str(), scores->badPix007, scores->badPix003,
+              scores->mse100, scores->bumpiness, seconds);
+}
+
+// Every scene's HCI scores with today's defaults (disparity_scores.hpp; 15-pixel border; bumpiness
+// on the planes of the ground truth): the development scenes, on which defaults are chosen, then
+// HCI antinous, held out: never used to choose a parameter.
 void printScores() {
-  auto truth = lfcam::readImage(std::string(kFolder) + "/gt_disp_lowres.pfm");
-  if (!truth) return;
+  std::printf("%-28s %8s %8s %9s %9s %7s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100", "bumpiness", "seconds");
+  for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes()) {
+    const auto start = std::chrono::steady_clock::now();
+    auto depth = lfcam::estimateDepth(scene.lightField, {.disparityMin = scene.disparityMin,
+                                                         .disparityMax = scene.disparityMax});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (depth) printRow(scene.name, *depth, scene.disparity, seconds);
+  }
+  auto truth = lfcam::readImage(kFolder + "/gt_disp_lowres.pfm");
+  if (!truth) return (void)std::printf("hci-antinous (held out): not found in %s\n", kFolder.c_str());
   const auto start = std::chrono::steady_clock::now();
   auto depth = lfcam::estimateDepth(antinous());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!depth) return;
-  auto scores = lfcam::scoreDisparity(depth->disparity, *truth), fine = lfcam::scoreDisparity(depth->disparity, *truth, 0.03);
-  if (scores && fine)
-    std::printf("hci-antinous: BadPix(0.07) %.2f %%, BadPix(0.03) %.2f %%, MSE x100 %.3f (%d labels, %.2f s)\n",
-                scores->badPix, fine->badPix, scores->mse100, depth->labels, seconds);
+  if (depth) printRow("hci-antinous (held out)", *depth, *truth, seconds);
 }
 
 }  // namespace

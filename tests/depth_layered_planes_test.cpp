@@ -7,7 +7,9 @@
 #include <limits>
 
 #include "lfcam/colour_map.hpp"
+#include "edof/depth_experiment.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/disparity_scores.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
 
@@ -58,7 +60,7 @@ TEST(DepthLayeredPlanes, MeetsTheBenchmarkScoresWithExactTruth) {
   std::printf("layered planes 9x9x128x128: BadPix(0.07) %.2f %%, MSE x100 %.3f\n", scores->badPix, scores->mse100);
   // Measured 5.5 % and 6.7, 10.2 % and 8.4 with DepthOptions::occlusionBand 0 (5.6 % and 8.0 before
   // issue 6's sixth round's defaults; 8.6 % and 8.9 before
-  // DepthOptions::aggregateSubsetsApart; 8.4 % and 8.9 before DepthOptions::refineAggregateHalves;
+  // edof::DepthExperiment::aggregateSubsetsApart; 8.4 % and 8.9 before edof::DepthExperiment::refineAggregateHalves;
   // 11.2 % and 9.3 before issue 6's second round: strict half-apertures, defocus weight 0.5,
   // median radius 6, the fine search from the map's local mean).
   EXPECT_LT(scores->badPix, 7.5);
@@ -68,7 +70,7 @@ TEST(DepthLayeredPlanes, MeetsTheBenchmarkScoresWithExactTruth) {
 }
 
 // Bilinear sampling between pixels blurs, so the cost prefers whole-pixel shifts; the bias term
-// removed from the cost (DepthOptions::lockingCorrection) must bring fine-textured planes at
+// removed from the cost (edof::DepthExperiment::lockingCorrection) must bring fine-textured planes at
 // fractional disparities nearer their truth than without it (measured: mean errors summed over
 // the four planes 0.0115 against 0.0153).
 TEST(DepthLayeredPlanes, InterpolationBiasCorrectionReducesPixelLocking) {
@@ -83,8 +85,8 @@ TEST(DepthLayeredPlanes, InterpolationBiasCorrectionReducesPixelLocking) {
       plane.period = 2;
       scene.planes.push_back(plane);
       const LayeredPlanesLightField rendered = renderLayeredPlanes(scene);
-      auto depth = estimateDepth(rendered.lightField,
-                                 {.disparityMin = -1.0, .disparityMax = 1.6, .lockingCorrection = locking});
+      auto depth = edof::estimateDepth(rendered.lightField, {.disparityMin = -1.0, .disparityMax = 1.6},
+                                       {.lockingCorrection = locking});
       EXPECT_TRUE(depth) << depth.error().message;
       if (!depth) return 1e9;
       double sum = 0;

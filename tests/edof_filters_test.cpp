@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "core/parabola.hpp"
 #include "edof/edof_internal.hpp"
 
 namespace lfcam::edof {
@@ -27,6 +28,16 @@ std::vector<double> plainBox(const std::vector<float>& in, int width, int height
       out[std::size_t(y) * width + x] = sum / count;
     }
   return out;
+}
+
+TEST(ParabolaVertex, FindsTheMinimumOfAParabolaBetweenSamples) {
+  for (const double vertex : {-0.4, -0.1, 0.0, 0.3, 0.5}) {
+    const auto cost = [vertex](double x) { return 2.0 * (x - vertex) * (x - vertex) + 1.0; };
+    EXPECT_NEAR(parabolaVertex(cost(-1), cost(0), cost(1)), vertex, 1e-12) << vertex;
+  }
+  EXPECT_EQ(parabolaVertex(1.0, 1.0, 1.0), 0.0) << "flat: no minimum between the samples";
+  EXPECT_EQ(parabolaVertex(0.0, 1.0, 0.0), 0.0) << "a maximum is no minimum";
+  EXPECT_EQ(parabolaVertex(3.0, 0.0, -2.0), 0.5) << "beyond the next sample: clamped to half a step";
 }
 
 TEST(BoxFilter, MatchesThePlainWindowMeanOnRandomInputs) {

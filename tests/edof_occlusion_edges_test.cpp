@@ -11,6 +11,7 @@
 
 #include "edof/edof_internal.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/disparity_scores.hpp"
 #include "lfcam/layered_planes.hpp"
 
 namespace lfcam::edof {

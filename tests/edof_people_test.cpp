@@ -12,8 +12,10 @@
 #include <cstdio>
 #include <random>
 
+#include "edof/depth_experiment.hpp"
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/disparity_scores.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/scene.hpp"
 #include "lfcam/simulate.hpp"
@@ -186,9 +188,9 @@ TEST_F(PeopleAllInFocus, EstimatedDepthCompositeIsSharpAndQuiet) {
 // here), on the noise-free and the noisy light field. Measured: BadPix(0.07) 5.2 % and 4.4 %,
 // MSE x100 0.95 and 0.81 (6.8 % and 5.0 %, 0.96 and 0.85 before issue 6's sixth round's
 // defaults; 10.2 % and 7.8 % before DepthOptions::occlusionBand and the fine
-// search's radius 2; 11.0 % and 8.6 % before DepthOptions::aggregateSubsetsApart; 17.9 %
-// and 16.6 % before DepthOptions::refineAggregateHalves; 47.2 % and 36.0 % with
-// DepthOptions::lockingCorrection = 1 before it, which is why that is off).
+// search's radius 2; 11.0 % and 8.6 % before edof::DepthExperiment::aggregateSubsetsApart; 17.9 %
+// and 16.6 % before edof::DepthExperiment::refineAggregateHalves; 47.2 % and 36.0 % with
+// edof::DepthExperiment::lockingCorrection = 1 before it, which is why that is off).
 TEST_F(PeopleAllInFocus, DepthScoresAgainstTheExactDisparity) {
   const AllInFocusOptions range = stackOptions();
   for (const LightField* lightField : {clean_, noisy_}) {
@@ -205,7 +207,7 @@ TEST_F(PeopleAllInFocus, DepthScoresAgainstTheExactDisparity) {
   }
 }
 
-// The fine search's subsets of views aggregated apart, then the best (DepthOptions::
+// The fine search's subsets of views aggregated apart, then the best (edof::DepthExperiment::
 // refineAggregateHalves), against the best per pixel before aggregating. Measured on the noisy
 // light field: BadPix(0.07) 8.6 % against 10.8 % (16.6 % before, with the fine search's radius 8),
 // both with the cost volume's subsets taken per pixel (aggregateSubsetsApart off); now (fine-search
@@ -214,10 +216,8 @@ TEST_F(PeopleAllInFocus, FineSearchAggregatesSubsetsApart) {
   const AllInFocusOptions range = stackOptions();
   double badPix[2] = {};
   for (bool apart : {false, true}) {
-    auto depth = estimateDepth(*noisy_, {.disparityMin = range.disparityMin,
-                                         .disparityMax = range.disparityMax,
-                                         .refineAggregateHalves = apart,
-                                         .aggregateSubsetsApart = false});
+    auto depth = edof::estimateDepth(*noisy_, {.disparityMin = range.disparityMin, .disparityMax = range.disparityMax},
+                                     {.aggregateSubsetsApart = false, .refineAggregateHalves = apart});
     ASSERT_TRUE(depth) << depth.error().message;
     auto scores = scoreDisparity(depth->disparity, *truth_, 0.07);
     ASSERT_TRUE(scores);
@@ -228,7 +228,7 @@ TEST_F(PeopleAllInFocus, FineSearchAggregatesSubsetsApart) {
   EXPECT_LT(badPix[1], badPix[0] - 1.0);
 }
 
-// The same in the cost volume (DepthOptions::aggregateSubsetsApart): each subset's slices
+// The same in the cost volume (edof::DepthExperiment::aggregateSubsetsApart): each subset's slices
 // aggregated by the first guided filter, then the lowest subset per label. Measured: BadPix(0.07)
 // noise-free 10.2 % against 11.0 %, noisy 7.8 % against 8.6 % (fine-search radius 4, no
 // occlusionBand); now the sum of both 9.6 % against 11.5 %.
@@ -237,9 +237,9 @@ TEST_F(PeopleAllInFocus, CostVolumeAggregatesSubsetsApart) {
   double total[2] = {};
   for (bool apart : {false, true})
     for (const LightField* lightField : {clean_, noisy_}) {
-      auto depth = estimateDepth(*lightField, {.disparityMin = range.disparityMin,
-                                               .disparityMax = range.disparityMax,
-                                               .aggregateSubsetsApart = apart});
+      auto depth = edof::estimateDepth(*lightField, {.disparityMin = range.disparityMin,
+                                                     .disparityMax = range.disparityMax},
+                                       {.aggregateSubsetsApart = apart});
       ASSERT_TRUE(depth) << depth.error().message;
       auto scores = scoreDisparity(depth->disparity, *truth_, 0.07);
       ASSERT_TRUE(scores);

@@ -7,6 +7,8 @@
 #include <limits>
 #include <string>
 
+#include "core/parabola.hpp"
+#include "edof/depth_experiment.hpp"
 #include "edof/edof_internal.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/parallel.hpp"
@@ -241,7 +243,7 @@ void defocusEnergy(const LightField& grey, double d, float* energy) {
   edof::squaredLaplacian(photo, energy);
 }
 
-// Steps 1-3 with each subset of views aggregated apart (`aggregateSubsetsApart`): per label, each
+// Steps 2-3 with each subset of views aggregated apart (`aggregateSubsetsApart`): per label, each
 // subset's correspondence slice less the defocus cue (the guided filter is linear, so this is
 // the defocus cue aggregated on its own) is aggregated, then the lowest subset taken, as the
 // fine search does (refineDisparity). Labels go in chunks so that only chunk x subsets slices are
@@ -304,7 +306,7 @@ float bilinear(const float* plane, int ns, int nt, double x, double y) {
 // aggregated on its own and the best subset taken per slice afterwards: a window then keeps to one
 // subset, where the minimum of per-pixel costs picks whichever subset is lowest by chance at each
 // pixel (measured on antinous, fine-search radius 8: BadPix(0.07) 14.2 -> 11.5 %, BadPix(0.03)
-// 40.1 -> 28.9 %; docs/design.md, fourth round).
+// 40.1 -> 28.9 %; issue 6, fourth round, in the history of docs/design.md).
 void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
                      int steps, double locking, bool aggregateHalves, float* curvatureOut, float* residualOut) {
   const int ns = grey.ns(), nt = grey.nt();
@@ -378,7 +380,7 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
         const double left = cost[std::size_t(best - 1) * n + p], centre = cost[std::size_t(best) * n + p],
                      right = cost[std::size_t(best + 1) * n + p];
         curvature = left - 2 * centre + right;
-        if (curvature > 0) offset = std::clamp(0.5 * (left - right) / curvature, -0.5, 0.5);
+        offset = parabolaVertex(left, centre, right);
       }
       disparity[p] += float((best - steps + offset) * delta);
       curvatureOut[p] = float(std::max(curvature, 0.0));
@@ -426,7 +428,7 @@ void weightedMedian(const float* guide, int ns, int nt, int radius, float sigma,
   });
 }
 
-// Edge-aware fill of the pixels whose fine search was unsure (depth.hpp, step 7): each disparity
+// Edge-aware fill of the pixels whose fine search was unsure (depth.hpp, step 6): each disparity
 // weighted by the curvature of its fine-search cost at the minimum (flat where there is no
 // texture) over the cost left there (high where no disparity makes the views agree, as at
 // occlusions), both relative to their means; the fast global smoother guided by the centre view
@@ -450,6 +452,11 @@ void fillUncertain(const LightField& lightField, const std::vector<float>& curva
 }  // namespace
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options) {
+  return edof::estimateDepth(lightField, options, {});
+}
+
+Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOptions& options,
+                                     const DepthExperiment& experiment) {
   if (lightField.empty() || lightField.ns() < 2 || lightField.nt() < 2)
     return makeError(ErrorCode::Usage, "depth: the light field is empty");
   if (lightField.nu() * lightField.nv() < 2)
@@ -459,6 +466,7 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
   if (!(std::isfinite(dmin) && std::isfinite(dmax) && dmin < dmax))
     return makeError(ErrorCode::Usage, "depth: the disparity range [" + std::to_string(dmin) + ", " +
                                            std::to_string(dmax) + "] is empty");
+  // 1. Range: the candidate disparities.
   int labels = options.labels;
   if (labels <= 0) labels = std::clamp(int(std::ceil((dmax - dmin) / 0.1)) + 1, 16, 96);
   if (labels < 2) return makeError(ErrorCode::Usage, "depth: at least 2 candidate disparities are needed");
@@ -480,15 +488,15 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
 
   const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.filterRadius, 0),
                                   std::max(options.filterEpsilon, 1e-12));
-  const double locking = std::max(options.lockingCorrection, 0.0);
+  const double locking = std::max(experiment.lockingCorrection, 0.0);
   std::vector<float> cost;
-  if (options.aggregateSubsetsApart) {
+  if (experiment.aggregateSubsetsApart) {  // 2-3. Cost and aggregation, each subset of views apart
     cost = aggregatedSubsetCost(grey, disparities, filter, options.defocusWeight, locking);
   } else {
-    // 1. Correspondence cue.
+    // 2. Cost: the correspondence cue,
     cost.resize(n * labels);
     correspondenceCost(grey, disparities, 0, labels, locking, /*perSubset=*/false, cost.data());
-    // 2. Defocus cue: the full-aperture photograph at each label, sharpest where the label is right.
+    // less the defocus cue: the full-aperture photograph at each label, sharpest where it is right.
     if (options.defocusWeight > 0) {
       std::vector<float> energy(n);
       for (int l = 0; l < labels; ++l) {
@@ -523,7 +531,7 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
   }
   const double scale = std::max(contrastSum / double(n), 1e-12);
 
-  // 4. Semi-global optimisation, then the read-out.
+  // 4. Regularisation: semi-global optimisation, then the read-out between labels.
   std::vector<float> label(n);
   if (options.smoothness > 0) {
     // A small step penalty: slanted surfaces climb one label at a time (the fine search below
@@ -539,10 +547,7 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
         const int best = std::clamp(int(std::lround(label[p])), 0, labels - 1);
         const float* c = &volume[p * labels];
         double offset = 0;
-        if (best > 0 && best + 1 < labels) {
-          const double curvature = c[best - 1] - 2.0 * c[best] + c[best + 1];
-          if (curvature > 0) offset = std::clamp(0.5 * (c[best - 1] - c[best + 1]) / curvature, -0.5, 0.5);
-        }
+        if (best > 0 && best + 1 < labels) offset = parabolaVertex(c[best - 1], c[best], c[best + 1]);
         label[p] = float(best + offset);
       }
     });
@@ -552,7 +557,7 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
 
   DepthMap result{Image(ns, nt, 1), Image(ns, nt, 1), dmin, dmax, labels};
   for (std::size_t p = 0; p < n; ++p) result.disparity.plane(0)[p] = float(dmin + label[p] * step);
-  // 6. Fine search around the optimised map, then 7. the weighted median (depth.hpp).
+  // 5. Refinement: the fine search around the optimised map.
   std::vector<float> curvature(n, 1.0f), residual(n, 0.0f);
   if (options.refineSteps > 0) {
     const edof::GuidedFilter refineFilter(guide.plane(0), ns, nt, std::max(options.refineRadius, 0),
@@ -571,18 +576,20 @@ Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions&
     // A quarter of the correction in the fine search: its slices, a fraction of a label apart,
     // see far smaller differences of blur (measured on antinous: 1 there is worse than none).
     refineDisparity(grey, refineFilter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps,
-                    0.25 * std::max(options.lockingCorrection, 0.0), options.refineAggregateHalves, curvature.data(),
+                    0.25 * std::max(experiment.lockingCorrection, 0.0), experiment.refineAggregateHalves, curvature.data(),
                     residual.data());
     // The fine search may step past the ends of the range searched; the map stays inside it.
     for (std::size_t p = 0; p < n; ++p)
       result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
   }
+  // 6. Cleanup: the edge-aware fill, occlusion edges, the weighted median.
   if (options.fillLambda > 0 && options.refineSteps > 0)
     fillUncertain(lightField, curvature, residual, options, result.disparity.plane(0));
   edof::reclaimOcclusionEdges(lightField, options.occlusionBand, result.disparity.plane(0));  // occlusion_edges.cpp
   if (options.medianRadius > 0)
     weightedMedian(guide.plane(0), ns, nt, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
                    result.disparity.plane(0));
+  // 7. Confidence.
   for (std::size_t p = 0; p < n; ++p) {
     const int chosen = std::clamp(int(std::lround(label[p])), 0, labels - 1);
     const double depthOfMinimum = meanCost[p] - volume[p * labels + chosen];
@@ -617,31 +624,6 @@ Result<Image> distanceMap(const LightFieldMetadata& metadata, const Image& dispa
   for (std::size_t i = 0; i < out.planeSize(); ++i)
     out.plane(0)[i] = float(distanceFromDisparity(*metadata.optics, disparity.plane(0)[i]).value_or(0.0));
   return out;
-}
-
-Result<DisparityScores> scoreDisparity(const Image& estimate, const Image& truth, double threshold, int border) {
-  if (estimate.width() != truth.width() || estimate.height() != truth.height() || estimate.channels() < 1 ||
-      truth.channels() < 1)
-    return makeError(ErrorCode::Usage, "scores: the estimate is " + std::to_string(estimate.width()) + "x" +
-                                           std::to_string(estimate.height()) + " but the ground truth " +
-                                           std::to_string(truth.width()) + "x" + std::to_string(truth.height()));
-  DisparityScores scores;
-  long bad = 0;
-  double squares = 0;
-  for (int y = border; y < truth.height() - border; ++y)
-    for (int x = border; x < truth.width() - border; ++x) {
-      const double t = truth.at(x, y, 0);
-      if (!std::isfinite(t)) continue;
-      const double e = estimate.at(x, y, 0);
-      const double error = std::isfinite(e) ? std::abs(e - t) : std::abs(t) + 1;
-      bad += error > threshold;
-      squares += error * error;
-      ++scores.pixels;
-    }
-  if (scores.pixels == 0) return makeError(ErrorCode::Usage, "scores: no pixel with ground truth inside the border");
-  scores.badPix = 100.0 * double(bad) / double(scores.pixels);
-  scores.mse100 = 100.0 * squares / double(scores.pixels);
-  return scores;
 }
 
 }  // namespace lfcam

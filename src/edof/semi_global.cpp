@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parabola.hpp"
 #include "edof/edof_internal.hpp"
 #include "lfcam/parallel.hpp"
 
@@ -105,10 +106,7 @@ void winnerTakesAll(const std::vector<float>& volume, int width, int height, int
       const int best = int(std::min_element(c, c + L) - c);
       double offset = 0;
       if (best > 0 && best + 1 < labels) {
-        // Parabola through (best - 1, best, best + 1): its vertex.
-        const double left = c[best - 1], centre = c[best], right = c[best + 1];
-        const double curvature = left - 2 * centre + right;
-        if (curvature > 0) offset = std::clamp(0.5 * (left - right) / curvature, -0.5, 0.5);
+        offset = parabolaVertex(c[best - 1], c[best], c[best + 1]);
       }
       label[p] = float(best + offset);
     }

@@ -231,7 +231,8 @@ std::vector<int> mostPlausible(const std::map<int, double>& scores) {
   for (const auto& [k, score] : scores) ranked.emplace_back(-score, k);
   std::sort(ranked.begin(), ranked.end());
   std::vector<int> periods;
-  for (const auto& [negativeScore, k] : ranked) {
+  for (const auto& entry : ranked) {
+    const int k = entry.second;  // a plain variable: clang 14 cannot capture a structured binding
     if (std::any_of(periods.begin(), periods.end(), [k](int p) { return k % p == 0; })) continue;
     periods.push_back(k);
     if (periods.size() == kMostPlausible) break;

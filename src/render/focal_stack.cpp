@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/parabola.hpp"
+
 namespace lfcam {
 
 std::vector<double> evenlySpaced(double first, double last, int n) {
@@ -95,11 +97,7 @@ Result<double> slopeAtPixel(const LightField& lightField, double x, double y, co
   // Parabola through the best and its neighbours.
   double slope = slopes[best];
   if (best > 0 && best + 1 < slopes.size() && std::isfinite(cost[best - 1]) && std::isfinite(cost[best + 1])) {
-    const double curvature = cost[best - 1] - 2 * cost[best] + cost[best + 1];
-    if (curvature > 0) {
-      const double step = slopes[1] - slopes[0];
-      slope += std::clamp(0.5 * (cost[best - 1] - cost[best + 1]) / curvature, -0.5, 0.5) * step;
-    }
+    slope += parabolaVertex(cost[best - 1], cost[best], cost[best + 1]) * (slopes[1] - slopes[0]);
   }
   return slope;
 }

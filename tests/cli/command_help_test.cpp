@@ -12,7 +12,7 @@ namespace {
 
 const std::vector<std::string> kCommands{
     "info",  "convert",  "views",   "refocus", "stack", "observer", "bench",       "animate",    "synth",     "demo",
-    "simulate", "depth", "edof",    "extract", "view",  "export-html", "experiment", "decode", "calibrate"};
+    "simulate", "depth", "score", "edof",    "extract", "view",  "export-html", "experiment", "decode", "calibrate"};
 
 TEST(CommandHelp, AloneListsEveryCommandOnOneLineEach) {
   TempDir dir;

@@ -1,6 +1,8 @@
 // `lfcam depth` and `lfcam edof` run as a user runs them: outputs, messages, exit statuses.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "cli_support.hpp"
 #include "lfcam/image_io.hpp"
 
@@ -52,9 +54,35 @@ TEST(CliEdof, WithAndWithoutADepthMap) {
   }
 }
 
+void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+TEST(CliDepth, EverySettingFromAnOptionsFileOrAFlagThatWins) {
+  test::TempDir dir;
+  const fs::path input = test::makeSynthLightField(dir);
+  const std::string output = (dir / "d.pfm").string();
+  // The file's range is empty (2 above the metadata's 1.6): refused, unless a flag gives another min.
+  writeText(dir / "empty-range.json", R"({"min": 2, "median-radius": 0, "occlusion-band": 0})");
+  const auto refused = runLfcam({"depth", input.string(), "-o", output, "--options", (dir / "empty-range.json").string()},
+                                dir.path());
+  EXPECT_EQ(refused.exitStatus, 2) << refused.err;
+  EXPECT_NE(refused.err.find("is empty"), std::string::npos) << refused.err;
+  const auto flagWins = runLfcam(
+      {"depth", input.string(), "-o", output, "--options", (dir / "empty-range.json").string(), "--min", "-1"},
+      dir.path());
+  EXPECT_EQ(flagWins.exitStatus, 0) << flagWins.err;
+  // Every setting of the table is a flag, shown with its stage in --help.
+  const auto help = runLfcam({"depth", "--help"}, dir.path());
+  for (const char* flag : {"--labels", "--defocus-weight", "--filter-radius", "--filter-epsilon", "--smoothness",
+                           "--refine-steps", "--refine-radius", "--refine-smooth-radius", "--fill-lambda",
+                           "--fill-sigma", "--occlusion-band", "--median-radius", "--median-sigma"})
+    EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
+}
+
 TEST(CliDepth, ErrorsSayWhatIsWrongInOneLine) {
   test::TempDir dir;
   const fs::path input = test::makeSynthLightField(dir);
+  writeText(dir / "typo.json", R"({"smoothnes": 0.5})");       // an unknown key
+  writeText(dir / "bad.json", R"({"median-radius": 2.5})");    // not an integer
   struct Case {
     std::vector<std::string> args;
     int status;
@@ -64,6 +92,11 @@ TEST(CliDepth, ErrorsSayWhatIsWrongInOneLine) {
       {{"depth", (dir / "missing.lf.h5").string(), "-o", (dir / "d.pfm").string()}, 1},
       {{"edof", input.string(), "-o", (dir / "e.png").string(), "--depth", (dir / "missing.pfm").string()}, 1},
       {{"edof", input.string(), "-o", (dir / "e.png").string(), "--step", "-1"}, 2},
+      {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--min", "1", "--max", "0.5"}, 2},  // min above max
+      {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--options", (dir / "typo.json").string()}, 1},
+      {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--options", (dir / "bad.json").string()}, 1},
+      {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--options", (dir / "no.json").string()}, 1},
+      {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--median-radius", "-1"}, 2},
   };
   for (const Case& c : cases) {
     const auto result = runLfcam(c.args, dir.path());

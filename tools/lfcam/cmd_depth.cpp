@@ -1,12 +1,16 @@
-// lfcam depth INPUT -o DEPTH.pfm [--confidence FILE] [--png FILE] [--distance FILE]: the
-// disparity seen through the aperture centre (pixels per view step, HCI convention), from the
-// correspondence and defocus cues of the light field (depth.hpp).
+// lfcam depth INPUT -o DEPTH.pfm [--confidence FILE] [--png FILE] [--distance FILE] [--options
+// FILE.json] [--SETTING VALUE ...]: the disparity seen through the aperture centre (pixels per view
+// step, HCI convention), from the correspondence and defocus cues of the light field (depth.hpp);
+// every setting of depth_knobs.hpp as a flag, which wins over the options file.
 #include <memory>
 #include <optional>
+#include <string>
+#include <variant>
 
 #include "commands.hpp"
 #include "lfcam/colour_map.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/depth_knobs.hpp"
 #include "lfcam/image_io.hpp"
 
 namespace lfcam::cli {
@@ -14,8 +18,8 @@ namespace lfcam::cli {
 void addDepthCommand(CLI::App& app, Job& job) {
   struct Options {
     InputOptions input;
-    std::string output, confidence, png, distance;
-    DepthOptions depth;
+    std::string output, confidence, png, distance, optionsFile;
+    DepthOptions flags;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
@@ -27,22 +31,28 @@ void addDepthCommand(CLI::App& app, Job& job) {
   command->add_option("--png", options->png, "the disparity colour-mapped (Turbo: far blue, near red) for people");
   command->add_option("--distance", options->distance,
                       "distance from the main lens in mm, float image (needs optics with a focal length)");
-  command->add_option("--min", options->depth.disparityMin, "smallest disparity searched (default: metadata, else -2)");
-  command->add_option("--max", options->depth.disparityMax, "largest disparity searched (default: metadata, else 2)");
-  command->add_option("--labels", options->depth.labels, "candidate disparities (default: one per 0.1 px)")
-      ->check(CLI::Range(2, 1024));
-  command->add_option("--smoothness", options->depth.smoothness, "regularisation strength (0: none)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  command->callback([options, &job] {
-    job = [options]() -> Status {
+  command->add_option("--options", options->optionsFile,
+                      "settings from a JSON object of NAME: number, NAME any setting below; the flags win");
+  for (const DepthKnob& knob : depthKnobs()) {
+    const std::string flag = std::string("--") + knob.name, help = std::string(knob.stage) + ": " + knob.help;
+    std::visit([&](auto member) { command->add_option(flag, options->flags.*member, help)->capture_default_str()
+                                      ->check(CLI::Range(knob.min, knob.max)); },
+               knob.member);
+  }
+  command->callback([options, command, &job] {
+    job = [options, command]() -> Status {
+      DepthOptions depthOptions;
+      if (!options->optionsFile.empty()) LFCAM_TRY(readDepthOptions(options->optionsFile, depthOptions));
+      for (const DepthKnob& knob : depthKnobs())  // a flag given wins over the file
+        if (command->count(std::string("--") + knob.name) > 0)
+          std::visit([&](auto member) { depthOptions.*member = options->flags.*member; }, knob.member);
       auto lightField = loadInput(options->input);
       if (!lightField) return lightField.error();
       if (!options->distance.empty() && !(lightField->metadata.optics && lightField->metadata.optics->focalLengthMm))
         return makeError(ErrorCode::Usage, options->input.path +
                                                ": no optics metadata with a focal length, so --distance cannot be "
                                                "computed; the disparity map needs none");
-      auto depth = estimateDepth(*lightField, options->depth);
+      auto depth = estimateDepth(*lightField, depthOptions);
       if (!depth) return makeError(depth.error().code, options->input.path + ": " + depth.error().message);
       LFCAM_TRY(writeImage(options->output, depth->disparity));
       if (!options->confidence.empty()) LFCAM_TRY(writeImage(options->confidence, depth->confidence));

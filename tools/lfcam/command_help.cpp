@@ -24,6 +24,8 @@ const std::map<std::string, std::string>& examples() {
       {"demo", "lfcam demo -o lfcam-demo"},
       {"simulate", "lfcam simulate people --size 1000 -o people-capture"},
       {"depth", "lfcam depth ../shared/data/hci-antinous -o antinous.pfm --png antinous-depth.png"},
+      {"score", "lfcam score ../shared/data/hci-antinous/gt_disp_lowres.pfm "
+                "../shared/data/hci-antinous/gt_disp_lowres.pfm --json"},
       {"edof", "lfcam edof ../shared/data/lytro-f01-flower -o flower-all-in-focus.png"},
       {"extract", "lfcam extract ../shared/data/lytro-lfp/IMG_0002-dm.lfp -o img0002-dm"},
       {"view", "lfcam view ../shared/data/lytro-f01-flower --port 8080"},

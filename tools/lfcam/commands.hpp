@@ -31,6 +31,7 @@ void addSynthCommand(CLI::App& app, Job& job);
 void addDemoCommand(CLI::App& app, Job& job);
 void addSimulateCommand(CLI::App& app, Job& job);
 void addDepthCommand(CLI::App& app, Job& job);
+void addScoreCommand(CLI::App& app, Job& job);
 void addEdofCommand(CLI::App& app, Job& job);
 void addExtractCommand(CLI::App& app, Job& job);
 void addViewCommand(CLI::App& app, Job& job);

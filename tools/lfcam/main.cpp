@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   cli::addDemoCommand(app, job);
   cli::addSimulateCommand(app, job);
   cli::addDepthCommand(app, job);
+  cli::addScoreCommand(app, job);
   cli::addEdofCommand(app, job);
   cli::addExtractCommand(app, job);
   cli::addViewCommand(app, job);

@@ -1,0 +1,162 @@
+// The depth estimator's development scenes (depth_scenes.hpp).
+#include "depth_scenes.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "lfcam/depth.hpp"
+#include "lfcam/layered_planes.hpp"
+#include "lfcam/scene.hpp"
+#include "lfcam/simulate.hpp"
+
+namespace lfcam::bench {
+namespace {
+
+// The people test's small camera (9x9 views, focused at 5 m, f/4), with size x size microlenses.
+CameraModel camera(int size) {
+  CameraModel model = CameraModel::paperPrototype(9 * size, 9 * size);
+  model.microlenses->pitchMm = 9 * model.sensor.pixelPitchMm;
+  model.microlenses->focalLengthMm = 4 * model.microlenses->pitchMm;
+  model.mainLens.focusDistanceMm = 5000;
+  return model;
+}
+
+// Half the field of view (mm) at distance z.
+double halfField(const CameraModel& model, double z) {
+  return 0.5 * model.sensor.widthMm() * z / model.mainLens.imageDistanceMm();
+}
+
+Texture noise(double periodMm, Rgb dark, Rgb light, std::uint64_t seed) {
+  Texture texture;
+  texture.kind = TextureKind::Noise;
+  texture.periodMm = periodMm;
+  texture.dark = dark;
+  texture.light = light;
+  texture.seed = seed;
+  return texture;
+}
+
+Plane plane(std::string name, std::array<double, 3> centre, double width, double height, Texture texture) {
+  Plane p;
+  p.name = std::move(name);
+  p.centreMm = centre;
+  p.widthMm = width;
+  p.heightMm = height;
+  p.texture = std::move(texture);
+  return p;
+}
+
+// A textured backdrop filling the view at `z`: no ray escapes to a textureless background.
+Plane backdrop(const CameraModel& model, double z, std::uint64_t seed) {
+  const double h = halfField(model, z);
+  return plane("backdrop", {0, 0, z}, 2.6 * h, 2.6 * h, noise(h / 8, {0.1f, 0.2f, 0.25f}, {0.7f, 0.75f, 0.6f}, seed));
+}
+
+// Sensor-like noise per sample, sigma^2 = 0.02^2 + 0.002 x value (2-4 % of the signal, the people
+// test's model; a Lytro's decoded views are as noisy).
+void addNoise(LightField& lightField, unsigned seed) {
+  std::mt19937 generator(seed);
+  std::normal_distribution<float> normal(0.0f, 1.0f);
+  for (float& sample : lightField.samples()) sample += std::sqrt(0.0004f + 0.002f * std::max(sample, 0.0f)) * normal(generator);
+}
+
+DepthScene withRange(std::string name, LightField lightField, Image disparity) {
+  double low = INFINITY, high = -INFINITY;
+  for (float d : disparity.pixels())
+    if (std::isfinite(d)) low = std::min(low, double(d)), high = std::max(high, double(d));
+  return {std::move(name), std::move(lightField), std::move(disparity), low - 0.25, high + 0.25};
+}
+
+DepthScene simulated(std::string name, const Scene& scene, const CameraModel& model, bool noisy = false) {
+  auto lightField = idealLightFieldBoxFiltered(scene, model, 2);
+  auto depth = idealDepth(scene, model);
+  if (!lightField || !depth) throw std::runtime_error(name + ": the simulator failed");
+  const Optics& optics = *lightField->metadata.optics;
+  Image disparity(depth->width(), depth->height(), 1);
+  for (int y = 0; y < depth->height(); ++y)
+    for (int x = 0; x < depth->width(); ++x)
+      disparity.at(x, y, 0) = float(disparityFromDistance(optics, depth->at(x, y, 0)).value_or(NAN));
+  if (noisy) addNoise(*lightField, 11);
+  return withRange(std::move(name), std::move(*lightField), std::move(disparity));
+}
+
+Scene emptyScene(const CameraModel& model) {
+  Scene scene;
+  scene.camera = model;
+  return scene;
+}
+
+}  // namespace
+
+std::vector<DepthScene> developmentScenes(int size) {
+  std::vector<DepthScene> scenes;
+  {
+    auto planes = renderLayeredPlanes(defaultLayeredPlanesScene(9, size));
+    scenes.push_back(withRange("synth layered planes", std::move(planes.lightField), std::move(planes.disparity)));
+  }
+  const CameraModel model = camera(size);
+  const double d = model.mainLens.focusDistanceMm;
+  const Scene people = *builtinScene("people", model);
+  scenes.push_back(simulated("people", people, model));
+  scenes.push_back(simulated("people, Lytro-like noise", people, model, true));
+  {  // A floor rising steeply away from the camera, as antinous's, before a wall.
+    Scene scene = emptyScene(model);
+    scene.planes.push_back(backdrop(model, 2.2 * d, 3));
+    const double h = halfField(model, 1.3 * d);
+    Plane floor = plane("floor", {0, 0.5 * h, 1.3 * d}, 3 * h, 0.6 * d, noise(h / 10, {0.3f, 0.2f, 0.1f}, {0.8f, 0.7f, 0.5f}, 5));
+    floor.tiltXDeg = 80;
+    scene.planes.push_back(floor);
+    scenes.push_back(simulated("slanted floor", scene, model));
+  }
+  {  // Half an elliptic cylinder bulging towards the camera (from 0.8 to 1.1 times the focus
+     // distance), 32 facets: deep enough along z for its disparity to curve by 0.6 px.
+    Scene scene = emptyScene(model);
+    scene.planes.push_back(backdrop(model, 2.0 * d, 4));
+    const double across = 0.6 * halfField(model, d), deep = 0.4 * d, axisZ = 1.2 * d, end = 75 * M_PI / 180;
+    const int facets = 32;
+    const auto point = [&](double angle) {
+      return std::array<double, 2>{across * std::sin(angle), axisZ - deep * std::cos(angle)};
+    };
+    for (int i = 0; i < facets; ++i) {
+      const auto a = point(-end + 2 * end * i / facets), b = point(-end + 2 * end * (i + 1) / facets);
+      Plane facet = plane("facet", {(a[0] + b[0]) / 2, 0, (a[1] + b[1]) / 2}, 1.02 * std::hypot(b[0] - a[0], b[1] - a[1]),
+                          2.5 * across, noise(across / 12, {0.15f, 0.1f, 0.3f}, {0.85f, 0.8f, 0.9f}, 6));
+      facet.tiltYDeg = std::atan2(b[1] - a[1], b[0] - a[0]) * 180 / M_PI;  // its right side away right of the axis
+      scene.planes.push_back(facet);
+    }
+    scenes.push_back(simulated("curved surface", scene, model));
+  }
+  {  // Bars 1 to 4 pixels wide, nearer than a wall.
+    Scene scene = emptyScene(model);
+    scene.planes.push_back(backdrop(model, 1.6 * d, 8));
+    const double z = 0.8 * d, h = halfField(model, z), pixel = 2 * h / size;
+    for (int i = 0; i < 4; ++i)
+      scene.planes.push_back(plane("bar", {(-0.6 + 0.4 * i) * h, 0, z}, (i + 1) * pixel, 1.6 * h,
+                                   noise(h / 6, {0.6f, 0.1f, 0.1f}, {0.95f, 0.85f, 0.3f}, 9 + i)));
+    scene.planes.push_back(plane("rail", {0, 0.5 * h, 0.9 * d}, 1.6 * h, 2 * pixel,
+                                 noise(h / 6, {0.1f, 0.1f, 0.6f}, {0.4f, 0.9f, 0.95f}, 13)));
+    scenes.push_back(simulated("thin structures", scene, model));
+  }
+  {  // Texture at the scale of a pixel, and of half a pixel, on two cards.
+    Scene scene = emptyScene(model);
+    const double far = 1.8 * d, hf = halfField(model, far);
+    scene.planes.push_back(plane("far", {0, 0, far}, 2.6 * hf, 2.6 * hf, noise(1.0 * hf / size, {0.2f, 0.2f, 0.2f}, {0.8f, 0.8f, 0.8f}, 14)));
+    const double z = 0.85 * d, h = halfField(model, z);
+    scene.planes.push_back(plane("near", {-0.2 * h, 0.1 * h, z}, 0.9 * h, 0.9 * h, noise(2.0 * h / size, {0.1f, 0.3f, 0.1f}, {0.9f, 0.9f, 0.6f}, 15)));
+    scenes.push_back(simulated("fine texture", scene, model));
+  }
+  {  // Texture of 4 % contrast.
+    Scene scene = emptyScene(model);
+    const double far = 1.6 * d, hf = halfField(model, far);
+    scene.planes.push_back(plane("far", {0, 0, far}, 2.6 * hf, 2.6 * hf, noise(hf / 10, {0.48f, 0.48f, 0.48f}, {0.52f, 0.52f, 0.52f}, 16)));
+    const double z = 0.9 * d, h = halfField(model, z);
+    scene.planes.push_back(plane("near", {0.2 * h, 0, z}, 0.8 * h, 1.2 * h, noise(h / 8, {0.58f, 0.5f, 0.45f}, {0.62f, 0.54f, 0.49f}, 17)));
+    scenes.push_back(simulated("weak texture", scene, model));
+  }
+  return scenes;
+}
+
+}  // namespace lfcam::bench

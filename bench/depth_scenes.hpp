@@ -1,0 +1,28 @@
+// The development scenes of the depth estimator: light fields with their exact disparity, on
+// which its defaults are chosen. HCI antinous is not among them: it is scored as a held-out check
+// only (bench/depth_bench.cpp, tests/realdata/hci_depth_test.cpp), never used to choose a
+// parameter.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "lfcam/image.hpp"
+#include "lfcam/light_field.hpp"
+
+namespace lfcam::bench {
+
+struct DepthScene {
+  std::string name;
+  LightField lightField;
+  Image disparity;                   // exact, ns x nt, pixels per view step
+  double disparityMin, disparityMax;  // the range searched: the truth's, 0.25 wider each side
+};
+
+// `synth` layered planes, the simulator's people scene (noise-free and with Lytro-like noise), and
+// simulator scenes built for this: a steeply slanted floor, a curved surface (half an elliptic
+// cylinder of 32 facets), thin bars before a wall, fine texture, weak texture (4 % contrast).
+// 9x9 views of `size` x `size`.
+std::vector<DepthScene> developmentScenes(int size = 128);
+
+}  // namespace lfcam::bench
