@@ -7,7 +7,8 @@ packages=(
   build-essential cmake ninja-build pkg-config
   python3              # tests/module_includes: the check of module boundaries
   ccache               # repeat builds (scripts/build.sh, build-san) reuse earlier compiles
-  libopenimageio-dev   # image files: PNG, TIFF, OpenEXR, JPEG
+  libpng-dev libjpeg-dev libopenexr-dev libgif-dev  # PNG, JPEG, OpenEXR, GIF: their own libraries (docs/design.md, "Start-up")
+  libopenimageio-dev   # image files: TIFF
   libhdf5-dev          # the native .lf.h5 light-field file
   libeigen3-dev        # least-squares fits (lenslet grid)
   nlohmann-json3-dev   # metadata, scene and grid JSON

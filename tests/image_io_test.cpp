@@ -157,7 +157,7 @@ TEST(ImageIoTiff, EightSixteenAndFloatRoundTrip) {
 
 TEST(ImageIoExr, FloatRoundTripIsExactIncludingValuesOutsideZeroOne) {
   test::TempDir dir;
-  for (int channels : {1, 3, 4, 5}) {
+  for (int channels : {1, 2, 3, 4, 5, 12}) {  // 12: channel10 and channel11 come after channel9
     Image image = randomImage(13, 9, channels, 30 + channels);
     image.at(0, 0, 0) = -2.5f;
     image.at(1, 0, 0) = 1e6f;
@@ -184,6 +184,37 @@ TEST(ImageIoJpeg, LossyButClose) {
   EXPECT_LT(maxDifference(*read, image), 0.03f);
   EXPECT_FALSE(writeImage(dir / "b.jpg", image, {.sampleType = SampleType::UInt16}));
   EXPECT_FALSE(writeImage(dir / "c.jpg", image, {.jpegQuality = 0}));
+}
+
+TEST(ImageIoExr, TruncatedFileIsAnErrorNamingIt) {
+  test::TempDir dir;
+  ASSERT_TRUE(writeImage(dir / "full.exr", randomImage(64, 64, 3, 12)));
+  const std::string bytes = test::readBytes(dir / "full.exr");
+  test::writeBytes(dir / "half.exr", bytes.substr(0, bytes.size() / 2));
+  expectErrorNaming(readImage(dir / "half.exr"), dir / "half.exr");
+  test::writeBytes(dir / "header.exr", bytes.substr(0, 40));
+  expectErrorNaming(readImage(dir / "header.exr"), dir / "header.exr");
+}
+
+TEST(ImageIoJpeg, GreyRoundTripsAndDamageIsAnError) {
+  test::TempDir dir;
+  const Image grey = randomImage(40, 30, 1, 11);
+  ASSERT_TRUE(writeImage(dir / "grey.jpg", grey, {.jpegQuality = 100}));
+  auto header = readImageHeader(dir / "grey.jpg");
+  ASSERT_TRUE(header) << header.error().message;
+  EXPECT_EQ(header->channels, 1);
+  EXPECT_EQ(header->width, 40);
+  auto read = readImage(dir / "grey.jpg");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->channels(), 1);
+
+  // A JPEG cut short, and one whose entropy-coded data is garbled: errors naming the file, not
+  // an image padded with grey.
+  const std::string bytes = test::readBytes(dir / "grey.jpg");
+  test::writeBytes(dir / "half.jpg", bytes.substr(0, bytes.size() / 2));
+  expectErrorNaming(readImage(dir / "half.jpg"), dir / "half.jpg");
+  test::writeBytes(dir / "header.jpg", bytes.substr(0, 20));
+  expectErrorNaming(readImage(dir / "header.jpg"), dir / "header.jpg");
 }
 
 TEST(ImageIoDescription, RoundTripsInEveryFormatThatHasOne) {

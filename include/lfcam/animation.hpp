@@ -1,5 +1,6 @@
 // Animations of rendered photographs (focus pulls, orbits of the observer): looping GIFs through
-// OpenImageIO's GIF writer (its own palette per frame), and MP4 videos through FFmpeg's libraries
+// giflib (each frame its own 256-colour palette: exact when it has no more colours, else by
+// median cut), and MP4 videos through FFmpeg's libraries
 // (H.264 by libx264 when libavcodec has it, else MPEG-4 part 2). Both sRGB-encoded 8-bit.
 #pragma once
 

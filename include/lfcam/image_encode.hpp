@@ -1,5 +1,5 @@
 // Image files in memory: JPEG and PNG bytes for the viewer's answers and the living picture,
-// through OpenImageIO's in-memory output (the same encoders as image_io.hpp, without a file).
+// through the same encoders as image_io.hpp, without a file.
 // Values are linear light and are written sRGB-encoded, 8 bits, like writeImage does.
 #pragma once
 

@@ -1,5 +1,6 @@
-// Image files through OpenImageIO, and PFM through io/pfm. Which reader runs is decided by the
-// file's first bytes; which writer runs, by the name's extension.
+// Image files: PNG, JPEG and OpenEXR through io/png_file, io/jpeg_file and io/exr_file (their own
+// libraries), PFM through io/pfm, TIFF through OpenImageIO. Which reader runs is decided by the file's first bytes; which writer runs, by the
+// name's extension.
 #include "lfcam/image_io.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -15,7 +16,9 @@
 
 #include "io/io_support.hpp"
 #include "io/pfm.hpp"
-#include "io/png_check.hpp"
+#include "io/exr_file.hpp"
+#include "io/jpeg_file.hpp"
+#include "io/png_file.hpp"
 #include "io/srgb.hpp"
 #include "lfcam/atomic_file.hpp"
 
@@ -91,9 +94,8 @@ OIIO::TypeDesc typeDescOf(SampleType type) {
 
 // Opens an image with OpenImageIO, keeping alpha unassociated (as PNG stores it) so that no
 // channel is silently multiplied or divided.
-Result<std::unique_ptr<OIIO::ImageInput>> openInput(const fs::path& path, Kind kind) {
+Result<std::unique_ptr<OIIO::ImageInput>> openInput(const fs::path& path) {
   LFCAM_TRY(io::checkReadableFile(path));
-  if (kind == Kind::Png) LFCAM_TRY(io::checkPngStructure(path));
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
   auto input = OIIO::ImageInput::open(path.string(), &config);
@@ -113,35 +115,71 @@ Result<std::unique_ptr<OIIO::ImageInput>> openInput(const fs::path& path, Kind k
 // A header that promises far more pixels than the file could hold is refused before allocating.
 // Deflate cannot compress better than about 1032:1, so a PNG's pixels fit in ~1100 x its size;
 // no other codec of these formats (LZW, PackBits, JPEG, EXR's RLE/ZIP/PIZ) reaches 4096:1.
-Status checkAgainstFileLength(const fs::path& path, Kind kind, const OIIO::ImageSpec& spec) {
+Status checkAgainstFileLength(const fs::path& path, Kind kind, int width, int height, int channels,
+                              std::size_t bytesPerSample) {
   {
     std::error_code ec;
     const std::uint64_t fileSize = fs::file_size(path, ec);
     const std::uint64_t ratio = kind == Kind::Png ? 1100 : 4096;
-    const auto bytes = checkedProduct({std::uint64_t(spec.width), std::uint64_t(spec.height),
-                                           std::uint64_t(spec.nchannels), spec.format.size()});
+    const auto bytes = checkedProduct({std::uint64_t(width), std::uint64_t(height), std::uint64_t(channels),
+                                       std::uint64_t(bytesPerSample)});
     if (!ec && (!bytes || *bytes / ratio > fileSize + 1024))
       return fileError(ErrorCode::Format, path,
-                       "truncated or corrupt: the header claims " + std::to_string(spec.width) + "x" +
-                           std::to_string(spec.height) + " pixels but the file has only " +
+                       "truncated or corrupt: the header claims " + std::to_string(width) + "x" +
+                           std::to_string(height) + " pixels but the file has only " +
                            std::to_string(fileSize) + " bytes");
   }
-  return io::checkSampleCount(path, {std::uint64_t(spec.width), std::uint64_t(spec.height),
-                                     std::uint64_t(spec.nchannels)});
+  return io::checkSampleCount(path, {std::uint64_t(width), std::uint64_t(height), std::uint64_t(channels)});
 }
 
+// Interleaved codes to planar linear floats. 8-bit colour is sRGB; alpha is linear everywhere.
+Image planarFromCodes(const unsigned char* buffer, int width, int height, int channels, int alphaChannel,
+                      SampleType type) {
+  const std::size_t pixels = std::size_t(width) * height;
+  Image image(width, height, channels);
+  for (int c = 0; c < channels; ++c) {
+    float* plane = image.plane(c);
+    const bool alpha = c == alphaChannel;
+    if (type == SampleType::UInt8) {
+      for (std::size_t i = 0; i < pixels; ++i) {
+        const std::uint8_t code = buffer[i * channels + c];
+        plane[i] = alpha ? code / 255.0f : io::linearFromSrgb8(code);
+      }
+    } else if (type == SampleType::UInt16) {
+      const auto* codes = reinterpret_cast<const std::uint16_t*>(buffer);
+      for (std::size_t i = 0; i < pixels; ++i) plane[i] = float(codes[i * channels + c] / 65535.0);
+    } else {
+      const auto* values = reinterpret_cast<const float*>(buffer);
+      for (std::size_t i = 0; i < pixels; ++i) plane[i] = values[i * channels + c];
+    }
+  }
+  return image;
+}
+
+// The alpha of a PNG (and of the formats written like it) is its last channel when it has two or four.
+int pngAlphaChannel(int channels) { return channels == 2 || channels == 4 ? channels - 1 : -1; }
+
+// PNG and JPEG go through their own libraries (io/png_file, io/jpeg_file), the rest through OpenImageIO.
+bool readByOwnLibrary(Kind kind) { return kind == Kind::Png || kind == Kind::Jpeg; }
+
+Result<io::InterleavedCodes> readCodes(const fs::path& path, Kind kind, bool pixels) {
+  const auto checkHeader = [&](const io::InterleavedCodes& header) {
+    return checkAgainstFileLength(path, kind, header.width, header.height, header.channels,
+                                  header.type == SampleType::UInt16 ? 2 : 1);
+  };
+  return kind == Kind::Png ? io::readPng(path, pixels, checkHeader) : io::readJpeg(path, pixels, checkHeader);
+}
 Result<Image> readWithOiio(const fs::path& path, Kind kind) {
-  auto opened = openInput(path, kind);
+  auto opened = openInput(path);
   if (!opened) return opened.error();
   OIIO::ImageInput& input = **opened;
   const OIIO::ImageSpec spec = input.spec();
-  LFCAM_TRY(checkAgainstFileLength(path, kind, spec));
+  LFCAM_TRY(checkAgainstFileLength(path, kind, spec.width, spec.height, spec.nchannels, spec.format.size()));
 
   const SampleType type = sampleTypeOf(spec);
   const OIIO::TypeDesc readType = typeDescOf(type);
   const int channels = spec.nchannels;
-  const std::size_t pixels = std::size_t(spec.width) * spec.height;
-  std::vector<unsigned char> buffer(pixels * channels * readType.size());
+  std::vector<unsigned char> buffer(std::size_t(spec.width) * spec.height * channels * readType.size());
   // Some readers (TIFF, JPEG) report damage as an error but still return true.
   if (!input.read_image(0, 0, 0, channels, readType, buffer.data()) || input.has_error()) {
     std::string reason = input.geterror();
@@ -149,26 +187,7 @@ Result<Image> readWithOiio(const fs::path& path, Kind kind) {
   }
   input.close();
 
-  // Interleaved codes to planar linear floats. 8-bit colour is sRGB; alpha is linear everywhere.
-  Image image(spec.width, spec.height, channels);
-  for (int c = 0; c < channels; ++c) {
-    float* plane = image.plane(c);
-    const bool alpha = c == spec.alpha_channel;
-    if (type == SampleType::UInt8) {
-      const auto* codes = buffer.data();
-      for (std::size_t i = 0; i < pixels; ++i) {
-        const std::uint8_t code = codes[i * channels + c];
-        plane[i] = alpha ? code / 255.0f : io::linearFromSrgb8(code);
-      }
-    } else if (type == SampleType::UInt16) {
-      const auto* codes = reinterpret_cast<const std::uint16_t*>(buffer.data());
-      for (std::size_t i = 0; i < pixels; ++i) plane[i] = float(codes[i * channels + c] / 65535.0);
-    } else {
-      const auto* values = reinterpret_cast<const float*>(buffer.data());
-      for (std::size_t i = 0; i < pixels; ++i) plane[i] = values[i * channels + c];
-    }
-  }
-  return image;
+  return planarFromCodes(buffer.data(), spec.width, spec.height, channels, spec.alpha_channel, type);
 }
 
 // What each writable format can hold: its natural sample type and channel counts.
@@ -193,18 +212,6 @@ FormatRules rulesFor(Kind kind) {
   return {"?", SampleType::Float32, {}, 0, false};
 }
 
-std::vector<std::string> channelNames(int channels) {
-  switch (channels) {
-    case 1: return {"Y"};
-    case 2: return {"Y", "A"};
-    case 3: return {"R", "G", "B"};
-    case 4: return {"R", "G", "B", "A"};
-  }
-  std::vector<std::string> names;
-  for (int c = 0; c < channels; ++c) names.push_back("channel" + std::to_string(c));
-  return names;
-}
-
 // Planar linear floats to interleaved codes of `type`.
 std::vector<unsigned char> encodePixels(const Image& image, SampleType type, int alphaChannel) {
   const int channels = image.channels();
@@ -227,20 +234,18 @@ std::vector<unsigned char> encodePixels(const Image& image, SampleType type, int
   return buffer;
 }
 
+// TIFF, the one format still written through OpenImageIO.
 Status writeWithOiio(const fs::path& temporary, const fs::path& path, const Image& image, SampleType type,
-                     const ImageWriteOptions& options, Kind kind) {
+                     const ImageWriteOptions& options) {
   auto output = OIIO::ImageOutput::create(temporary.string());
   if (!output) return fileError(ErrorCode::Unsupported, path, "cannot write this format: " + OIIO::geterror());
   OIIO::ImageSpec spec(image.width(), image.height(), image.channels(), typeDescOf(type));
-  spec.channelnames = channelNames(image.channels());
+  spec.channelnames = io::channelNames(image.channels());
   spec.alpha_channel = image.channels() == 2 || image.channels() == 4 ? image.channels() - 1 : -1;
   if (spec.alpha_channel >= 0) spec.attribute("oiio:UnassociatedAlpha", 1);
   spec.attribute("oiio:ColorSpace", type == SampleType::UInt8 ? "sRGB" : "Linear");
   if (!options.description.empty()) spec.attribute("ImageDescription", options.description);
-  if (kind == Kind::Jpeg) spec.attribute("Compression", "jpeg:" + std::to_string(options.jpegQuality));
-  if (kind == Kind::Tiff || kind == Kind::Exr) spec.attribute("compression", "zip");
-  // zlib level 1: a third of the time of OpenImageIO's default (6) for files ~13% larger.
-  if (kind == Kind::Png) spec.attribute("png:compressionLevel", 1);
+  spec.attribute("compression", "zip");
 
   const std::vector<unsigned char> pixels = encodePixels(image, type, spec.alpha_channel);
   if (!output->open(temporary.string(), spec) || !output->write_image(typeDescOf(type), pixels.data()) ||
@@ -257,6 +262,16 @@ Result<Image> readImage(const fs::path& path) {
   LFCAM_TRY(io::checkReadableFile(path));
   const Kind kind = kindFromContent(path);
   if (kind == Kind::Pfm) return io::readPfm(path);
+  if (kind == Kind::Exr)
+    return io::readExr(path, [&](const io::ExrHeader& header) {
+      return checkAgainstFileLength(path, kind, header.width, header.height, header.channels, sizeof(float));
+    });
+  if (readByOwnLibrary(kind)) {
+    auto codes = readCodes(path, kind, true);
+    if (!codes) return codes.error();
+    return planarFromCodes(codes->samples.data(), codes->width, codes->height, codes->channels,
+                           pngAlphaChannel(codes->channels), codes->type);
+  }
   return readWithOiio(path, kind);
 }
 
@@ -264,7 +279,17 @@ Result<ImageHeader> readImageHeader(const fs::path& path) {
   LFCAM_TRY(io::checkReadableFile(path));
   const Kind kind = kindFromContent(path);
   if (kind == Kind::Pfm) return io::readPfmHeader(path);
-  auto input = openInput(path, kind);
+  if (kind == Kind::Exr) {
+    auto header = io::readExrHeader(path);
+    if (!header) return header.error();
+    return ImageHeader{header->width, header->height, header->channels, SampleType::Float32};
+  }
+  if (readByOwnLibrary(kind)) {
+    auto codes = readCodes(path, kind, false);
+    if (!codes) return codes.error();
+    return ImageHeader{codes->width, codes->height, codes->channels, codes->type};
+  }
+  auto input = openInput(path);
   if (!input) return input.error();
   const OIIO::ImageSpec& spec = (*input)->spec();
   return ImageHeader{spec.width, spec.height, spec.nchannels, sampleTypeOf(spec)};
@@ -278,7 +303,17 @@ Result<std::string> readImageDescription(const fs::path& path) {
     if (!header) return header.error();
     return std::string();
   }
-  auto input = openInput(path, kind);
+  if (kind == Kind::Exr) {
+    auto header = io::readExrHeader(path);
+    if (!header) return header.error();
+    return header->description;
+  }
+  if (readByOwnLibrary(kind)) {
+    auto codes = readCodes(path, kind, false);
+    if (!codes) return codes.error();
+    return codes->description;
+  }
+  auto input = openInput(path);
   if (!input) return input.error();
   return std::string((*input)->spec().get_string_attribute("ImageDescription"));
 }
@@ -317,7 +352,14 @@ Status writeImage(const fs::path& path, const Image& image, const ImageWriteOpti
 
   return writeFileAtomically(path, [&](const fs::path& temporary) -> Status {
     if (kind == Kind::Pfm) return io::writePfm(temporary, image, path);
-    return writeWithOiio(temporary, path, image, type, options, kind);
+    if (kind == Kind::Exr) return io::writeExr(temporary, path, image, options.description);
+    if (kind == Kind::Png || kind == Kind::Jpeg) {
+      io::InterleavedCodes codes{image.width(), image.height(), image.channels(), type,
+                                 encodePixels(image, type, pngAlphaChannel(image.channels())), options.description};
+      return kind == Kind::Png ? io::writePng(temporary, path, codes)
+                               : io::writeJpeg(temporary, path, codes, options.jpegQuality);
+    }
+    return writeWithOiio(temporary, path, image, type, options);
   });
 }
 

@@ -71,4 +71,16 @@ std::string shortestNumber(double value) {
   return std::string(buffer, end);
 }
 
+std::vector<std::string> channelNames(int channels) {
+  switch (channels) {
+    case 1: return {"Y"};
+    case 2: return {"Y", "A"};
+    case 3: return {"R", "G", "B"};
+    case 4: return {"R", "G", "B", "A"};
+  }
+  std::vector<std::string> names;
+  for (int c = 0; c < channels; ++c) names.push_back("channel" + std::to_string(c));
+  return names;
+}
+
 }  // namespace lfcam::io

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "lfcam/memory_budget.hpp"
 #include "lfcam/result.hpp"
@@ -35,6 +36,10 @@ Status checkFinite(const std::filesystem::path& path, std::span<const float> val
 
 // Existing regular file, else an Io or Usage error naming it.
 Status checkReadableFile(const std::filesystem::path& path);
+
+// The channel names lfcam writes into files that name channels (OpenEXR, TIFF): Y, YA, RGB, RGBA,
+// else channel0, channel1, ...
+std::vector<std::string> channelNames(int channels);
 
 // Lower case copy of an extension such as ".PNG".
 std::string lowerExtension(const std::filesystem::path& path);

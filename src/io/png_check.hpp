@@ -1,7 +1,7 @@
-// A structural check of PNG files before OpenImageIO decodes them. OpenImageIO 2.4 leaves
-// libpng's default error handler in place, which prints to stderr; checking the chunk lengths
-// and CRCs first turns truncated and corrupted files into clean errors without reaching it.
-// (A file crafted with valid CRCs around a broken deflate stream still gets through to libpng.)
+// A structural check of PNG files before libpng decodes them (io/png_file): checking the chunk
+// lengths and CRCs first turns truncated and corrupted files into errors that say what is wrong.
+// (A file crafted with valid CRCs around a broken deflate stream still gets through to libpng,
+// whose message then names the problem.)
 #pragma once
 
 #include <filesystem>

@@ -1,12 +1,18 @@
-// Animated GIFs, and the choice of format by extension: animation.hpp.
+// Animated GIFs through giflib, and the choice of format by extension: animation.hpp.
 #include "lfcam/animation.hpp"
 
-#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <gif_lib.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
+#include <memory>
 #include <string>
+#include <unordered_map>
 
 #include "io/io_support.hpp"
 #include "lfcam/atomic_file.hpp"
@@ -47,30 +53,98 @@ Status writeAnimation(const std::filesystem::path& path, const std::vector<Image
   return makeError(ErrorCode::Usage, path.string() + ": animations are written as .gif or .mp4");
 }
 
+namespace {
+
+// A giflib file handle, closed (and freed) on every path.
+struct GifCloser {
+  void operator()(GifFileType* gif) const { EGifCloseFile(gif, nullptr); }
+};
+using GifFile = std::unique_ptr<GifFileType, GifCloser>;
+
+// The NETSCAPE2.0 application extension: loop forever.
+bool putLoopForever(GifFileType* gif) {
+  static const GifByteType application[] = {'N', 'E', 'T', 'S', 'C', 'A', 'P', 'E', '2', '.', '0'};
+  static const GifByteType loop[] = {1, 0, 0};  // sub-block 1, loop count 0 (forever), little-endian
+  return EGifPutExtensionLeader(gif, APPLICATION_EXT_FUNC_CODE) == GIF_OK &&
+         EGifPutExtensionBlock(gif, sizeof application, application) == GIF_OK &&
+         EGifPutExtensionBlock(gif, sizeof loop, loop) == GIF_OK && EGifPutExtensionTrailer(gif) == GIF_OK;
+}
+
+// The frame's own colours when it has at most 256 (exact), else false.
+bool exactPalette(const std::vector<std::uint8_t>& interleaved, GifColorType (&colours)[256],
+                  std::vector<GifByteType>& indices) {
+  std::unordered_map<std::uint32_t, GifByteType> index;
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    const std::uint8_t* rgb = &interleaved[3 * i];
+    const std::uint32_t key = std::uint32_t(rgb[0]) << 16 | std::uint32_t(rgb[1]) << 8 | rgb[2];
+    auto [at, added] = index.try_emplace(key, GifByteType(index.size()));
+    if (added) {
+      if (index.size() > 256) return false;
+      colours[at->second] = {rgb[0], rgb[1], rgb[2]};
+    }
+    indices[i] = at->second;
+  }
+  return true;
+}
+
+// One frame with its own 256-colour palette: its colours when it has no more, else giflib's
+// median cut; shown for `delay` hundredths of a second.
+bool putFrame(GifFileType* gif, const Image& frame, int delay) {
+  const int width = frame.width(), height = frame.height();
+  const std::size_t pixels = std::size_t(width) * height;
+  const std::vector<std::uint8_t> interleaved = srgb8Interleaved(frame);
+  std::vector<GifByteType> indices(pixels);
+  GifColorType colours[256] = {};
+  if (!exactPalette(interleaved, colours, indices)) {
+    std::vector<GifByteType> red(pixels), green(pixels), blue(pixels);
+    for (std::size_t i = 0; i < pixels; ++i)
+      red[i] = interleaved[3 * i], green[i] = interleaved[3 * i + 1], blue[i] = interleaved[3 * i + 2];
+    int colourCount = 256;
+    if (GifQuantizeBuffer(unsigned(width), unsigned(height), &colourCount, red.data(), green.data(), blue.data(),
+                          indices.data(), colours) == GIF_ERROR)
+      return false;
+  }
+  std::unique_ptr<ColorMapObject, void (*)(ColorMapObject*)> palette(GifMakeMapObject(256, colours),
+                                                                    GifFreeMapObject);
+  GraphicsControlBlock control{.DisposalMode = DISPOSE_DO_NOT, .UserInputFlag = false, .DelayTime = delay,
+                               .TransparentColor = NO_TRANSPARENT_COLOR};
+  GifByteType controlBytes[4];
+  EGifGCBToExtension(&control, controlBytes);
+  if (!palette || EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, sizeof controlBytes, controlBytes) == GIF_ERROR ||
+      EGifPutImageDesc(gif, 0, 0, width, height, false, palette.get()) == GIF_ERROR)
+    return false;
+  for (int y = 0; y < height; ++y)
+    if (EGifPutLine(gif, indices.data() + std::size_t(y) * width, width) == GIF_ERROR) return false;
+  return true;
+}
+
+}  // namespace
+
 Status writeAnimatedGif(const std::filesystem::path& path, const std::vector<Image>& frames, int framesPerSecond) {
   if (io::lowerExtension(path) != ".gif")
     return makeError(ErrorCode::Usage, path.string() + ": animated GIFs are written as .gif");
   LFCAM_TRY(checkAnimationFrames(path, frames, framesPerSecond));
-  const int width = frames[0].width(), height = frames[0].height();
+  const int delay = int(std::lround(100.0 / framesPerSecond));  // GIF delays are in hundredths of a second
 
   return writeFileAtomically(path, [&](const std::filesystem::path& temporary) -> Status {
-    auto out = OIIO::ImageOutput::create(temporary.string());
-    if (!out) return makeError(ErrorCode::Unsupported, path.string() + ": this OpenImageIO cannot write GIF");
-    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-    const int rate[2] = {framesPerSecond, 1};
-    spec.attribute("FramesPerSecond", OIIO::TypeRational, rate);
-    spec.attribute("gif:LoopCount", 0);  // forever
-    std::vector<OIIO::ImageSpec> specs(frames.size(), spec);
-    if (!out->open(temporary.string(), int(specs.size()), specs.data()))
-      return makeError(ErrorCode::Io, path.string() + ": " + out->geterror());
-    for (std::size_t f = 0; f < frames.size(); ++f) {
-      if (f > 0 && !out->open(temporary.string(), spec, OIIO::ImageOutput::AppendSubimage))
-        return makeError(ErrorCode::Io, path.string() + ": " + out->geterror());
-      const std::vector<std::uint8_t> pixels = srgb8Interleaved(frames[f]);
-      if (!out->write_image(OIIO::TypeDesc::UINT8, pixels.data()))
-        return makeError(ErrorCode::Io, path.string() + ": " + out->geterror());
-    }
-    if (!out->close()) return makeError(ErrorCode::Io, path.string() + ": " + out->geterror());
+    // Opened here, not by EGifOpenFileName, so the file gets the usual permissions (0666 less umask).
+    const int descriptor = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    if (descriptor < 0) return makeError(ErrorCode::Io, path.string() + ": cannot write: " + std::strerror(errno));
+    int error = 0;
+    GifFile gif(EGifOpenFileHandle(descriptor, &error));
+    if (!gif) ::close(descriptor);
+    const auto failed = [&] {
+      const char* reason = GifErrorString(gif ? gif->Error : error);
+      return makeError(ErrorCode::Io, path.string() + ": cannot write: " + (reason ? reason : "unknown error"));
+    };
+    if (!gif) return failed();
+    EGifSetGifVersion(gif.get(), true);
+    if (EGifPutScreenDesc(gif.get(), frames[0].width(), frames[0].height(), 8, 0, nullptr) == GIF_ERROR ||
+        !putLoopForever(gif.get()))
+      return failed();
+    for (const Image& frame : frames)
+      if (!putFrame(gif.get(), frame, delay)) return failed();
+    if (EGifCloseFile(gif.release(), &error) == GIF_ERROR) return failed();
     return {};
   });
 }

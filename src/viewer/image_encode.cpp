@@ -1,11 +1,10 @@
-// JPEG and PNG bytes in memory: OpenImageIO writing through an IOVecOutput proxy.
+// JPEG and PNG bytes in memory, through io/jpeg_file and io/png_file (libjpeg, libpng).
 #include "lfcam/image_encode.hpp"
-
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 
 #include <vector>
 
+#include "io/jpeg_file.hpp"
+#include "io/png_file.hpp"
 #include "io/srgb.hpp"
 #include "lfcam/parallel.hpp"
 
@@ -28,20 +27,9 @@ Result<std::string> encodeImage(const Image& image, const EncodeOptions& options
       }
   });
 
-  const bool jpeg = options.format == EncodedFormat::Jpeg;
-  const char* name = jpeg ? "memory.jpg" : "memory.png";
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput proxy(bytes);
-  auto output = OIIO::ImageOutput::create(name);
-  if (!output) return makeError(ErrorCode::Unsupported, "encodeImage: no encoder: " + OIIO::geterror());
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  if (jpeg) spec.attribute("Compression", "jpeg:" + std::to_string(options.jpegQuality));
-  else spec.attribute("png:compressionLevel", 1);
-  output->set_ioproxy(&proxy);
-  if (!output->open(name, spec) || !output->write_image(OIIO::TypeDesc::UINT8, codes.data()) || !output->close())
-    return makeError(ErrorCode::Io, "encodeImage: " + output->geterror());
-  return std::string(bytes.begin(), bytes.end());
+  io::InterleavedCodes file{width, height, channels, SampleType::UInt8, std::move(codes), {}};
+  if (options.format == EncodedFormat::Png) return io::encodePng(file);
+  return io::encodeJpeg(file, options.jpegQuality);
 }
 
 std::string base64Encode(const std::string& bytes) {
