@@ -126,15 +126,13 @@ Result<HciScores> scoreHci(const Image& estimate, const Image& truth, const Imag
   double* const badPix[] = {&scores.badPix001, &scores.badPix003, &scores.badPix007};
   const double thresholds[] = {0.01, 0.03, 0.07};
   for (int i = 0; i < 3; ++i) {
-    auto at = scoreDisparity(estimate, truth, thresholds[i], border);
-    if (!at) return at.error();
-    *badPix[i] = at->badPix;
-    scores.mse100 = at->mse100;
-    scores.pixels = at->pixels;
+    LFCAM_ASSIGN_OR_RETURN(auto at, scoreDisparity(estimate, truth, thresholds[i], border));
+    *badPix[i] = at.badPix;
+    scores.mse100 = at.mse100;
+    scores.pixels = at.pixels;
   }
-  auto rough = bumpiness(estimate, truth, planes, border);
-  if (!rough) return rough.error();
-  scores.bumpiness = *rough;
+  LFCAM_ASSIGN_OR_RETURN(auto rough, bumpiness(estimate, truth, planes, border));
+  scores.bumpiness = rough;
   return scores;
 }
 

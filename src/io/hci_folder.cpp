@@ -61,19 +61,18 @@ Result<ViewGrid> placeHciViews(const fs::path& folder, const fs::path& configFol
   fs::path configPath = folder / "parameters.cfg";
   if (!fs::exists(configPath, ec)) configPath = configFolder / "parameters.cfg";
   if (fs::exists(configPath, ec)) {  // a folder of that name is refused by the reader
-    auto parameters = readHciParameters(configPath);
-    if (!parameters) return parameters.error();
-    if (parameters->camerasX || parameters->camerasY) {
-      if (!parameters->camerasX || !parameters->camerasY)
+    LFCAM_ASSIGN_OR_RETURN(auto parameters, readHciParameters(configPath));
+    if (parameters.camerasX || parameters.camerasY) {
+      if (!parameters.camerasX || !parameters.camerasY)
         return fileError(ErrorCode::Format, configPath, "num_cams_x and num_cams_y must both be positive integers");
-      grid.nu = *parameters->camerasX;
-      grid.nv = *parameters->camerasY;
+      grid.nu = parameters.camerasX;
+      grid.nv = parameters.camerasY;
       gridFromConfig = true;
     }
-    grid.metadata.disparityMin = parameters->disparityMin;
-    grid.metadata.disparityMax = parameters->disparityMax;
+    grid.metadata.disparityMin = parameters.disparityMin;
+    grid.metadata.disparityMax = parameters.disparityMax;
     // The virtual camera, for metric distances (hci_parameters.hpp).
-    if (auto optics = hciOptics(*parameters)) grid.metadata.optics = optics;
+    if (auto optics = hciOptics(parameters)) grid.metadata.optics = optics;
   }
   if (grid.nu == 0) {
     // No parameters.cfg: a square grid.

@@ -89,17 +89,15 @@ Result<HciParameters> parseHciParameters(std::string_view text, const std::strin
   const double huge = 1e12;
   auto readDouble = [&](const char* key, std::optional<double>& target, double low, double high) -> Status {
     if (const Line* line = find(key)) {
-      auto value = parseNumber(name, key, *line, low, high, false);
-      if (!value) return value.error();
-      target = *value;
+      LFCAM_ASSIGN_OR_RETURN(auto value, parseNumber(name, key, *line, low, high, false));
+      target = value;
     }
     return {};
   };
   auto readInt = [&](const char* key, std::optional<int>& target, double high) -> Status {
     if (const Line* line = find(key)) {
-      auto value = parseNumber(name, key, *line, 1, high, true);
-      if (!value) return value.error();
-      target = int(*value);
+      LFCAM_ASSIGN_OR_RETURN(auto value, parseNumber(name, key, *line, 1, high, true));
+      target = int(value);
     }
     return {};
   };

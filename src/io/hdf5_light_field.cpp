@@ -192,19 +192,16 @@ Result<OpenedFile> openLightFieldFile(const fs::path& path) {
   const hid_t file = opened.file->get();
 
   // Identity: files of other kinds are refused, files without the tag are accepted by layout.
-  auto tag = readStringAttribute(path, file, "lfcam_format");
-  if (!tag) return tag.error();
-  if (*tag && **tag != kFormatTag)
-    return fileError(ErrorCode::Format, path, "an HDF5 file of another kind (lfcam_format = '" + **tag + "')");
-  auto version = readNumberAttribute(path, file, "lfcam_version");
-  if (!version) return version.error();
-  if (*version && **version > kFormatVersion)
+  LFCAM_ASSIGN_OR_RETURN(auto tag, readStringAttribute(path, file, "lfcam_format"));
+  if (tag && *tag != kFormatTag)
+    return fileError(ErrorCode::Format, path, "an HDF5 file of another kind (lfcam_format = '" + *tag + "')");
+  LFCAM_ASSIGN_OR_RETURN(auto version, readNumberAttribute(path, file, "lfcam_version"));
+  if (version && *version > kFormatVersion)
     return fileError(ErrorCode::Unsupported, path,
-                     "written by a newer lfcam (format version " + std::to_string(int(**version)) + ")");
-  auto axes = readStringAttribute(path, file, "axes");
-  if (!axes) return axes.error();
-  if (*axes && **axes != kAxes)
-    return fileError(ErrorCode::Unsupported, path, "axes '" + **axes + "' are not supported (expected " + kAxes + ")");
+                     "written by a newer lfcam (format version " + std::to_string(int(*version)) + ")");
+  LFCAM_ASSIGN_OR_RETURN(auto axes, readStringAttribute(path, file, "axes"));
+  if (axes && *axes != kAxes)
+    return fileError(ErrorCode::Unsupported, path, "axes '" + *axes + "' are not supported (expected " + kAxes + ")");
 
   if (H5Lexists(file, "lightfield", H5P_DEFAULT) <= 0)
     return fileError(ErrorCode::Format, path,
@@ -212,30 +209,28 @@ Result<OpenedFile> openLightFieldFile(const fs::path& path) {
   opened.samples = std::make_unique<Handle>(H5Dopen2(file, "lightfield", H5P_DEFAULT), H5Dclose);
   if (!opened.samples->valid())
     return hdf5Error(ErrorCode::Format, path, "/lightfield is not a readable dataset");
-  auto dims = floatDatasetDims(path, opened.samples->get(), "/lightfield", 5, kAxes);
-  if (!dims) return dims.error();
+  LFCAM_ASSIGN_OR_RETURN(auto dims, floatDatasetDims(path, opened.samples->get(), "/lightfield", 5, kAxes));
   LightFieldShape& shape = opened.info.shape;
-  shape = {.nu = int((*dims)[1]), .nv = int((*dims)[0]), .ns = int((*dims)[4]), .nt = int((*dims)[3]),
-           .channels = int((*dims)[2])};
+  shape = {.nu = int(dims[1]), .nv = int(dims[0]), .ns = int(dims[4]), .nt = int(dims[3]),
+           .channels = int(dims[2])};
   // Samples the file cannot hold mean a corrupt header (or chunks never written): deflate, the
   // only filter lfcam writes, compresses at most about 1032:1.
   {
     std::error_code ec;
     const std::uint64_t fileSize = fs::file_size(path, ec);
-    const auto bytes = checkedProduct({(*dims)[0], (*dims)[1], (*dims)[2], (*dims)[3], (*dims)[4], sizeof(float)});
+    const auto bytes = checkedProduct({dims[0], dims[1], dims[2], dims[3], dims[4], sizeof(float)});
     if (!ec && (!bytes || *bytes / 1100 > fileSize + 4096))
       return fileError(ErrorCode::Format, path,
                        "truncated or corrupt: /lightfield claims " + formatBytes(bytes.value_or(UINT64_MAX)) +
                            " of samples but the file has only " + std::to_string(fileSize) + " bytes");
   }
-  LFCAM_TRY(checkSampleCount(path, {(*dims)[0], (*dims)[1], (*dims)[2], (*dims)[3], (*dims)[4]}));
+  LFCAM_TRY(checkSampleCount(path, {dims[0], dims[1], dims[2], dims[3], dims[4]}));
 
   if (H5Lexists(file, "weight", H5P_DEFAULT) > 0) {
     opened.weight = std::make_unique<Handle>(H5Dopen2(file, "weight", H5P_DEFAULT), H5Dclose);
     if (!opened.weight->valid()) return hdf5Error(ErrorCode::Format, path, "/weight is not a readable dataset");
-    auto weightDims = floatDatasetDims(path, opened.weight->get(), "/weight", 4, "v,u,t,s");
-    if (!weightDims) return weightDims.error();
-    if (*weightDims != std::vector<hsize_t>{(*dims)[0], (*dims)[1], (*dims)[3], (*dims)[4]})
+    LFCAM_ASSIGN_OR_RETURN(auto weightDims, floatDatasetDims(path, opened.weight->get(), "/weight", 4, "v,u,t,s"));
+    if (weightDims != std::vector<hsize_t>{dims[0], dims[1], dims[3], dims[4]})
       return fileError(ErrorCode::Format, path, "/weight does not match the dimensions of /lightfield");
     opened.info.hasWeight = true;
   }
@@ -246,9 +241,8 @@ Result<OpenedFile> openLightFieldFile(const fs::path& path) {
   const char* names[6] = {"lens_step_mm", "spatial_step_mm", "lens_to_microlens_mm",
                           "focal_length_mm", "disparity_min", "disparity_max"};
   for (int i = 0; i < 6; ++i) {
-    auto number = readNumberAttribute(path, file, names[i]);
-    if (!number) return number.error();
-    numbers[i] = *number;
+    LFCAM_ASSIGN_OR_RETURN(auto number, readNumberAttribute(path, file, names[i]));
+    numbers[i] = number;
   }
   const int opticsGiven = int(bool(numbers[0])) + int(bool(numbers[1])) + int(bool(numbers[2]));
   if (opticsGiven == 3) {
@@ -260,9 +254,8 @@ Result<OpenedFile> openLightFieldFile(const fs::path& path) {
   }
   metadata.disparityMin = numbers[4];
   metadata.disparityMax = numbers[5];
-  auto source = readStringAttribute(path, file, "source");
-  if (!source) return source.error();
-  metadata.source = source->value_or("");
+  LFCAM_ASSIGN_OR_RETURN(auto source, readStringAttribute(path, file, "source"));
+  metadata.source = source.value_or("");
   opened.info.format = LightFieldFormat::Hdf5;
   return opened;
 }
@@ -457,17 +450,15 @@ Status refuseWhatCrashesLibhdf5(const fs::path& path) {
 Result<LightFieldInfo> probeHdf5(const fs::path& path) {
   Hdf5Session session;
   LFCAM_TRY(refuseWhatCrashesLibhdf5(path));
-  auto opened = openLightFieldFile(path);
-  if (!opened) return opened.error();
-  return opened->info;
+  LFCAM_ASSIGN_OR_RETURN(auto opened, openLightFieldFile(path));
+  return opened.info;
 }
 
 Result<LightField> readHdf5(const fs::path& path, const ProgressCallback& progress) {
   Hdf5Session session;
   LFCAM_TRY(refuseWhatCrashesLibhdf5(path));
-  auto opened = openLightFieldFile(path);
-  if (!opened) return opened.error();
-  return readOpened(path, *opened, progress);
+  LFCAM_ASSIGN_OR_RETURN(auto opened, openLightFieldFile(path));
+  return readOpened(path, opened, progress);
 }
 
 Status writeHdf5(const fs::path& file, const LightField& lightField, const ProgressCallback& progress,

@@ -170,9 +170,8 @@ Result<io::InterleavedCodes> readCodes(const fs::path& path, Kind kind, bool pix
   return kind == Kind::Png ? io::readPng(path, pixels, checkHeader) : io::readJpeg(path, pixels, checkHeader);
 }
 Result<Image> readWithOiio(const fs::path& path, Kind kind) {
-  auto opened = openInput(path);
-  if (!opened) return opened.error();
-  OIIO::ImageInput& input = **opened;
+  LFCAM_ASSIGN_OR_RETURN(auto opened, openInput(path));
+  OIIO::ImageInput& input = *opened;
   const OIIO::ImageSpec spec = input.spec();
   LFCAM_TRY(checkAgainstFileLength(path, kind, spec.width, spec.height, spec.nchannels, spec.format.size()));
 
@@ -267,10 +266,9 @@ Result<Image> readImage(const fs::path& path) {
       return checkAgainstFileLength(path, kind, header.width, header.height, header.channels, sizeof(float));
     });
   if (readByOwnLibrary(kind)) {
-    auto codes = readCodes(path, kind, true);
-    if (!codes) return codes.error();
-    return planarFromCodes(codes->samples.data(), codes->width, codes->height, codes->channels,
-                           pngAlphaChannel(codes->channels), codes->type);
+    LFCAM_ASSIGN_OR_RETURN(auto codes, readCodes(path, kind, true));
+    return planarFromCodes(codes.samples.data(), codes.width, codes.height, codes.channels,
+                           pngAlphaChannel(codes.channels), codes.type);
   }
   return readWithOiio(path, kind);
 }
@@ -280,18 +278,15 @@ Result<ImageHeader> readImageHeader(const fs::path& path) {
   const Kind kind = kindFromContent(path);
   if (kind == Kind::Pfm) return io::readPfmHeader(path);
   if (kind == Kind::Exr) {
-    auto header = io::readExrHeader(path);
-    if (!header) return header.error();
-    return ImageHeader{header->width, header->height, header->channels, SampleType::Float32};
+    LFCAM_ASSIGN_OR_RETURN(auto header, io::readExrHeader(path));
+    return ImageHeader{header.width, header.height, header.channels, SampleType::Float32};
   }
   if (readByOwnLibrary(kind)) {
-    auto codes = readCodes(path, kind, false);
-    if (!codes) return codes.error();
-    return ImageHeader{codes->width, codes->height, codes->channels, codes->type};
+    LFCAM_ASSIGN_OR_RETURN(auto codes, readCodes(path, kind, false));
+    return ImageHeader{codes.width, codes.height, codes.channels, codes.type};
   }
-  auto input = openInput(path);
-  if (!input) return input.error();
-  const OIIO::ImageSpec& spec = (*input)->spec();
+  LFCAM_ASSIGN_OR_RETURN(auto input, openInput(path));
+  const OIIO::ImageSpec& spec = (input)->spec();
   return ImageHeader{spec.width, spec.height, spec.nchannels, sampleTypeOf(spec)};
 }
 
@@ -299,23 +294,19 @@ Result<std::string> readImageDescription(const fs::path& path) {
   LFCAM_TRY(io::checkReadableFile(path));
   const Kind kind = kindFromContent(path);
   if (kind == Kind::Pfm) {
-    auto header = io::readPfmHeader(path);  // PFM has no place for one; still check the file
-    if (!header) return header.error();
+    LFCAM_TRY(io::readPfmHeader(path));  // PFM has no place for one; still check the file
     return std::string();
   }
   if (kind == Kind::Exr) {
-    auto header = io::readExrHeader(path);
-    if (!header) return header.error();
-    return header->description;
+    LFCAM_ASSIGN_OR_RETURN(auto header, io::readExrHeader(path));
+    return header.description;
   }
   if (readByOwnLibrary(kind)) {
-    auto codes = readCodes(path, kind, false);
-    if (!codes) return codes.error();
-    return codes->description;
+    LFCAM_ASSIGN_OR_RETURN(auto codes, readCodes(path, kind, false));
+    return codes.description;
   }
-  auto input = openInput(path);
-  if (!input) return input.error();
-  return std::string((*input)->spec().get_string_attribute("ImageDescription"));
+  LFCAM_ASSIGN_OR_RETURN(auto input, openInput(path));
+  return std::string((input)->spec().get_string_attribute("ImageDescription"));
 }
 
 bool looksLikeImageFile(const fs::path& path) {

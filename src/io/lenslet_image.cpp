@@ -57,9 +57,8 @@ std::optional<ViewsPerLens> parseDescription(const std::string& description) {
 // (which needs the pixels: `image` is read on demand and kept for the caller).
 Result<ViewsPerLens> viewsPerLens(const fs::path& path, const LightFieldReadOptions& options,
                                   std::optional<Image>& image) {
-  auto description = readImageDescription(path);
-  if (!description) return description.error();
-  if (auto views = parseDescription(*description)) return *views;
+  LFCAM_ASSIGN_OR_RETURN(auto description, readImageDescription(path));
+  if (auto views = parseDescription(description)) return *views;
   if (options.lensletViews) {
     if (*options.lensletViews < 1)
       return fileError(ErrorCode::Usage, path,
@@ -67,9 +66,8 @@ Result<ViewsPerLens> viewsPerLens(const fs::path& path, const LightFieldReadOpti
     return ViewsPerLens{*options.lensletViews, *options.lensletViews, true};
   }
   if (!image) {
-    auto read = readImage(path);
-    if (!read) return read.error();
-    image = std::move(*read);
+    LFCAM_ASSIGN_OR_RETURN(auto read, readImage(path));
+    image = std::move(read);
   }
   const MacroPixelPeriod nu = estimateMacroPixelPeriod(*image, true);
   const MacroPixelPeriod nv = estimateMacroPixelPeriod(*image, false);
@@ -97,16 +95,13 @@ Result<LightFieldShape> shapeOf(const fs::path& path, int width, int height, int
 }  // namespace
 
 Result<LightFieldInfo> probeLensletImage(const fs::path& path, const LightFieldReadOptions& options) {
-  auto header = readImageHeader(path);
-  if (!header) return header.error();
+  LFCAM_ASSIGN_OR_RETURN(auto header, readImageHeader(path));
   std::optional<Image> image;
-  auto views = viewsPerLens(path, options, image);
-  if (!views) return views.error();
-  auto shape = shapeOf(path, header->width, header->height, header->channels, *views);
-  if (!shape) return shape.error();
+  LFCAM_ASSIGN_OR_RETURN(auto views, viewsPerLens(path, options, image));
+  LFCAM_ASSIGN_OR_RETURN(auto shape, shapeOf(path, header.width, header.height, header.channels, views));
   LightFieldInfo info;
   info.format = LightFieldFormat::LensletImage;
-  info.shape = *shape;
+  info.shape = shape;
   info.metadata.source = path.string();
   return info;
 }
@@ -114,29 +109,26 @@ Result<LightFieldInfo> probeLensletImage(const fs::path& path, const LightFieldR
 Result<LightField> readLensletImage(const fs::path& path, const LightFieldReadOptions& options,
                                     const ProgressCallback& progress) {
   std::optional<Image> image;
-  auto views = viewsPerLens(path, options, image);
-  if (!views) return views.error();
+  LFCAM_ASSIGN_OR_RETURN(auto views, viewsPerLens(path, options, image));
   if (!image) {
-    auto read = readImage(path);
-    if (!read) return read.error();
-    image = std::move(*read);
+    LFCAM_ASSIGN_OR_RETURN(auto read, readImage(path));
+    image = std::move(read);
   }
-  auto shape = shapeOf(path, image->width(), image->height(), image->channels(), *views);
-  if (!shape) return shape.error();
+  LFCAM_ASSIGN_OR_RETURN(auto shape, shapeOf(path, image->width(), image->height(), image->channels(), views));
 
-  LFCAM_TRY(checkSampleCount(path, {shape->views(), shape->viewPixels(), std::uint64_t(shape->channels)}));
-  LightField lightField(*shape);
+  LFCAM_TRY(checkSampleCount(path, {shape.views(), shape.viewPixels(), std::uint64_t(shape.channels)}));
+  LightField lightField(shape);
   lightField.metadata.source = path.string();
-  const int nu = shape->nu, nv = shape->nv;
+  const int nu = shape.nu, nv = shape.nv;
   for (int v = 0; v < nv; ++v)
     for (int u = 0; u < nu; ++u) {
-      for (int c = 0; c < shape->channels; ++c)
-        for (int t = 0; t < shape->nt; ++t) {
+      for (int c = 0; c < shape.channels; ++c)
+        for (int t = 0; t < shape.nt; ++t) {
           const float* row = image->row(t * nv + v, c);
-          float* out = lightField.plane(u, v, c) + std::size_t(t) * shape->ns;
-          for (int s = 0; s < shape->ns; ++s) out[s] = row[s * nu + u];
+          float* out = lightField.plane(u, v, c) + std::size_t(t) * shape.ns;
+          for (int s = 0; s < shape.ns; ++s) out[s] = row[s * nu + u];
         }
-      if (progress) progress(double(v * nu + u + 1) / double(shape->views()));
+      if (progress) progress(double(v * nu + u + 1) / double(shape.views()));
     }
   return lightField;
 }

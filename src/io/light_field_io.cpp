@@ -32,13 +32,12 @@ Result<Source> identify(const fs::path& path, const LightFieldReadOptions& optio
   if (fs::is_directory(status)) {
     const bool decide = options.viewNumberOrder == ViewNumberOrder::Auto;
     auto grid = io::findViewGrid(path, decide ? ViewNumberOrder::RowFirst : options.viewNumberOrder);
-    if (!grid) return grid.error();
+    LFCAM_TRY(grid);
     if (decide && grid->format == LightFieldFormat::RowColumnFolder) {
-      auto order = io::detectViewNumberOrder(*grid);
-      if (!order) return order.error();
-      if (*order == ViewNumberOrder::ColumnFirst) {
+      LFCAM_ASSIGN_OR_RETURN(auto order, io::detectViewNumberOrder(*grid));
+      if (order == ViewNumberOrder::ColumnFirst) {
         grid = io::findViewGrid(path, ViewNumberOrder::ColumnFirst);
-        if (!grid) return grid.error();
+        LFCAM_TRY(grid);
       }
     }
     const LightFieldFormat format = grid->format;
@@ -80,9 +79,8 @@ Status writeFolder(const fs::path& path, const LightField& lightField, LightFiel
                            "); write to a new folder or remove them");
   std::vector<std::string> written;
   LFCAM_TRY(writeFolderAtomically(path, [&](const fs::path& temporary) -> Status {
-    auto names = io::writeViewFolder(temporary, lightField, format, options, progress, path);
-    if (!names) return names.error();
-    written = std::move(*names);
+    LFCAM_ASSIGN_OR_RETURN(auto names, io::writeViewFolder(temporary, lightField, format, options, progress, path));
+    written = std::move(names);
     return {};
   }));
   // Views left from an earlier, larger grid would make the folder read as something else.
@@ -103,34 +101,31 @@ const char* formatName(LightFieldFormat format) {
 }
 
 Result<LightFieldFormat> detectLightFieldFormat(const fs::path& path) {
-  auto source = identify(path);
-  if (!source) return source.error();
-  return source->format;
+  LFCAM_ASSIGN_OR_RETURN(auto source, identify(path));
+  return source.format;
 }
 
 Result<LightFieldInfo> probeLightField(const fs::path& path, const LightFieldReadOptions& options) {
-  auto source = identify(path, options);
-  if (!source) return source.error();
-  switch (source->format) {
+  LFCAM_ASSIGN_OR_RETURN(auto source, identify(path, options));
+  switch (source.format) {
     case LightFieldFormat::Hdf5: return io::probeHdf5(path);
     case LightFieldFormat::LensletImage: return io::probeLensletImage(path, options);
     case LightFieldFormat::HciFolder:
-    case LightFieldFormat::RowColumnFolder: return io::probeViewGrid(*source->grid);
+    case LightFieldFormat::RowColumnFolder: return io::probeViewGrid(source.grid);
   }
   return fileError(ErrorCode::Unsupported, path, "unknown light-field format");
 }
 
 Result<LightField> readLightField(const fs::path& path, const LightFieldReadOptions& options,
                                   const ProgressCallback& progress) {
-  auto source = identify(path, options);
-  if (!source) return source.error();
+  LFCAM_ASSIGN_OR_RETURN(auto source, identify(path, options));
   if (progress) progress(0.0);
   auto lightField = [&]() -> Result<LightField> {
-    switch (source->format) {
+    switch (source.format) {
       case LightFieldFormat::Hdf5: return io::readHdf5(path, progress);
       case LightFieldFormat::LensletImage: return io::readLensletImage(path, options, progress);
       case LightFieldFormat::HciFolder:
-      case LightFieldFormat::RowColumnFolder: return io::readViewGrid(*source->grid, progress);
+      case LightFieldFormat::RowColumnFolder: return io::readViewGrid(source.grid, progress);
     }
     return fileError(ErrorCode::Unsupported, path, "unknown light-field format");
   }();

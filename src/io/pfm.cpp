@@ -92,15 +92,13 @@ bool startsLikePfm(std::span<const unsigned char> head) {
 }
 
 Result<ImageHeader> readPfmHeader(const fs::path& path) {
-  auto layout = parseHeader(path);
-  if (!layout) return layout.error();
-  return ImageHeader{layout->width, layout->height, layout->channels, SampleType::Float32};
+  LFCAM_ASSIGN_OR_RETURN(auto layout, parseHeader(path));
+  return ImageHeader{layout.width, layout.height, layout.channels, SampleType::Float32};
 }
 
 Result<Image> readPfm(const fs::path& path) {
-  auto parsed = parseHeader(path);
-  if (!parsed) return parsed.error();
-  const PfmLayout& layout = *parsed;
+  LFCAM_ASSIGN_OR_RETURN(auto parsed, parseHeader(path));
+  const PfmLayout& layout = parsed;
 
   std::vector<float> interleaved(layout.dataBytes / sizeof(float));
   std::ifstream in(path, std::ios::binary);

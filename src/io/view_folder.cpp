@@ -50,16 +50,14 @@ Status checkViewMatches(const ViewGrid& grid, std::size_t index, int width, int 
 // The shape from the first view; with checkAll, every view's header must agree with it (cheap:
 // no pixels are decoded, but a damaged or mismatched view is found without reading samples).
 Result<LightFieldInfo> shapeFromHeaders(const ViewGrid& grid, bool checkAll) {
-  auto first = readImageHeader(grid.files.front());
-  if (!first) return first.error();
+  LFCAM_ASSIGN_OR_RETURN(auto first, readImageHeader(grid.files.front()));
   LightFieldInfo info;
   info.format = grid.format;
-  info.shape = {.nu = grid.nu, .nv = grid.nv, .ns = first->width, .nt = first->height, .channels = first->channels};
+  info.shape = {.nu = grid.nu, .nv = grid.nv, .ns = first.width, .nt = first.height, .channels = first.channels};
   info.metadata = grid.metadata;
   for (std::size_t i = 1; checkAll && i < grid.files.size(); ++i) {
-    auto header = readImageHeader(grid.files[i]);
-    if (!header) return header.error();
-    LFCAM_TRY(checkViewMatches(grid, i, header->width, header->height, header->channels, info.shape));
+    LFCAM_ASSIGN_OR_RETURN(auto header, readImageHeader(grid.files[i]));
+    LFCAM_TRY(checkViewMatches(grid, i, header.width, header.height, header.channels, info.shape));
   }
   return info;
 }
@@ -91,13 +89,12 @@ Result<ViewGrid> findViewGrid(const fs::path& path, ViewNumberOrder order) {
   // The views in the folder itself, else in its 'views' subfolder (as exported by some toolboxes).
   for (const fs::path& folder : {path, path / "views"}) {
     if (!fs::is_directory(folder, ec)) continue;
-    auto listing = listViews(folder, order);
-    if (!listing) return listing.error();
-    if (!listing->hci.empty() && !listing->rowColumn.empty())
+    LFCAM_ASSIGN_OR_RETURN(auto listing, listViews(folder, order));
+    if (!listing.hci.empty() && !listing.rowColumn.empty())
       return fileError(ErrorCode::Format, folder,
                        "holds both HCI views (input_CamNNN.png) and row/column views (*_RR_CC.png); keep one layout");
-    if (!listing->hci.empty()) return placeHciViews(folder, path, std::move(listing->hci));
-    if (!listing->rowColumn.empty()) return placeRowColumnViews(folder, std::move(listing->rowColumn), order);
+    if (!listing.hci.empty()) return placeHciViews(folder, path, std::move(listing.hci));
+    if (!listing.rowColumn.empty()) return placeRowColumnViews(folder, std::move(listing.rowColumn), order);
   }
   return fileError(ErrorCode::Format, path,
                    "no light-field views found (expected input_CamNNN.png or NAME_RR_CC.png files, here or in views/)");
@@ -106,9 +103,9 @@ Result<ViewGrid> findViewGrid(const fs::path& path, ViewNumberOrder order) {
 Result<LightFieldInfo> probeViewGrid(const ViewGrid& grid) { return shapeFromHeaders(grid, true); }
 
 Result<LightField> readViewGrid(const ViewGrid& grid, const ProgressCallback& progress) {
-  auto info = shapeFromHeaders(grid, false);  // every view is checked as it is read
-  if (!info) return info.error();
-  const LightFieldShape& shape = info->shape;
+  // Every view is checked as it is read.
+  LFCAM_ASSIGN_OR_RETURN(auto info, shapeFromHeaders(grid, false));
+  const LightFieldShape& shape = info.shape;
   LFCAM_TRY(checkSampleCount(grid.folder, {std::uint64_t(shape.views()), shape.viewPixels(),
                                            std::uint64_t(shape.channels)}));
   LightField lightField(shape);
@@ -117,10 +114,9 @@ Result<LightField> readViewGrid(const ViewGrid& grid, const ProgressCallback& pr
       shape.views(),
       [&](std::size_t index) -> Status {
         const fs::path& file = grid.files[index];
-        auto view = readImage(file);
-        if (!view) return view.error();
-        LFCAM_TRY(checkViewMatches(grid, index, view->width(), view->height(), view->channels(), shape));
-        lightField.setSubApertureImage(int(index % std::size_t(grid.nu)), int(index / std::size_t(grid.nu)), *view);
+        LFCAM_ASSIGN_OR_RETURN(auto view, readImage(file));
+        LFCAM_TRY(checkViewMatches(grid, index, view.width(), view.height(), view.channels(), shape));
+        lightField.setSubApertureImage(int(index % std::size_t(grid.nu)), int(index / std::size_t(grid.nu)), view);
         return {};
       },
       progress));

@@ -46,22 +46,20 @@ void addDepthCommand(CLI::App& app, Job& job) {
       for (const DepthKnob& knob : depthKnobs())  // a flag given wins over the file
         if (command->count(std::string("--") + knob.name) > 0)
           std::visit([&](auto member) { depthOptions.*member = options->flags.*member; }, knob.member);
-      auto lightField = loadInput(options->input);
-      if (!lightField) return lightField.error();
-      if (!options->distance.empty() && !(lightField->metadata.optics && lightField->metadata.optics->focalLengthMm))
+      LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
+      if (!options->distance.empty() && !(lightField.metadata.optics && lightField.metadata.optics->focalLengthMm))
         return makeError(ErrorCode::Usage, options->input.path +
                                                ": no optics metadata with a focal length, so --distance cannot be "
                                                "computed; the disparity map needs none");
-      auto depth = estimateDepth(*lightField, depthOptions);
+      auto depth = estimateDepth(lightField, depthOptions);
       if (!depth) return makeError(depth.error().code, options->input.path + ": " + depth.error().message);
       LFCAM_TRY(writeImage(options->output, depth->disparity));
       if (!options->confidence.empty()) LFCAM_TRY(writeImage(options->confidence, depth->confidence));
       if (!options->png.empty())
         LFCAM_TRY(writeImage(options->png, colourMap(depth->disparity, depth->disparityMin, depth->disparityMax)));
       if (!options->distance.empty()) {
-        auto distance = distanceMap(lightField->metadata, depth->disparity);
-        if (!distance) return distance.error();
-        LFCAM_TRY(writeImage(options->distance, *distance));
+        LFCAM_ASSIGN_OR_RETURN(auto distance, distanceMap(lightField.metadata, depth->disparity));
+        LFCAM_TRY(writeImage(options->distance, distance));
       }
       return {};
     };

@@ -14,10 +14,9 @@ namespace lfcam::cli {
 namespace {
 
 Result<Image> readDisparity(const std::string& path) {
-  auto image = readImage(path);
-  if (!image) return image.error();
-  if (image->channels() != 1)
-    return makeError(ErrorCode::Usage, path + ": " + std::to_string(image->channels()) +
+  LFCAM_ASSIGN_OR_RETURN(auto image, readImage(path));
+  if (image.channels() != 1)
+    return makeError(ErrorCode::Usage, path + ": " + std::to_string(image.channels()) +
                                            " channels, but a disparity map has one (as the benchmark's .pfm)");
   return image;
 }
@@ -49,25 +48,22 @@ void addScoreCommand(CLI::App& app, Job& job) {
                     "print a JSON object (badpix_0.01, badpix_0.03, badpix_0.07, mse_x100, bumpiness, pixels)");
   command->callback([options, &job] {
     job = [options]() -> Status {
-      auto estimate = readDisparity(options->estimate);
-      if (!estimate) return estimate.error();
-      auto truth = readDisparity(options->truth);
-      if (!truth) return truth.error();
-      if (estimate->width() != truth->width() || estimate->height() != truth->height())
-        return makeError(ErrorCode::Usage, options->truth + ": the ground truth is " + sizeOf(*truth) + " but " +
-                                               options->estimate + " is " + sizeOf(*estimate));
+      LFCAM_ASSIGN_OR_RETURN(auto estimate, readDisparity(options->estimate));
+      LFCAM_ASSIGN_OR_RETURN(auto truth, readDisparity(options->truth));
+      if (estimate.width() != truth.width() || estimate.height() != truth.height())
+        return makeError(ErrorCode::Usage, options->truth + ": the ground truth is " + sizeOf(truth) + " but " +
+                                               options->estimate + " is " + sizeOf(estimate));
       Image planes;
       if (!options->mask.empty()) {
-        auto mask = readImage(options->mask);
-        if (!mask) return mask.error();
-        if (mask->width() != truth->width() || mask->height() != truth->height())
-          return makeError(ErrorCode::Usage, options->mask + ": the mask is " + sizeOf(*mask) +
-                                                 " but the ground truth " + sizeOf(*truth));
-        planes = Image(mask->width(), mask->height(), 1);
-        for (int y = 0; y < mask->height(); ++y)
-          for (int x = 0; x < mask->width(); ++x) planes.at(x, y, 0) = mask->at(x, y, 0);
+        LFCAM_ASSIGN_OR_RETURN(auto mask, readImage(options->mask));
+        if (mask.width() != truth.width() || mask.height() != truth.height())
+          return makeError(ErrorCode::Usage, options->mask + ": the mask is " + sizeOf(mask) +
+                                                 " but the ground truth " + sizeOf(truth));
+        planes = Image(mask.width(), mask.height(), 1);
+        for (int y = 0; y < mask.height(); ++y)
+          for (int x = 0; x < mask.width(); ++x) planes.at(x, y, 0) = mask.at(x, y, 0);
       }
-      auto scores = scoreHci(*estimate, *truth, planes, options->border);
+      auto scores = scoreHci(estimate, truth, planes, options->border);
       if (!scores) return makeError(scores.error().code, options->truth + ": " + scores.error().message);
       const std::string planesFrom = options->mask.empty() ? "the ground truth's planes" : options->mask;
       if (options->json) {
