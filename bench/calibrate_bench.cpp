@@ -93,7 +93,8 @@ void BM_CalibrateIllumWhite(benchmark::State& state) {
   auto nearestError = [&](std::array<double, 2> p) {
     const double c = std::cos(truth.rotationRad), s = std::sin(truth.rotationRad);
     const double dx = p[0] - truth.origin[0], dy = p[1] - truth.origin[1];
-    const int j0 = int(std::round((-s * dx + c * dy) / truth.pitchY)), i0 = int(std::round((c * dx + s * dy) / truth.pitchX));
+    const int j0 = int(std::round((-s * dx + c * dy) / truth.pitchY)),
+              i0 = int(std::round((c * dx + s * dy) / truth.pitchX));
     double best = INFINITY;
     for (int j = j0 - 1; j <= j0 + 1; ++j)
       for (int i = i0 - 2; i <= i0 + 2; ++i) {
@@ -112,7 +113,12 @@ void BM_CalibrateIllumWhite(benchmark::State& state) {
       std::max(nearestError(grid.centre(0, 0)), nearestError(grid.centre(grid.columns - 1, grid.rows - 1)));
   state.counters["fit_rms_px"] = grid.fit.rmsResidualPx;
 }
-BENCHMARK(BM_CalibrateIllumWhite)->Arg(CalibrationOptions{}.fitCentres)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_CalibrateIllumWhite)
+    ->Arg(CalibrationOptions{}.fitCentres)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
 
 // The floor: one 3x3 median pass over the same image.
 void BM_Median3x3IllumWhite(benchmark::State& state) {

@@ -78,8 +78,9 @@ Synthetic synthesise(int width, int height) {
         }
         const double r = std::sqrt(best) / (0.475 * kPitch);
         const double disc = std::clamp((1.0 - r) * 6.0, 0.0, 1.0);
-        const double vignetting = 1.0 - 0.3 * ((x - width / 2.0) * (x - width / 2.0) + (y - height / 2.0) * (y - height / 2.0)) /
-                                            (0.25 * (double(width) * width + double(height) * height));
+        const double vignetting =
+            1.0 - 0.3 * ((x - width / 2.0) * (x - width / 2.0) + (y - height / 2.0) * (y - height / 2.0)) /
+                      (0.25 * (double(width) * width + double(height) * height));
         const double white = 800 * disc * vignetting;
         const double texture = 0.5 + 0.4 * std::sin(0.21 * bi + 0.05 * ex) * std::cos(0.17 * bj - 0.04 * ey);
         out.white.mosaic.at(x, y, 0) = float(std::round(64 + white));
@@ -117,7 +118,9 @@ void runDecode(benchmark::State& state, DemosaicMethod method, Sampling sampling
 }
 
 void BM_DecodeIllum(benchmark::State& state) { runDecode(state, DemosaicMethod::MalvarHeCutler, Sampling::SubPixel); }
-void BM_DecodeIllumIntegral(benchmark::State& state) { runDecode(state, DemosaicMethod::MalvarHeCutler, Sampling::IntegralPitch); }
+void BM_DecodeIllumIntegral(benchmark::State& state) {
+  runDecode(state, DemosaicMethod::MalvarHeCutler, Sampling::IntegralPitch);
+}
 void BM_DecodeIllumHA(benchmark::State& state) { runDecode(state, DemosaicMethod::HamiltonAdams, Sampling::SubPixel); }
 
 template <class F>
@@ -138,8 +141,11 @@ void BM_DecodeIllumLightField(benchmark::State& state) {
     state.PauseTiming();
     options.demosaic = DemosaicMethod::MalvarHeCutler;
     malvar += seconds([&] { benchmark::DoNotOptimize(decodeLightField(s.raw, s.grid, options)); });
-    awareStep += seconds([&] { benchmark::DoNotOptimize(demosaic(s.raw.mosaic, ColorFilter::GRBG, DemosaicMethod::LightFieldAware, &s.grid)); });
-    malvarStep += seconds([&] { benchmark::DoNotOptimize(demosaic(s.raw.mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler)); });
+    awareStep += seconds([&] {
+      benchmark::DoNotOptimize(demosaic(s.raw.mosaic, ColorFilter::GRBG, DemosaicMethod::LightFieldAware, &s.grid));
+    });
+    malvarStep += seconds(
+        [&] { benchmark::DoNotOptimize(demosaic(s.raw.mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler)); });
     state.ResumeTiming();
   }
   state.counters["ratio"] = aware / malvar;
@@ -151,9 +157,11 @@ void BM_DemosaicReference(benchmark::State& state) {
   static const Synthetic s = synthesise(1024, 1024);
   Image mosaic = s.raw.mosaic.copy();
   for (auto _ : state) {
-    const double fast = seconds([&] { benchmark::DoNotOptimize(demosaic(mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler)); });
-    const double reference =
-        seconds([&] { benchmark::DoNotOptimize(demosaicReference(mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler)); });
+    const double fast =
+        seconds([&] { benchmark::DoNotOptimize(demosaic(mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler)); });
+    const double reference = seconds([&] {
+      benchmark::DoNotOptimize(demosaicReference(mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler));
+    });
     state.counters["ratio"] = reference / fast;
   }
 }

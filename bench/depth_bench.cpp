@@ -39,14 +39,16 @@ namespace {
 using lfcam::LightField;
 
 // The real data: LFCAM_DATA_DIR, as the tests take it, else the folder beside the repository.
-const std::string kFolder = std::string(std::getenv("LFCAM_DATA_DIR") ? std::getenv("LFCAM_DATA_DIR")
-                                                                       : LFCAM_SHARED_DATA_DIR) + "/hci-antinous";
+const std::string kFolder =
+    std::string(std::getenv("LFCAM_DATA_DIR") ? std::getenv("LFCAM_DATA_DIR") : LFCAM_SHARED_DATA_DIR) +
+    "/hci-antinous";
 
 const LightField& antinous() {
   static const LightField lightField = [] {
     auto read = lfcam::readLightField(kFolder);
     if (read) return std::move(read).value();
-    std::fprintf(stderr, "depth_bench: cannot read %s (%s);\n  using a layered-planes light field of 9x9 views, 512x512\n",
+    std::fprintf(stderr,
+                 "depth_bench: cannot read %s (%s);\n  using a layered-planes light field of 9x9 views, 512x512\n",
                  kFolder.c_str(), read.error().message.c_str());
     return std::move(lfcam::renderLayeredPlanes(lfcam::defaultLayeredPlanesScene(9, 512)).lightField);
   }();
@@ -83,9 +85,7 @@ void BM_Depth(benchmark::State& state) {
 }
 
 // CPU time of the process (every thread): on a shared machine closer to the work done than wall time.
-double processCpuSeconds() {
-  return double(std::clock()) / CLOCKS_PER_SEC;
-}
+double processCpuSeconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
 // Process CPU time of estimateDepth with `without` and with the default options, alternating
 // (the state's iterations each run both); returns with / without - 1.
@@ -167,8 +167,8 @@ void printScores() {
   std::printf("%-28s %8s %8s %9s %9s %7s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100", "bumpiness", "seconds");
   for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes()) {
     const auto start = std::chrono::steady_clock::now();
-    auto depth = lfcam::estimateDepth(scene.lightField, {.disparityMin = scene.disparityMin,
-                                                         .disparityMax = scene.disparityMax});
+    auto depth = lfcam::estimateDepth(scene.lightField,
+                                      {.disparityMin = scene.disparityMin, .disparityMax = scene.disparityMax});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (depth) printRow(scene.name, *depth, scene.disparity, seconds);
   }

@@ -60,7 +60,8 @@ Plane backdrop(const CameraModel& model, double z, std::uint64_t seed) {
 void addNoise(LightField& lightField, unsigned seed) {
   std::mt19937 generator(seed);
   std::normal_distribution<float> normal(0.0f, 1.0f);
-  for (float& sample : lightField.samples()) sample += std::sqrt(0.0004f + 0.002f * std::max(sample, 0.0f)) * normal(generator);
+  for (float& sample : lightField.samples())
+    sample += std::sqrt(0.0004f + 0.002f * std::max(sample, 0.0f)) * normal(generator);
 }
 
 DepthScene withRange(std::string name, LightField lightField, Image disparity) {
@@ -106,7 +107,8 @@ std::vector<DepthScene> developmentScenes(int size) {
     Scene scene = emptyScene(model);
     scene.planes.push_back(backdrop(model, 2.2 * d, 3));
     const double h = halfField(model, 1.3 * d);
-    Plane floor = plane("floor", {0, 0.5 * h, 1.3 * d}, 3 * h, 0.6 * d, noise(h / 10, {0.3f, 0.2f, 0.1f}, {0.8f, 0.7f, 0.5f}, 5));
+    Plane floor =
+        plane("floor", {0, 0.5 * h, 1.3 * d}, 3 * h, 0.6 * d, noise(h / 10, {0.3f, 0.2f, 0.1f}, {0.8f, 0.7f, 0.5f}, 5));
     floor.tiltXDeg = 80;
     scene.planes.push_back(floor);
     scenes.push_back(simulated("slanted floor", scene, model));
@@ -122,8 +124,9 @@ std::vector<DepthScene> developmentScenes(int size) {
     };
     for (int i = 0; i < facets; ++i) {
       const auto a = point(-end + 2 * end * i / facets), b = point(-end + 2 * end * (i + 1) / facets);
-      Plane facet = plane("facet", {(a[0] + b[0]) / 2, 0, (a[1] + b[1]) / 2}, 1.02 * std::hypot(b[0] - a[0], b[1] - a[1]),
-                          2.5 * across, noise(across / 12, {0.15f, 0.1f, 0.3f}, {0.85f, 0.8f, 0.9f}, 6));
+      Plane facet =
+          plane("facet", {(a[0] + b[0]) / 2, 0, (a[1] + b[1]) / 2}, 1.02 * std::hypot(b[0] - a[0], b[1] - a[1]),
+                2.5 * across, noise(across / 12, {0.15f, 0.1f, 0.3f}, {0.85f, 0.8f, 0.9f}, 6));
       facet.tiltYDeg = std::atan2(b[1] - a[1], b[0] - a[0]) * 180 / M_PI;  // its right side away right of the axis
       scene.planes.push_back(facet);
     }
@@ -143,17 +146,21 @@ std::vector<DepthScene> developmentScenes(int size) {
   {  // Texture at the scale of a pixel, and of half a pixel, on two cards.
     Scene scene = emptyScene(model);
     const double far = 1.8 * d, hf = halfField(model, far);
-    scene.planes.push_back(plane("far", {0, 0, far}, 2.6 * hf, 2.6 * hf, noise(1.0 * hf / size, {0.2f, 0.2f, 0.2f}, {0.8f, 0.8f, 0.8f}, 14)));
+    scene.planes.push_back(plane("far", {0, 0, far}, 2.6 * hf, 2.6 * hf,
+                                 noise(1.0 * hf / size, {0.2f, 0.2f, 0.2f}, {0.8f, 0.8f, 0.8f}, 14)));
     const double z = 0.85 * d, h = halfField(model, z);
-    scene.planes.push_back(plane("near", {-0.2 * h, 0.1 * h, z}, 0.9 * h, 0.9 * h, noise(2.0 * h / size, {0.1f, 0.3f, 0.1f}, {0.9f, 0.9f, 0.6f}, 15)));
+    scene.planes.push_back(plane("near", {-0.2 * h, 0.1 * h, z}, 0.9 * h, 0.9 * h,
+                                 noise(2.0 * h / size, {0.1f, 0.3f, 0.1f}, {0.9f, 0.9f, 0.6f}, 15)));
     scenes.push_back(simulated("fine texture", scene, model));
   }
   {  // Texture of 4 % contrast.
     Scene scene = emptyScene(model);
     const double far = 1.6 * d, hf = halfField(model, far);
-    scene.planes.push_back(plane("far", {0, 0, far}, 2.6 * hf, 2.6 * hf, noise(hf / 10, {0.48f, 0.48f, 0.48f}, {0.52f, 0.52f, 0.52f}, 16)));
+    scene.planes.push_back(plane("far", {0, 0, far}, 2.6 * hf, 2.6 * hf,
+                                 noise(hf / 10, {0.48f, 0.48f, 0.48f}, {0.52f, 0.52f, 0.52f}, 16)));
     const double z = 0.9 * d, h = halfField(model, z);
-    scene.planes.push_back(plane("near", {0.2 * h, 0, z}, 0.8 * h, 1.2 * h, noise(h / 8, {0.58f, 0.5f, 0.45f}, {0.62f, 0.54f, 0.49f}, 17)));
+    scene.planes.push_back(plane("near", {0.2 * h, 0, z}, 0.8 * h, 1.2 * h,
+                                 noise(h / 8, {0.58f, 0.5f, 0.45f}, {0.62f, 0.54f, 0.49f}, 17)));
     scenes.push_back(simulated("weak texture", scene, model));
   }
   return scenes;

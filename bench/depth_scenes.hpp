@@ -15,7 +15,7 @@ namespace lfcam::bench {
 struct DepthScene {
   std::string name;
   LightField lightField;
-  Image disparity;                   // exact, ns x nt, pixels per view step
+  Image disparity;                    // exact, ns x nt, pixels per view step
   double disparityMin, disparityMax;  // the range searched: the truth's, 0.25 wider each side
 };
 

@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
     }
     fclose(file);
     memcpy(copy, bytes, (size_t)size);
-    if (size > 0) sink = copy[size / 2];  /* keeps the copy from being elided */
+    if (size > 0) sink = copy[size / 2]; /* keeps the copy from being elided */
     free(bytes);
     free(copy);
   }

@@ -21,8 +21,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdint>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <span>
@@ -151,8 +151,8 @@ BENCHMARK(BM_RefocusIllum)->Unit(benchmark::kMillisecond)->UseManualTime();
 // Threads as the argument.
 void BM_RefocusThreads(benchmark::State& state) {
   const LightField& lightField = antinous();
-  timeAgainstFloor(state, lightField, [&] { return lfcam::refocus(lightField, 0.63).pixels().data(); },
-                   int(state.range(0)));
+  timeAgainstFloor(
+      state, lightField, [&] { return lfcam::refocus(lightField, 0.63).pixels().data(); }, int(state.range(0)));
 }
 BENCHMARK(BM_RefocusThreads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
 

@@ -32,7 +32,8 @@ double seconds(const auto& work) {
 double refocusSeconds() {
   static const double best = [] {
     double b = 1e30;
-    for (int i = 0; i < 5; ++i) b = std::min(b, seconds([] { benchmark::DoNotOptimize(lfcam::refocus(field(), 0.63)); }));
+    for (int i = 0; i < 5; ++i)
+      b = std::min(b, seconds([] { benchmark::DoNotOptimize(lfcam::refocus(field(), 0.63)); }));
     return b;
   }();
   return best;
@@ -46,12 +47,15 @@ void run(benchmark::State& state, const Work& work) {
   state.counters["ratio_to_refocus"] = total / double(state.iterations()) / denominator;
 }
 
-void BM_Refocus(benchmark::State& state) { run(state, [] { benchmark::DoNotOptimize(lfcam::refocus(field(), 0.63)); }); }
+void BM_Refocus(benchmark::State& state) {
+  run(state, [] { benchmark::DoNotOptimize(lfcam::refocus(field(), 0.63)); });
+}
 BENCHMARK(BM_Refocus)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_CircularAperture(benchmark::State& state) {
   run(state, [] {
-    benchmark::DoNotOptimize(lfcam::renderSyntheticPhoto(field(), {.slope = 0.63, .aperture = lfcam::Aperture::circle(2.5)}));
+    benchmark::DoNotOptimize(
+        lfcam::renderSyntheticPhoto(field(), {.slope = 0.63, .aperture = lfcam::Aperture::circle(2.5)}));
   });
 }
 BENCHMARK(BM_CircularAperture)->Unit(benchmark::kMillisecond)->UseRealTime();

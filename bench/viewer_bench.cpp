@@ -36,7 +36,8 @@ lfcam::LightField loadLightField() {
   const char* folder = LFCAM_SHARED_DATA_DIR "/hci-antinous";
   auto read = lfcam::readLightField(folder);
   if (read) return std::move(read).value();
-  std::fprintf(stderr, "viewer_bench: cannot read %s (%s);\n  using layered planes of the same size (9x9 views, 512x512 RGB)\n",
+  std::fprintf(stderr,
+               "viewer_bench: cannot read %s (%s);\n  using layered planes of the same size (9x9 views, 512x512 RGB)\n",
                folder, read.error().message.c_str());
   return std::move(lfcam::renderLayeredPlanes(lfcam::defaultLayeredPlanesScene(9, 512)).lightField);
 }

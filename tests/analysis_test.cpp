@@ -12,8 +12,7 @@ namespace {
 Image disc(int size, double radius) {
   Image image(size, size, 1);
   for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x)
-      image.at(x, y, 0) = std::hypot(x - size / 2, y - size / 2) <= radius ? 1.0f : 0.0f;
+    for (int x = 0; x < size; ++x) image.at(x, y, 0) = std::hypot(x - size / 2, y - size / 2) <= radius ? 1.0f : 0.0f;
   return image;
 }
 

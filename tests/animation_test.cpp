@@ -68,7 +68,8 @@ using DecodedGif = std::unique_ptr<GifFileType, GifCloser>;
 DecodedGif slurpGif(const fs::path& path) {
   int error = 0;
   DecodedGif gif(DGifOpenFileName(path.c_str(), &error));
-  if (!gif) ADD_FAILURE() << path << ": " << GifErrorString(error);
+  if (!gif)
+    ADD_FAILURE() << path << ": " << GifErrorString(error);
   else if (DGifSlurp(gif.get()) != GIF_OK) {
     ADD_FAILURE() << path << ": " << GifErrorString(gif->Error);
     gif.reset();
@@ -148,9 +149,8 @@ TEST(Animation, FailuresLeaveNoFile) {
   EXPECT_NE(missing.error().code, ErrorCode::Usage);
   EXPECT_FALSE(fs::exists(dir / "none"));
   // Usage errors: another extension, no frames, mixed sizes, a bad rate.
-  for (const Status& status :
-       {writeAnimation(dir / "clip.avi", frames, 10), writeAnimation(dir / "clip.mp4", {}, 10),
-        writeAnimation(dir / "clip.mp4", movingSquare(1, 8, 8, 3), 0)}) {
+  for (const Status& status : {writeAnimation(dir / "clip.avi", frames, 10), writeAnimation(dir / "clip.mp4", {}, 10),
+                               writeAnimation(dir / "clip.mp4", movingSquare(1, 8, 8, 3), 0)}) {
     ASSERT_FALSE(status);
     EXPECT_EQ(status.error().code, ErrorCode::Usage) << status.error().message;
   }

@@ -82,12 +82,13 @@ GridErrors compare(const LensletGrid& found, const LensletGrid& truth) {
 void expectAccurate(const LensletGrid& found, const LensletGrid& truth, const char* label) {
   constexpr double pitchTolerance = 1e-4;
   const GridErrors e = compare(found, truth);
-  std::printf("[%s] %s %dx%d (true %dx%d), pitch %.5f x %.5f px (true %.5f x %.5f), rotation %.5f deg; "
-              "centre RMS error %.4f px, rotation error %.5f deg, pitch error %.2e / %.2e; fit: %d found, %d used, "
-              "residual RMS %.4f px, max %.4f px\n",
-              label, packingName(found.packing), found.columns, found.rows, truth.columns, truth.rows, found.pitchX,
-              found.pitchY, truth.pitchX, truth.pitchY, found.rotationRad / kDeg, e.centreRms, e.rotationDeg, e.pitchX,
-              e.pitchY, found.fit.lensletsFound, found.fit.lensletsUsed, found.fit.rmsResidualPx, found.fit.maxResidualPx);
+  std::printf(
+      "[%s] %s %dx%d (true %dx%d), pitch %.5f x %.5f px (true %.5f x %.5f), rotation %.5f deg; "
+      "centre RMS error %.4f px, rotation error %.5f deg, pitch error %.2e / %.2e; fit: %d found, %d used, "
+      "residual RMS %.4f px, max %.4f px\n",
+      label, packingName(found.packing), found.columns, found.rows, truth.columns, truth.rows, found.pitchX,
+      found.pitchY, truth.pitchX, truth.pitchY, found.rotationRad / kDeg, e.centreRms, e.rotationDeg, e.pitchX,
+      e.pitchY, found.fit.lensletsFound, found.fit.lensletsUsed, found.fit.rmsResidualPx, found.fit.maxResidualPx);
   EXPECT_EQ(found.packing, truth.packing);
   EXPECT_LE(e.centreRms, 0.05);
   EXPECT_LE(e.rotationDeg, 0.005);
@@ -212,8 +213,10 @@ TEST(Calibrate, SymmetricCentreUnderPerImageRamps) {
   };
   const double perImage = moved(true), oneRamp = moved(false);
   const auto still = centre(flat, true);
-  std::printf("[symmetric centre] error %.4f px without a ramp; the ramp moves it %.4f px with each image's lever, "
-              "%.4f px with one ramp\n", std::hypot(still[0] - 60.3, still[1] - 60.7), perImage, oneRamp);
+  std::printf(
+      "[symmetric centre] error %.4f px without a ramp; the ramp moves it %.4f px with each image's lever, "
+      "%.4f px with one ramp\n",
+      std::hypot(still[0] - 60.3, still[1] - 60.7), perImage, oneRamp);
   EXPECT_LT(std::hypot(still[0] - 60.3, still[1] - 60.7), 0.05);  // bilinear samples of sharp edges
   EXPECT_LT(perImage, 0.01);
   EXPECT_LT(perImage, 0.2 * oneRamp);
@@ -254,7 +257,8 @@ TEST(Calibrate, TinyHexagonalImageWithoutHint) {
   auto grid = calibrateGrid(white, {});
   ASSERT_TRUE(grid.ok()) << grid.error().message;
   const GridErrors e = compare(*grid, gridFromCamera(camera));
-  std::printf("[tiny hex] %dx%d, centre RMS error %.4f px, pitch error %.2e\n", grid->columns, grid->rows, e.centreRms, e.pitchX);
+  std::printf("[tiny hex] %dx%d, centre RMS error %.4f px, pitch error %.2e\n", grid->columns, grid->rows, e.centreRms,
+              e.pitchX);
   EXPECT_EQ(grid->packing, Packing::Hexagonal);
   EXPECT_LE(e.centreRms, 0.1);
   EXPECT_LE(e.pitchX, 2e-3);
@@ -296,8 +300,7 @@ TEST(LensletGridJson, RoundTripsAndRejectsBadFiles) {
   EXPECT_NEAR(back->rotationRad, grid.rotationRad, 1e-15);
   EXPECT_EQ(back->hexParity, 1);
   EXPECT_EQ(back->fit.lensletsUsed, 990);
-  for (int j : {0, 1})
-    EXPECT_NEAR(back->centre(3, j)[0], grid.centre(3, j)[0], 1e-9);
+  for (int j : {0, 1}) EXPECT_NEAR(back->centre(3, j)[0], grid.centre(3, j)[0], 1e-9);
   // Row 0 is shifted when hexParity is 1.
   EXPECT_NEAR(grid.centre(0, 0)[0] - grid.origin[0], 0.5 * 14.29 * std::cos(0.001), 1e-9);
 
@@ -322,11 +325,13 @@ TEST(LensletHint, FromCameraJsonAndLytroMetadata) {
   EXPECT_NEAR(hint->pitchPx, 13.37, 1e-9);
   EXPECT_NEAR(hint->rotationRad, 0.5 * kDeg, 1e-12);
   EXPECT_EQ(hint->packing, Packing::Hexagonal);
-  const nlohmann::json lytro = {
-      {"devices",
-       {{"sensor", {{"pixelPitch", 1.4e-6}}},
-        {"mla", {{"tiling", "hexUniformRowMajor"}, {"lensPitch", 1.4e-5}, {"rotation", 0.002},
-                 {"sensorOffset", {{"x", 2.8e-6}, {"y", -1.4e-6}, {"z", 2.5e-5}}}}}}}};
+  const nlohmann::json lytro = {{"devices",
+                                 {{"sensor", {{"pixelPitch", 1.4e-6}}},
+                                  {"mla",
+                                   {{"tiling", "hexUniformRowMajor"},
+                                    {"lensPitch", 1.4e-5},
+                                    {"rotation", 0.002},
+                                    {"sensorOffset", {{"x", 2.8e-6}, {"y", -1.4e-6}, {"z", 2.5e-5}}}}}}}};
   auto fromLytro = lensletHintFromJson({{"frame", {{"metadata", lytro}}}}, "frame.json");
   ASSERT_TRUE(fromLytro.ok()) << fromLytro.error().message;
   EXPECT_NEAR(fromLytro->pitchPx, 10.0, 1e-9);
@@ -343,7 +348,8 @@ TEST(Median3x3, FastKernelMatchesReference) {
     Image image(w, h, 1);
     for (float& v : image.pixels()) v = value(random);
     const Image fast = median3x3(image), slow = median3x3Reference(image);
-    for (std::size_t k = 0; k < fast.pixels().size(); ++k) ASSERT_EQ(fast.pixels()[k], slow.pixels()[k]) << w << "x" << h;
+    for (std::size_t k = 0; k < fast.pixels().size(); ++k)
+      ASSERT_EQ(fast.pixels()[k], slow.pixels()[k]) << w << "x" << h;
   }
 }
 
@@ -357,9 +363,10 @@ TEST(CalibratePrepare, FastPathMatchesReference) {
     CalibrationTarget target;
     int channels;
   };
-  for (const Case& c : {Case{ColorFilter::Mono, CalibrationTarget::White, 1}, Case{ColorFilter::GRBG, CalibrationTarget::White, 1},
-                        Case{ColorFilter::RGGB, CalibrationTarget::Pinhole, 1}, Case{ColorFilter::Mono, CalibrationTarget::Pinhole, 2},
-                        Case{ColorFilter::BGGR, CalibrationTarget::Scene, 3}})
+  for (const Case& c :
+       {Case{ColorFilter::Mono, CalibrationTarget::White, 1}, Case{ColorFilter::GRBG, CalibrationTarget::White, 1},
+        Case{ColorFilter::RGGB, CalibrationTarget::Pinhole, 1}, Case{ColorFilter::Mono, CalibrationTarget::Pinhole, 2},
+        Case{ColorFilter::BGGR, CalibrationTarget::Scene, 3}})
     for (auto [w, h] : {std::pair{1, 1}, {2, 5}, {3, 3}, {37, 29}, {64, 300}}) {
       Image image(w, h, c.channels);
       for (float& v : image.pixels()) v = value(random);
@@ -377,7 +384,8 @@ TEST(CalibratePrepare, FastPathMatchesReference) {
         const int x0 = w / 3, y0 = h / 4, x1 = std::max(x0 + 1, w - w / 5), y1 = std::max(y0 + 1, h - h / 3);
         const Image part = calibrate_detail::prepareRegion(image, options, gains, x0, y0, x1, y1, smoothed);
         for (int y = y0; y < y1; ++y)
-          for (int x = x0; x < x1; ++x) ASSERT_EQ(part.at(x - x0, y - y0, 0), slow.at(x, y, 0)) << w << "x" << h << " at " << x << "," << y;
+          for (int x = x0; x < x1; ++x)
+            ASSERT_EQ(part.at(x - x0, y - y0, 0), slow.at(x, y, 0)) << w << "x" << h << " at " << x << "," << y;
       }
     }
 }

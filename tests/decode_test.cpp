@@ -2,13 +2,13 @@
 // captures against the simulator's ideal light field.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 #include <vector>
-#include <algorithm>
-#include <optional>
 
 #include <cstdint>
 
@@ -59,8 +59,8 @@ TEST(Decode, DemosaicKeepsFlatColoursAndMeasuredSamples) {
   grid.pitchX = grid.pitchY = 5;
   grid.columns = 4, grid.rows = 3;
   grid.origin = {2.5, 2.5};
-  for (DemosaicMethod method : {DemosaicMethod::MalvarHeCutler, DemosaicMethod::HamiltonAdams, DemosaicMethod::LensletAware,
-                                DemosaicMethod::LightFieldAware}) {
+  for (DemosaicMethod method : {DemosaicMethod::MalvarHeCutler, DemosaicMethod::HamiltonAdams,
+                                DemosaicMethod::LensletAware, DemosaicMethod::LightFieldAware}) {
     const Image out = demosaic(mosaic, ColorFilter::GRBG, method, &grid);
     for (int c = 0; c < 3; ++c)
       for (int y = 0; y < 12; ++y)
@@ -113,7 +113,8 @@ TEST(Decode, HotPixelRepairMatchesThePlainRule) {
           for (int dx = -step; dx <= step; dx += step)
             if ((dx || dy) && x + dx >= 0 && y + dy >= 0 && x + dx < 41 && y + dy < 23)
               around.push_back(mosaic.at(x + dx, y + dy, 0));
-        if (around.size() < 3 || mosaic.at(x, y, 0) <= *std::max_element(around.begin(), around.end()) + 0.25f) continue;
+        if (around.size() < 3 || mosaic.at(x, y, 0) <= *std::max_element(around.begin(), around.end()) + 0.25f)
+          continue;
         std::nth_element(around.begin(), around.begin() + std::ptrdiff_t(around.size() / 2), around.end());
         expected.at(x, y, 0) = around[around.size() / 2];
         ++count;
@@ -286,11 +287,11 @@ TEST(Decode, RejectsMismatchedInputs) {
 struct SimulatedCase {
   const char* name;
   Packing packing;
-  double pitchPx;      // of the microlens images on the sensor
+  double pitchPx;  // of the microlens images on the sensor
   double rotationDeg;
   std::array<double, 2> offsetMm;
   ColorFilter filter;
-  int size;            // sensor pixels across and down
+  int size;  // sensor pixels across and down
 };
 
 CameraModel caseCamera(const SimulatedCase& c) {
@@ -417,8 +418,10 @@ TEST(IdealLightFieldBoxFiltered, AgreesWithThePointSampledFieldWhereItMust) {
     EXPECT_EQ(maxDifference(one->samples(), point->samples()), 0.0) << name;
     EXPECT_EQ(maxDifference(four->weights(), point->weights()), 0.0) << name;
     const double filtered = maxDifference(four->samples(), point->samples());
-    if (std::string(name) == "white") EXPECT_LT(filtered, 1e-5);
-    else EXPECT_GT(filtered, 0.01);  // textured: the footprint's mean differs from its centre
+    if (std::string(name) == "white")
+      EXPECT_LT(filtered, 1e-5);
+    else
+      EXPECT_GT(filtered, 0.01);  // textured: the footprint's mean differs from its centre
   }
 }
 
@@ -454,9 +457,10 @@ TEST_P(DecodeSimulated, MatchesTheIdealLightField) {
   auto integral = decodeLightField(capture.raw, capture.grid, options);
   ASSERT_TRUE(integral.ok());
   const Score paper = score(*integral, *ideal);
-  std::printf("[ decode  ] %s: PSNR %.2f dB sub-pixel against the box-filtered ideal (%.0f%% of the aperture's "
-              "samples), %.2f dB against the point-sampled ideal; %.2f dB integral pitch\n",
-              c.name, subPixel.psnr, 100 * subPixel.coverage, pointSampled.psnr, paper.psnr);
+  std::printf(
+      "[ decode  ] %s: PSNR %.2f dB sub-pixel against the box-filtered ideal (%.0f%% of the aperture's "
+      "samples), %.2f dB against the point-sampled ideal; %.2f dB integral pitch\n",
+      c.name, subPixel.psnr, 100 * subPixel.coverage, pointSampled.psnr, paper.psnr);
   EXPECT_GT(subPixel.psnr, c.filter == ColorFilter::Mono ? kMonoPsnr : kColourPsnr);
   if (c.filter != ColorFilter::Mono) {
     // The light-field-aware demosaic: the defocused cards' missing colours from the same view of
@@ -490,8 +494,10 @@ TEST_P(DecodeSimulated, MatchesTheIdealLightField) {
   }
 }
 
-const SimulatedCase kSquareRggb{"square_13.37px_rot1_rggb", Packing::Square, 13.37, 1.0, {-0.02, 0.04}, ColorFilter::RGGB, 240};
-const SimulatedCase kHexGrbg{"hex_13.37px_rot0.7_grbg", Packing::Hexagonal, 13.37, 0.7, {0.05, 0.01}, ColorFilter::GRBG, 240};
+const SimulatedCase kSquareRggb{
+    "square_13.37px_rot1_rggb", Packing::Square, 13.37, 1.0, {-0.02, 0.04}, ColorFilter::RGGB, 240};
+const SimulatedCase kHexGrbg{
+    "hex_13.37px_rot0.7_grbg", Packing::Hexagonal, 13.37, 0.7, {0.05, 0.01}, ColorFilter::GRBG, 240};
 
 // The ceiling of any demosaic: the same scene simulated under all four Bayer layouts gives every
 // photosite's true red, green and blue; devignetted and decoded exactly as a demosaiced mosaic (the
@@ -531,14 +537,16 @@ TEST(DecodeSimulatedCeiling, PerfectDemosaicBoundsTheDemosaics) {
     }
     auto prepared = decode_detail::devignettedMosaic(capture.raw, capture.grid, options);
     ASSERT_TRUE(prepared.ok());
-    auto perfect = decode_detail::decodeDemosaiced(std::move(truth), std::move(prepared->weight), capture.raw, capture.grid, options);
+    auto perfect = decode_detail::decodeDemosaiced(std::move(truth), std::move(prepared->weight), capture.raw,
+                                                   capture.grid, options);
     ASSERT_TRUE(perfect.ok()) << perfect.error().message;
 
     const double ceiling = score(*perfect, *ideal).psnr, lightField = score(*aware, *ideal).psnr,
                  mhc = score(*malvar, *ideal).psnr;
-    std::printf("[ decode  ] %s: PSNR %.2f dB perfect demosaic (the ceiling), %.2f dB light-field-aware, %.2f dB "
-                "Malvar-He-Cutler\n",
-                c.name, ceiling, lightField, mhc);
+    std::printf(
+        "[ decode  ] %s: PSNR %.2f dB perfect demosaic (the ceiling), %.2f dB light-field-aware, %.2f dB "
+        "Malvar-He-Cutler\n",
+        c.name, ceiling, lightField, mhc);
     EXPECT_GT(ceiling, kCeilingPsnr) << c.name;
     EXPECT_GT(ceiling, lightField + 1.0) << c.name;
     EXPECT_GT(lightField, mhc + 1.5) << c.name;
@@ -611,9 +619,10 @@ TEST(DecodeSimulatedRefocus, SlopeHasTheIdealLightFieldsSign) {
   };
   const double decodedBest = sharpest(*decoded), idealBest = sharpest(*ideal);
   const double atKnown = sharpness(*decoded, known), atOpposite = sharpness(*decoded, -known);
-  std::printf("[ decode  ] card at slope %.3f: sharpest at %.2f decoded, %.2f ideal; decoded Laplacian variance "
-              "%.5f at the slope, %.5f at its opposite\n",
-              known, decodedBest, idealBest, atKnown, atOpposite);
+  std::printf(
+      "[ decode  ] card at slope %.3f: sharpest at %.2f decoded, %.2f ideal; decoded Laplacian variance "
+      "%.5f at the slope, %.5f at its opposite\n",
+      known, decodedBest, idealBest, atKnown, atOpposite);
   EXPECT_NEAR(idealBest, known, 0.1);
   EXPECT_NEAR(decodedBest, known, 0.1);
   EXPECT_GT(atKnown, 2 * atOpposite);
@@ -621,8 +630,9 @@ TEST(DecodeSimulatedRefocus, SlopeHasTheIdealLightFieldsSign) {
 
 INSTANTIATE_TEST_SUITE_P(
     Configurations, DecodeSimulated,
-    ::testing::Values(SimulatedCase{"square_13.37px_rot0.5_mono", Packing::Square, 13.37, 0.5, {0.03, -0.02}, ColorFilter::Mono, 240},
-                      kSquareRggb, kHexGrbg),
+    ::testing::Values(
+        SimulatedCase{"square_13.37px_rot0.5_mono", Packing::Square, 13.37, 0.5, {0.03, -0.02}, ColorFilter::Mono, 240},
+        kSquareRggb, kHexGrbg),
     [](const auto& param) {
       std::string name = param.param.name;
       for (char& ch : name)

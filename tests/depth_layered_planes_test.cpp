@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <limits>
 
-#include "lfcam/colour_map.hpp"
 #include "edof/depth_experiment.hpp"
+#include "lfcam/colour_map.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/disparity_scores.hpp"
 #include "lfcam/image_io.hpp"

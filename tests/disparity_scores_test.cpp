@@ -35,7 +35,7 @@ TEST(DisparityScores, BadPixAndMseCountErrorsAboveEachThreshold) {
 
 TEST(DisparityScores, PlanarMaskKeepsPlanesAndLeavesOutTheBandOfAnEdge) {
   const Image mask = planarMask(imageOf(64, 48, stepScene));
-  for (int x = 2; x < 62; ++x) {  // the repeated image border bends a slant in the outer two pixels
+  for (int x = 2; x < 62; ++x) {               // the repeated image border bends a slant in the outer two pixels
     const bool nearEdge = x >= 30 && x <= 33;  // two Scharr passes reach two pixels
     EXPECT_EQ(mask.at(x, 20, 0), nearEdge ? 0.0f : 1.0f) << x;
   }

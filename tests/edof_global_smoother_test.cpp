@@ -42,8 +42,8 @@ TEST(GlobalSmoother, OneRowMatchesADenseSolveOnRandomInputs) {
     const int width = 3 + int(generator() % 60);
     const float lambda = 0.1f + 20.0f * uniform(generator), sigma = 0.05f + 0.5f * uniform(generator);
     std::vector<float> guide(width), confidence(width), values(width);
-    for (int x = 0; x < width; ++x) guide[x] = uniform(generator), confidence[x] = uniform(generator),
-                                     values[x] = 4 * uniform(generator) - 2;
+    for (int x = 0; x < width; ++x)
+      guide[x] = uniform(generator), confidence[x] = uniform(generator), values[x] = 4 * uniform(generator) - 2;
     // One iteration on a single row: the row pass with lambda_0 = lambda / 2, a column pass that
     // links nothing; the result is S(c d) / S(c).
     std::vector<float> fast = values;

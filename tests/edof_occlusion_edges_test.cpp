@@ -72,8 +72,7 @@ TEST(OcclusionEdges, FattenedBackgroundReturnsToTheBackground) {
   reclaimOcclusionEdges(guide, 3, map.data());
   int wrong = 0;
   for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x)
-      wrong += map[std::size_t(y) * size + x] != (inside(x, y, x0, x1) ? 1.0f : -1.0f);
+    for (int x = 0; x < size; ++x) wrong += map[std::size_t(y) * size + x] != (inside(x, y, x0, x1) ? 1.0f : -1.0f);
   EXPECT_EQ(wrong, 0);
 
   // The other way round (the background over the square's edge) is left alone: pixels only move
@@ -87,8 +86,7 @@ TEST(OcclusionEdges, FattenedBackgroundReturnsToTheBackground) {
   // Band 0: off.
   std::vector<float> fattened(map.size());
   for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x)
-      fattened[std::size_t(y) * size + x] = inside(x, y, x0 - 2, x1 + 2) ? 1.0f : -1.0f;
+    for (int x = 0; x < size; ++x) fattened[std::size_t(y) * size + x] = inside(x, y, x0 - 2, x1 + 2) ? 1.0f : -1.0f;
   same = fattened;
   reclaimOcclusionEdges(guide, 0, same.data());
   EXPECT_EQ(same, fattened);
@@ -120,9 +118,10 @@ TEST(OcclusionEdges, LayeredPlanesLoseTheirFattenedBorders) {
       }
     besideBad[band > 0] = 100.0 * double(bad) / double(std::max(beside, 1L));
   }
-  std::printf("layered planes: BadPix(0.07) %.2f %% with occlusionBand 3, %.2f %% without; background within 3 px "
-              "of a nearer card %.1f %% bad with, %.1f %% without\n",
-              badPix[1], badPix[0], besideBad[1], besideBad[0]);
+  std::printf(
+      "layered planes: BadPix(0.07) %.2f %% with occlusionBand 3, %.2f %% without; background within 3 px "
+      "of a nearer card %.1f %% bad with, %.1f %% without\n",
+      badPix[1], badPix[0], besideBad[1], besideBad[0]);
   EXPECT_LT(badPix[1], badPix[0] - 1.0);
   EXPECT_LT(besideBad[1], besideBad[0] - 10.0);
 }

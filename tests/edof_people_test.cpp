@@ -138,10 +138,11 @@ class PeopleAllInFocus : public ::testing::Test {
       const double composite = laplacianVariance(cleanComposite, card.interior);
       const double compositeNoise = rmsDifference(result.photo, cleanComposite, card.interior);
       const double centreNoise = rmsDifference(centreNoisy, centreClean, card.interior);
-      std::printf("%-15s (disparity %+.2f, %4zu px): sharpness %.4g of best slice %.4g (%.1f%%); noise %.4f vs "
-                  "centre view %.4f (%.1fx)\n",
-                  card.name.c_str(), card.disparity, card.interior.size(), composite, best, 100 * composite / best,
-                  compositeNoise, centreNoise, centreNoise / compositeNoise);
+      std::printf(
+          "%-15s (disparity %+.2f, %4zu px): sharpness %.4g of best slice %.4g (%.1f%%); noise %.4f vs "
+          "centre view %.4f (%.1fx)\n",
+          card.name.c_str(), card.disparity, card.interior.size(), composite, best, 100 * composite / best,
+          compositeNoise, centreNoise, centreNoise / compositeNoise);
       EXPECT_GE(composite, 0.95 * best);
       EXPECT_GE(centreNoise, 3 * compositeNoise);
     }
@@ -237,16 +238,18 @@ TEST_F(PeopleAllInFocus, CostVolumeAggregatesSubsetsApart) {
   double total[2] = {};
   for (bool apart : {false, true})
     for (const LightField* lightField : {clean_, noisy_}) {
-      auto depth = edof::estimateDepth(*lightField, {.disparityMin = range.disparityMin,
-                                                     .disparityMax = range.disparityMax},
-                                       {.aggregateSubsetsApart = apart});
+      auto depth =
+          edof::estimateDepth(*lightField, {.disparityMin = range.disparityMin, .disparityMax = range.disparityMax},
+                              {.aggregateSubsetsApart = apart});
       ASSERT_TRUE(depth) << depth.error().message;
       auto scores = scoreDisparity(depth->disparity, *truth_, 0.07);
       ASSERT_TRUE(scores);
       total[apart] += scores->badPix;
     }
-  std::printf("people, noise-free + noisy: BadPix(0.07) %.2f %% with the cost volume's subsets aggregated apart, "
-              "%.2f %% without\n", total[1], total[0]);
+  std::printf(
+      "people, noise-free + noisy: BadPix(0.07) %.2f %% with the cost volume's subsets aggregated apart, "
+      "%.2f %% without\n",
+      total[1], total[0]);
   EXPECT_LT(total[1], total[0] - 0.8);
 }
 

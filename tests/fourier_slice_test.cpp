@@ -42,8 +42,8 @@ TEST(FourierSlice, MatchesTheSpatialQuadratureAwayFromTheBorders) {
   for (double slope : {-1.0, 0.5, 1.6}) {
     const Image fourier = refocuser->refocus(slope);
     // The Fourier slice interpolates between views (band-limited): compare with the quadrature.
-    auto quadrature = renderSyntheticPhoto(lightField, {.slope = slope},
-                                           {.method = RenderMethod::Quadrature, .supersampling = 4});
+    auto quadrature =
+        renderSyntheticPhoto(lightField, {.slope = slope}, {.method = RenderMethod::Quadrature, .supersampling = 4});
     ASSERT_TRUE(quadrature);
     const int margin = int(std::ceil(std::abs(slope) * 3)) + 2;
     const double psnr = interiorPsnr(fourier, *quadrature, margin);

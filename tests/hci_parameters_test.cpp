@@ -117,7 +117,7 @@ TEST(HciParameters, RefusesBadValuesNamingTheLine) {
     EXPECT_NE(p.error().message.find(c.expected), std::string::npos) << p.error().message;
     EXPECT_EQ(p.error().message.find('\n'), std::string::npos);
   }
-  EXPECT_FALSE(parseHciParameters(std::string(5000, 'x')));        // a line too long
+  EXPECT_FALSE(parseHciParameters(std::string(5000, 'x')));           // a line too long
   EXPECT_FALSE(parseHciParameters(std::string((1 << 20) + 1, '#')));  // a file too big
   EXPECT_FALSE(readHciParameters("/nonexistent/parameters.cfg"));
   // Unknown keys, comments, sections, ':' separators, CRLF and a repeated key (the last wins).
@@ -134,7 +134,8 @@ TEST(HciParameters, GarbageNeverCrashes) {
     std::string text;
     if (trial % 2 == 0) {
       const int length = int(generator() % 300);
-      for (int i = 0; i < length; ++i) text += char(trial % 4 == 0 ? generator() % 256 : alphabet[generator() % alphabet.size()]);
+      for (int i = 0; i < length; ++i)
+        text += char(trial % 4 == 0 ? generator() % 256 : alphabet[generator() % alphabet.size()]);
     } else {
       text = valid;  // the real file with a few bytes changed
       for (int i = 0; i < 3; ++i) text[generator() % text.size()] = char(generator() % 256);

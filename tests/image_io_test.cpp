@@ -33,13 +33,11 @@ void quantiseTo8Bit(Image& image) {
     const bool alpha = hasAlpha && c == image.channels() - 1;
     for (std::size_t i = 0; i < image.planeSize(); ++i) {
       float& value = image.plane(c)[i];
-      value = alpha ? std::round(value * 255.0f) / 255.0f
-                    : srgbToLinear(std::round(linearToSrgb(value) * 255.0f) / 255.0f);
+      value =
+          alpha ? std::round(value * 255.0f) / 255.0f : srgbToLinear(std::round(linearToSrgb(value) * 255.0f) / 255.0f);
     }
   }
 }
-
-
 
 std::size_t entriesIn(const fs::path& folder) {
   return std::size_t(std::distance(fs::directory_iterator(folder), fs::directory_iterator()));
@@ -51,8 +49,7 @@ float maxDifference(const Image& a, const Image& b) {
   EXPECT_EQ(a.channels(), b.channels());
   if (a.pixels().size() != b.pixels().size()) return INFINITY;
   float worst = 0;
-  for (std::size_t i = 0; i < a.pixels().size(); ++i)
-    worst = std::max(worst, std::abs(a.pixels()[i] - b.pixels()[i]));
+  for (std::size_t i = 0; i < a.pixels().size(); ++i) worst = std::max(worst, std::abs(a.pixels()[i] - b.pixels()[i]));
   return worst;
 }
 
@@ -254,8 +251,8 @@ TEST(ImageIoPfm, RoundTripsOneAndThreeChannels) {
 
 // A PFM written by hand: rows bottom to top, in either byte order.
 std::string handMadePfm(bool bigEndian, const std::vector<float>& valuesBottomRowFirst, int width, int height) {
-  std::string bytes = "Pf\n" + std::to_string(width) + " " + std::to_string(height) + "\n" +
-                      (bigEndian ? "1.0" : "-1.0") + "\n";
+  std::string bytes =
+      "Pf\n" + std::to_string(width) + " " + std::to_string(height) + "\n" + (bigEndian ? "1.0" : "-1.0") + "\n";
   for (float value : valuesBottomRowFirst) {
     std::uint32_t bits;
     std::memcpy(&bits, &value, 4);
@@ -391,8 +388,8 @@ std::string handMadeGreyPng(std::uint32_t width, std::uint32_t height, const std
     b = (b + a) % 65521;
   }
   const std::uint16_t length = std::uint16_t(raw.size());
-  std::string zlib = std::string("\x78\x01\x01", 3) + char(length & 0xff) + char(length >> 8) +
-                     char(~length & 0xff) + char((~length >> 8) & 0xff) + raw + bigEndian32((b << 16) | a);
+  std::string zlib = std::string("\x78\x01\x01", 3) + char(length & 0xff) + char(length >> 8) + char(~length & 0xff) +
+                     char((~length >> 8) & 0xff) + raw + bigEndian32((b << 16) | a);
   return "\x89PNG\r\n\x1a\n" + pngChunk("IHDR", ihdr) + pngChunk("IDAT", zlib) + pngChunk("IEND", "");
 }
 

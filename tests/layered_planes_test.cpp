@@ -51,8 +51,8 @@ double laplacianVariance(const Image& photo, const std::vector<std::pair<int, in
   };
   double sum = 0, sumSquares = 0;
   for (auto [s, t] : pixels) {
-    const double laplacian = luminance(s - 1, t) + luminance(s + 1, t) + luminance(s, t - 1) + luminance(s, t + 1) -
-                             4 * luminance(s, t);
+    const double laplacian =
+        luminance(s - 1, t) + luminance(s + 1, t) + luminance(s, t - 1) + luminance(s, t + 1) - 4 * luminance(s, t);
     sum += laplacian, sumSquares += laplacian * laplacian;
   }
   const double mean = sum / pixels.size();
@@ -66,9 +66,11 @@ double varianceAcrossViews(const LightField& lightField, double d, const std::ve
     const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
     const double ax = x - x0, ay = y - y0;
     auto at = [&](int s, int t) {
-      return double(lightField.at(u, v, std::clamp(s, 0, lightField.ns() - 1), std::clamp(t, 0, lightField.nt() - 1), c));
+      return double(
+          lightField.at(u, v, std::clamp(s, 0, lightField.ns() - 1), std::clamp(t, 0, lightField.nt() - 1), c));
     };
-    return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x0 + 1, y0)) + ay * ((1 - ax) * at(x0, y0 + 1) + ax * at(x0 + 1, y0 + 1));
+    return (1 - ay) * ((1 - ax) * at(x0, y0) + ax * at(x0 + 1, y0)) +
+           ay * ((1 - ax) * at(x0, y0 + 1) + ax * at(x0 + 1, y0 + 1));
   };
   double total = 0;
   for (auto [s, t] : pixels)

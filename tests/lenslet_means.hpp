@@ -31,7 +31,7 @@ class Correlation {
 };
 
 struct LensletMeans {
-  Image means;                // grid.columns x grid.rows, 1 channel
+  Image means;                 // grid.columns x grid.rows, 1 channel
   std::vector<bool> complete;  // the microlens's disc lies wholly inside the raw
 };
 

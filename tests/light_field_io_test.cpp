@@ -46,8 +46,6 @@ float maxDifference(const LightField& a, const LightField& b) {
   return worst;
 }
 
-
-
 std::set<std::string> namesIn(const fs::path& folder) {
   std::set<std::string> names;
   for (const auto& entry : fs::directory_iterator(folder)) names.insert(entry.path().filename().string());
@@ -94,8 +92,8 @@ TEST(LightFieldIoHdf5, RoundTripIsExactWithWeightAndMetadata) {
   lf.samples()[1] = 1e9f;
   lf.enableWeight(0.25f);
   lf.weights()[3] = 1.0f;
-  lf.metadata.optics = Optics{.lensStepMm = 0.5, .spatialStepMm = 0.0125, .lensToMicrolensMm = 80.0,
-                              .focalLengthMm = 75.0};
+  lf.metadata.optics =
+      Optics{.lensStepMm = 0.5, .spatialStepMm = 0.0125, .lensToMicrolensMm = 80.0, .focalLengthMm = 75.0};
   lf.metadata.disparityMin = -1.25;
   lf.metadata.disparityMax = 2.5;
   lf.metadata.source = "synthetic: layered planes, ünïcode";
@@ -317,12 +315,12 @@ TEST(LightFieldIoHci, EightBitRoundTripIsExactWithParameters) {
   ProgressLog writeLog, readLog;
   ASSERT_TRUE(writeLightField(folder, lf, {}, writeLog.callback()));
   writeLog.expectComplete();
-  EXPECT_EQ(namesIn(folder), (std::set<std::string>{"input_Cam000.png", "input_Cam001.png", "input_Cam002.png",
-                                                    "input_Cam003.png", "input_Cam004.png", "input_Cam005.png",
-                                                    "parameters.cfg"}));
+  EXPECT_EQ(namesIn(folder),
+            (std::set<std::string>{"input_Cam000.png", "input_Cam001.png", "input_Cam002.png", "input_Cam003.png",
+                                   "input_Cam004.png", "input_Cam005.png", "parameters.cfg"}));
   const std::string config = test::readBytes(folder / "parameters.cfg");
-  for (const char* line : {"num_cams_x = 3", "num_cams_y = 2", "image_resolution_x_px = 7",
-                           "image_resolution_y_px = 5", "disp_min = -3.3", "disp_max = 2.8"})
+  for (const char* line : {"num_cams_x = 3", "num_cams_y = 2", "image_resolution_x_px = 7", "image_resolution_y_px = 5",
+                           "disp_min = -3.3", "disp_max = 2.8"})
     EXPECT_NE(config.find(line), std::string::npos) << line << " in\n" << config;
   // View index = v * nu + u.
   auto view5 = readImage(folder / "input_Cam005.png");
@@ -452,7 +450,8 @@ TEST(LightFieldIoRowColumn, RoundTripAndNames) {
   EXPECT_EQ(*format, LightFieldFormat::RowColumnFolder);
 
   const LightField deep = randomLightField(kSmall, 11, Quantise::Linear16);
-  ASSERT_TRUE(writeLightField(dir / "rc16", deep, {.format = LightFieldFormat::RowColumnFolder, .sampleType = SampleType::UInt16}));
+  ASSERT_TRUE(writeLightField(dir / "rc16", deep,
+                              {.format = LightFieldFormat::RowColumnFolder, .sampleType = SampleType::UInt16}));
   read = readLightField(dir / "rc16");
   ASSERT_TRUE(read) << read.error().message;
   EXPECT_EQ(maxDifference(*read, deep), 0.0f);
@@ -468,7 +467,8 @@ TEST(LightFieldIoFolders, FloatViewsInTiffAndExrReadBackExactly) {
   for (const char* extension : {".tif", ".tiff", ".exr"})
     for (const LightFieldFormat format : {LightFieldFormat::HciFolder, LightFieldFormat::RowColumnFolder}) {
       const fs::path folder = dir / (std::string(formatName(format)) + extension);
-      ASSERT_TRUE(writeLightField(folder, lf, {.format = format, .sampleType = SampleType::Float32, .viewExtension = extension}));
+      ASSERT_TRUE(writeLightField(folder, lf,
+                                  {.format = format, .sampleType = SampleType::Float32, .viewExtension = extension}));
       auto read = readLightField(folder);
       ASSERT_TRUE(read) << read.error().message;
       EXPECT_EQ(maxDifference(*read, lf), 0.0f) << folder;
@@ -586,8 +586,7 @@ TEST(LightFieldIoFolders, RewritingWithFewerViewsRemovesTheStaleOnes) {
   const fs::path folder = dir / "out";
   ASSERT_TRUE(writeLightField(folder, randomLightField({.nu = 3, .nv = 3, .ns = 4, .nt = 4, .channels = 1}, 14)));
   test::writeBytes(folder / "notes.txt", "kept");
-  const LightField smaller = randomLightField({.nu = 2, .nv = 2, .ns = 4, .nt = 4, .channels = 1}, 15,
-                                              Quantise::Srgb8);
+  const LightField smaller = randomLightField({.nu = 2, .nv = 2, .ns = 4, .nt = 4, .channels = 1}, 15, Quantise::Srgb8);
   ASSERT_TRUE(writeLightField(folder, smaller));
   EXPECT_EQ(namesIn(folder), (std::set<std::string>{"input_Cam000.png", "input_Cam001.png", "input_Cam002.png",
                                                     "input_Cam003.png", "parameters.cfg", "notes.txt"}));
@@ -721,9 +720,9 @@ TEST(LightFieldIoWrite, FormatFollowsTheNameUnlessOverridden) {
   ASSERT_TRUE(writeLightField(dir / "c", lf));
   ASSERT_TRUE(writeLightField(dir / "d.png", lf, {.format = LightFieldFormat::Hdf5}));
   const std::pair<const char*, LightFieldFormat> expected[] = {{"a.lf.h5", LightFieldFormat::Hdf5},
-                                                              {"b.png", LightFieldFormat::LensletImage},
-                                                              {"c", LightFieldFormat::HciFolder},
-                                                              {"d.png", LightFieldFormat::Hdf5}};
+                                                               {"b.png", LightFieldFormat::LensletImage},
+                                                               {"c", LightFieldFormat::HciFolder},
+                                                               {"d.png", LightFieldFormat::Hdf5}};
   for (const auto& [name, format] : expected) {
     auto detected = detectLightFieldFormat(dir / name);
     ASSERT_TRUE(detected) << name;
@@ -743,7 +742,8 @@ TEST(LightFieldIoWrite, FailuresLeaveNothingAndNameTheDestination) {
   EXPECT_FALSE(writeLightField(dir / "taken.lf.h5", lf));
   expectErrorMentioning(readLightField(dir / "taken.lf.h5"), "taken.lf.h5");  // an empty folder
   // A light field PNG cannot hold: five channels.
-  Status status = writeLightField(dir / "five", randomLightField({.nu = 2, .nv = 1, .ns = 2, .nt = 2, .channels = 5}, 20));
+  Status status =
+      writeLightField(dir / "five", randomLightField({.nu = 2, .nv = 1, .ns = 2, .nt = 2, .channels = 5}, 20));
   ASSERT_FALSE(status);
   EXPECT_NE(status.error().message.find("five"), std::string::npos) << status.error().message;
   EXPECT_EQ(status.error().message.find(".lfcam-tmp"), std::string::npos) << status.error().message;

@@ -69,7 +69,8 @@ TEST(LightField, NewSamplesAndZeroWeightsAreZero) {
 TEST(Optics, AlphaAndSlopeAreInverse) {
   Optics optics{.lensStepMm = 2.5, .spatialStepMm = 0.125, .lensToMicrolensMm = 100};
   EXPECT_DOUBLE_EQ(optics.slopeFromAlpha(1.0), 0.0);
-  for (double alpha : {0.8, 0.95, 1.05, 1.3}) EXPECT_NEAR(optics.alphaFromSlope(optics.slopeFromAlpha(alpha)), alpha, 1e-12);
+  for (double alpha : {0.8, 0.95, 1.05, 1.3})
+    EXPECT_NEAR(optics.alphaFromSlope(optics.slopeFromAlpha(alpha)), alpha, 1e-12);
   // Film moved back (alpha > 1) focuses nearer: positive slope in the HCI convention.
   EXPECT_GT(optics.slopeFromAlpha(1.1), 0.0);
 }

@@ -42,10 +42,10 @@ TEST(PowerSpectrum, FastMatchesTheReference) {
 float sixteenBit(double value) { return float(std::round(std::clamp(value, 0.0, 1.0) * 65535) / 65535); }
 
 struct Frame {
-  int views = 19;             // pixels per lens, across and down
+  int views = 19;  // pixels per lens, across and down
   int lensesX = 77, lensesY = 67;
   double background = 0.01, noise = 0.01;
-  double brightness = 0.3;    // of the object under the lenses it covers
+  double brightness = 0.3;                          // of the object under the lenses it covers
   int objectX = 30, objectY = 20, objectSize = 24;  // lenses
 };
 
@@ -89,16 +89,22 @@ TEST(MacroPixelPeriod, MostlyDarkNoisyMicroscopeFrames) {
     best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     ASSERT_TRUE(x.period && y.period);
   }
-  std::printf("[ timing ] views per lens of a %dx%d 16-bit frame, both axes: %.1f ms\n", frame.width(),
-              frame.height(), best);
+  std::printf("[ timing ] views per lens of a %dx%d 16-bit frame, both axes: %.1f ms\n", frame.width(), frame.height(),
+              best);
   EXPECT_LT(best, 2000.0);
 
   // Other periods, sizes sharing factors with them, non-square, fainter and noisier.
   expectPeriods(microscopeFrame({.views = 15, .lensesX = 77, .lensesY = 67}, 2), 15, 15, "15 px in 1155 x 1005");
   expectPeriods(microscopeFrame({.views = 16, .lensesX = 64, .lensesY = 40, .objectX = 5, .objectY = 3}, 3), 16, 16,
                 "16 px, 64 x 40 lenses");
-  expectPeriods(microscopeFrame({.views = 12, .lensesX = 90, .lensesY = 48, .noise = 0.02, .brightness = 0.15,
-                                 .objectX = 50, .objectY = 10, .objectSize = 16},
+  expectPeriods(microscopeFrame({.views = 12,
+                                 .lensesX = 90,
+                                 .lensesY = 48,
+                                 .noise = 0.02,
+                                 .brightness = 0.15,
+                                 .objectX = 50,
+                                 .objectY = 10,
+                                 .objectSize = 16},
                                 4),
                 12, 12, "12 px, faint and noisy");
 }
@@ -123,18 +129,22 @@ TEST(MacroPixelPeriod, ScenesTexturedAtTwoLensesDoNotDoubleThePeriod) {
   // Twice the period divides the size too, and the image repeats exactly at it.
   for (int views : {9, 16}) {
     SCOPED_TRACE(views);
-    expectPeriods(texturedLenses(views, 40, 30, [](int s, int t) { return (s + t) % 2 ? 0.9 : 0.2; }, 0.01), views,
-                  views, "checkerboard of lenses");
-    expectPeriods(texturedLenses(views, 40, 30, [](int s, int) { return s % 2 ? 0.9 : 0.2; }, 0.01), views, views,
-                  "stripes one lens wide");
-    expectPeriods(texturedLenses(views, 40, 30, [](int, int t) { return t % 2 ? 0.9 : 0.2; }, 0.01), views, views,
-                  "stripes one lens high");
-    expectPeriods(texturedLenses(views, 48, 36,
-                                 [](int s, int t) {
-                                   return s < 10 || s >= 26 || t < 8 || t >= 20 ? 0.0 : (s + t) % 2 ? 0.5 : 0.05;
-                                 },
-                                 0.02),
-                  views, views, "checkerboard in the dark");
+    expectPeriods(texturedLenses(
+                      views, 40, 30, [](int s, int t) { return (s + t) % 2 ? 0.9 : 0.2; }, 0.01),
+                  views, views, "checkerboard of lenses");
+    expectPeriods(texturedLenses(
+                      views, 40, 30, [](int s, int) { return s % 2 ? 0.9 : 0.2; }, 0.01),
+                  views, views, "stripes one lens wide");
+    expectPeriods(texturedLenses(
+                      views, 40, 30, [](int, int t) { return t % 2 ? 0.9 : 0.2; }, 0.01),
+                  views, views, "stripes one lens high");
+    expectPeriods(
+        texturedLenses(
+            views, 48, 36,
+            [](int s, int t) { return s < 10 || s >= 26 || t < 8 || t >= 20 ? 0.0
+                                      : (s + t) % 2                         ? 0.5
+                                                                            : 0.05; }, 0.02),
+        views, views, "checkerboard in the dark");
   }
   // Without vignetting: lenses of flat brightness, told apart only by their borders.
   expectPeriods(texturedLenses(
@@ -198,8 +208,14 @@ TEST(MacroPixelPeriod, UnsureEstimatesNameThePlausiblePeriods) {
   // Ever fainter lenses under the same noise: found, then unsure (naming the period), then nothing.
   bool found = false, unsure = false;
   for (double brightness = 0.2; brightness > 0.002; brightness *= 0.8) {
-    const Image frame = microscopeFrame({.views = 15, .lensesX = 40, .lensesY = 32, .noise = 0.02,
-                                         .brightness = brightness, .objectX = 5, .objectY = 5, .objectSize = 20},
+    const Image frame = microscopeFrame({.views = 15,
+                                         .lensesX = 40,
+                                         .lensesY = 32,
+                                         .noise = 0.02,
+                                         .brightness = brightness,
+                                         .objectX = 5,
+                                         .objectY = 5,
+                                         .objectSize = 20},
                                         5);
     const auto x = estimateMacroPixelPeriod(frame, true);
     if (x.period) {

@@ -68,7 +68,8 @@ TEST(RawIo, GivenBlackLevelOutOfRangeIsAUsageError) {
     auto raw = readRaw(dir / "lenslet.png", {.blackLevel = black});
     ASSERT_FALSE(raw) << black;
     EXPECT_EQ(raw.error().code, ErrorCode::Usage) << raw.error().message;
-    EXPECT_EQ(raw.error().message.rfind((dir / "lenslet.png").string() + ": black level", 0), 0u) << raw.error().message;
+    EXPECT_EQ(raw.error().message.rfind((dir / "lenslet.png").string() + ": black level", 0), 0u)
+        << raw.error().message;
     EXPECT_EQ(raw.error().message.find('\n'), std::string::npos);
   }
   auto highest = readRaw(dir / "lenslet.png", {.blackLevel = 4094});
@@ -206,7 +207,8 @@ TEST(RawIo, SimulatorCaptureThroughIllumLfrWithWhiteImage) {
   }
   auto white = readLytroContainer(dir / "white.lfr");
   ASSERT_TRUE(white);
-  EXPECT_EQ(white->tableOfContents["frames"][0]["parameters"]["vendorContent"]["com.lytro.tags"]["modulationFrame"], true);
+  EXPECT_EQ(white->tableOfContents["frames"][0]["parameters"]["vendorContent"]["com.lytro.tags"]["modulationFrame"],
+            true);
 }
 
 TEST(RawIo, LytroRawKeepsColourMetadataAndUses16BitWhenNeeded) {
@@ -257,21 +259,36 @@ std::string minimalDng(const Image& mosaic, const std::uint8_t cfa[4], int black
     std::string data;  // the value's bytes
   };
   auto u16 = [](std::uint16_t v) { return std::string{char(v & 0xff), char(v >> 8)}; };
-  auto u32 = [](std::uint32_t v) { return std::string{char(v & 0xff), char(v >> 8 & 0xff), char(v >> 16 & 0xff), char(v >> 24)}; };
+  auto u32 = [](std::uint32_t v) {
+    return std::string{char(v & 0xff), char(v >> 8 & 0xff), char(v >> 16 & 0xff), char(v >> 24)};
+  };
   const std::uint32_t w = std::uint32_t(mosaic.width()), h = std::uint32_t(mosaic.height());
   std::string pixels;
   for (float v : mosaic.pixels()) pixels += u16(std::uint16_t(v));
   std::string identity;
   for (int k = 0; k < 9; ++k) identity += u32(k % 4 == 0 ? 1 : 0) + u32(1);
-  std::vector<Entry> entries = {
-      {254, 4, 1, u32(0)}, {256, 4, 1, u32(w)}, {257, 4, 1, u32(h)}, {258, 3, 1, u16(16)}, {259, 3, 1, u16(1)},
-      {262, 3, 1, u16(32803)}, {271, 2, 6, std::string("lfcam", 6)}, {272, 2, 5, std::string("test", 5)},
-      {273, 4, 1, u32(0)},  // strip offset, patched below
-      {274, 3, 1, u16(1)}, {277, 3, 1, u16(1)}, {278, 4, 1, u32(h)}, {279, 4, 1, u32(w * h * 2)}, {284, 3, 1, u16(1)},
-      {33421, 3, 2, u16(2) + u16(2)}, {33422, 1, 4, std::string(reinterpret_cast<const char*>(cfa), 4)},
-      {50706, 1, 4, std::string("\x01\x04\x00\x00", 4)}, {50708, 2, 11, std::string("lfcam test", 11)},
-      {50714, 4, 1, u32(std::uint32_t(black))}, {50717, 4, 1, u32(std::uint32_t(white))},
-      {50721, 10, 9, identity}, {50778, 3, 1, u16(21)}};
+  std::vector<Entry> entries = {{254, 4, 1, u32(0)},
+                                {256, 4, 1, u32(w)},
+                                {257, 4, 1, u32(h)},
+                                {258, 3, 1, u16(16)},
+                                {259, 3, 1, u16(1)},
+                                {262, 3, 1, u16(32803)},
+                                {271, 2, 6, std::string("lfcam", 6)},
+                                {272, 2, 5, std::string("test", 5)},
+                                {273, 4, 1, u32(0)},  // strip offset, patched below
+                                {274, 3, 1, u16(1)},
+                                {277, 3, 1, u16(1)},
+                                {278, 4, 1, u32(h)},
+                                {279, 4, 1, u32(w * h * 2)},
+                                {284, 3, 1, u16(1)},
+                                {33421, 3, 2, u16(2) + u16(2)},
+                                {33422, 1, 4, std::string(reinterpret_cast<const char*>(cfa), 4)},
+                                {50706, 1, 4, std::string("\x01\x04\x00\x00", 4)},
+                                {50708, 2, 11, std::string("lfcam test", 11)},
+                                {50714, 4, 1, u32(std::uint32_t(black))},
+                                {50717, 4, 1, u32(std::uint32_t(white))},
+                                {50721, 10, 9, identity},
+                                {50778, 3, 1, u16(21)}};
   const std::uint32_t ifdAt = 8, ifdSize = 2 + 12 * std::uint32_t(entries.size()) + 4;
   std::string extra;
   std::uint32_t extraAt = ifdAt + ifdSize;

@@ -35,14 +35,15 @@ TEST(RawPacking, SixteenBitLittleEndianKnownBytes) {
 TEST(RawPacking, ByteCounts) {
   EXPECT_EQ(*packedByteCount(RawPacking::Bits12BigEndian, 3280 * 3280), 3280u * 3280u * 3 / 2);
   EXPECT_EQ(*packedByteCount(RawPacking::Bits10LittleEndian, 7728 * 5368), 7728u * 5368u * 5 / 4);
-  EXPECT_EQ(*packedByteCount(RawPacking::Bits12BigEndian, 3), 6u);    // a partial pair is padded
+  EXPECT_EQ(*packedByteCount(RawPacking::Bits12BigEndian, 3), 6u);      // a partial pair is padded
   EXPECT_EQ(*packedByteCount(RawPacking::Bits10LittleEndian, 5), 10u);  // a partial group too
   EXPECT_FALSE(packedByteCount(RawPacking::Bits16LittleEndian, std::size_t(-1)));
 }
 
 TEST(RawPacking, RandomRoundTripsAtEveryLength) {
   std::mt19937 rng(7);
-  for (RawPacking packing : {RawPacking::Bits12BigEndian, RawPacking::Bits10LittleEndian, RawPacking::Bits16LittleEndian}) {
+  for (RawPacking packing :
+       {RawPacking::Bits12BigEndian, RawPacking::Bits10LittleEndian, RawPacking::Bits16LittleEndian}) {
     const unsigned mask = (1u << rawPackingBits(packing)) - 1;
     for (std::size_t n : {1, 2, 3, 4, 5, 7, 8, 1001}) {
       std::vector<std::uint16_t> pixels(n);

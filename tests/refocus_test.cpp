@@ -26,8 +26,11 @@ TEST(Refocus, FastMatchesReferenceOnRandomLightFields) {
   std::uniform_int_distribution<int> views(1, 6), pixels(1, 37);
   int cases = 0;
   for (int trial = 0; trial < 40; ++trial) {
-    const LightFieldShape shape{.nu = views(random), .nv = views(random), .ns = pixels(random),
-                                .nt = pixels(random), .channels = trial % 2 ? 3 : 1};
+    const LightFieldShape shape{.nu = views(random),
+                                .nv = views(random),
+                                .ns = pixels(random),
+                                .nt = pixels(random),
+                                .channels = trial % 2 ? 3 : 1};
     const bool weighted = trial % 4 >= 2;
     const LightField lightField = randomLightField(shape, random, weighted);
     std::uniform_real_distribution<double> anySlope(-4.0, 4.0);
@@ -51,8 +54,7 @@ TEST(Refocus, FastMatchesReferenceOnRandomLightFields) {
 TEST(Refocus, FastMatchesReferenceOnALargerWeightedField) {
   // Big enough for several row blocks and threads.
   std::mt19937 random(7);
-  const LightField lightField =
-      randomLightField({.nu = 5, .nv = 4, .ns = 203, .nt = 150, .channels = 3}, random, true);
+  const LightField lightField = randomLightField({.nu = 5, .nv = 4, .ns = 203, .nt = 150, .channels = 3}, random, true);
   for (double slope : {-2.3, 0.75, 3.0})
     EXPECT_LT(worstRelativeError(refocus(lightField, slope), refocusReference(lightField, slope)), 1e-5)
         << "slope " << slope;

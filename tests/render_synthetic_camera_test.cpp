@@ -51,8 +51,11 @@ TEST(SyntheticCamera, FastMatchesReferenceOnRandomLightFields) {
   std::uniform_real_distribution<double> anySlope(-3.0, 3.0);
   int cases = 0;
   for (int trial = 0; trial < 16; ++trial) {
-    const LightFieldShape shape{.nu = views(random), .nv = views(random), .ns = pixels(random),
-                                .nt = pixels(random), .channels = trial % 2 ? 3 : 1};
+    const LightFieldShape shape{.nu = views(random),
+                                .nv = views(random),
+                                .ns = pixels(random),
+                                .nt = pixels(random),
+                                .channels = trial % 2 ? 3 : 1};
     const bool weighted = trial % 4 >= 2;
     const LightField lightField = randomLightField(shape, random, weighted);
     for (const Aperture& aperture : someApertures(random)) {
@@ -178,8 +181,8 @@ TEST(SyntheticCamera, RaysFollowTheGeometryOfEquationFive) {
     for (double beta : {0.7, 1.0, 1.25})
       for (int pinhole : {1, 3, 4}) {
         const double uPrime = lightField.uFromCentre(pinhole);
-        const SyntheticCamera camera{.slope = slope, .beta = beta, .parallax = r,
-                                     .aperture = Aperture::circle(0, uPrime, 0)};
+        const SyntheticCamera camera{
+            .slope = slope, .beta = beta, .parallax = r, .aperture = Aperture::circle(0, uPrime, 0)};
         const Image photo = reference(lightField, camera);
         const Image fast = render(lightField, camera);
         const double alpha = r / (r - slope);
@@ -213,9 +216,9 @@ TEST(SyntheticCamera, BetaNearOneTendsToEquationSix) {
 TEST(SyntheticCamera, RefusesWhatItCannotRender) {
   LightField lightField({.nu = 3, .nv = 3, .ns = 8, .nt = 8, .channels = 1});
   EXPECT_EQ(renderSyntheticPhoto(lightField, {.slope = 0, .beta = 1.5}).error().code, ErrorCode::Usage);
-  EXPECT_EQ(renderSyntheticPhoto(lightField, {.aperture = Aperture::circle(0.5, 9, 9)}).error().code,
-            ErrorCode::Usage);
-  EXPECT_FALSE(renderSyntheticPhoto(lightField, {.slope = -1, .beta = 0.5, .parallax = 1}));  // alpha 0.5 + beta 0.5 = 1
+  EXPECT_EQ(renderSyntheticPhoto(lightField, {.aperture = Aperture::circle(0.5, 9, 9)}).error().code, ErrorCode::Usage);
+  EXPECT_FALSE(
+      renderSyntheticPhoto(lightField, {.slope = -1, .beta = 0.5, .parallax = 1}));  // alpha 0.5 + beta 0.5 = 1
   EXPECT_FALSE(renderSyntheticPhoto(LightField(), {}));
 }
 
@@ -267,9 +270,10 @@ TEST(Observer, AtAViewWithBetaOneIsThatView) {
 TEST(Observer, BetweenViewsInterpolatesAndMovedAlongTheAxisMatchesReference) {
   std::mt19937 random(13);
   const LightField lightField = randomLightField({.nu = 4, .nv = 4, .ns = 25, .nt = 20, .channels = 1}, random, true);
-  for (const Observer& observer : {Observer{.u = 0.3, .v = -0.9}, Observer{.u = 1, .v = 0.5, .beta = 0.8, .parallax = 2},
-                                   Observer{.u = -1, .beta = 1.6, .parallax = 2, .clampToLens = true},
-                                   Observer{.u = -3, .v = 0.4, .clampToLens = true}, Observer{.u = 1.7, .v = 2.2}}) {
+  for (const Observer& observer :
+       {Observer{.u = 0.3, .v = -0.9}, Observer{.u = 1, .v = 0.5, .beta = 0.8, .parallax = 2},
+        Observer{.u = -1, .beta = 1.6, .parallax = 2, .clampToLens = true},
+        Observer{.u = -3, .v = 0.4, .clampToLens = true}, Observer{.u = 1.7, .v = 2.2}}) {
     auto fast = observe(lightField, observer);
     auto slow = observeReference(lightField, observer);
     ASSERT_TRUE(fast && slow);

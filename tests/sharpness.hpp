@@ -17,8 +17,8 @@ inline double laplacianVariance(const Image& image, int x0, int y0, int x1, int 
   long count = 0;
   for (int y = std::max(y0, 1); y < std::min(y1, image.height() - 1); ++y)
     for (int x = std::max(x0, 1); x < std::min(x1, image.width() - 1); ++x) {
-      const double lap = luminance(x - 1, y) + luminance(x + 1, y) + luminance(x, y - 1) + luminance(x, y + 1) -
-                         4 * luminance(x, y);
+      const double lap =
+          luminance(x - 1, y) + luminance(x + 1, y) + luminance(x, y - 1) + luminance(x, y + 1) - 4 * luminance(x, y);
       sum += lap, sumSquares += lap * lap, ++count;
     }
   if (count == 0) return 0;

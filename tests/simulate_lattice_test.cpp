@@ -101,7 +101,8 @@ TEST(SimulateLattice, HexagonalWhiteImagesHaveFlatTops) {
         const auto centre = camera.microlensImageCentrePx(i, j);
         for (int y = int(centre[1]) - 3; y <= int(centre[1]) + 3; ++y)
           for (int x = int(centre[0]) - 3; x <= int(centre[0]) + 3; ++x) {
-            if (x < 0 || y < 0 || x >= 150 || y >= 150 || std::hypot(x + 0.5 - centre[0], y + 0.5 - centre[1]) > 3) continue;
+            if (x < 0 || y < 0 || x >= 150 || y >= 150 || std::hypot(x + 0.5 - centre[0], y + 0.5 - centre[1]) > 3)
+              continue;
             const double v = white.irradiance.at(x, y, 0);
             sum += v;
             squares += v * v;

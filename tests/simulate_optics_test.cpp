@@ -37,7 +37,8 @@ struct Cell {
 // The pixels whose centres lie in the square cell of microlens (i, j)'s image.
 Cell measureCell(const SensorCapture& capture, const CameraModel& camera, int i, int j) {
   const auto centre = camera.microlensImageCentrePx(i, j);
-  const double half = 0.5 * camera.microlenses->pitchMm * (1 + camera.microlenses->separationMm() / camera.mainLens.imageDistanceMm()) /
+  const double half = 0.5 * camera.microlenses->pitchMm *
+                      (1 + camera.microlenses->separationMm() / camera.mainLens.imageDistanceMm()) /
                       camera.sensor.pixelPitchMm;
   Cell cell;
   int plateauCount = 0;
@@ -70,12 +71,13 @@ TEST(SimulateOptics, MicrolensImageDiameterFollowsTheFNumber) {
     const double measured = 2 * std::sqrt(cell.sum / (M_PI * cell.plateau));
     const double expected = camera.microlensImageDiameterPx();
     EXPECT_NEAR(measured / expected, 1.0, 0.05) << "measured " << measured << " px, geometry " << expected << " px";
-    std::printf("image-side f/%.1f: microlens image diameter %.2f px measured, %.2f px geometry\n", n, measured, expected);
+    std::printf("image-side f/%.1f: microlens image diameter %.2f px measured, %.2f px geometry\n", n, measured,
+                expected);
     if (n < 4) {
       EXPECT_GT(cell.minimum, 0.5 * cell.plateau);  // overlapping: no dark pixel anywhere
       EXPECT_GT(cell.maximum, 1.8 * cell.plateau);  // where two images overlap, twice the light
     } else if (n > 4) {
-      EXPECT_EQ(cell.minimum, 0);                   // small images: dark between them
+      EXPECT_EQ(cell.minimum, 0);  // small images: dark between them
       EXPECT_LT(cell.maximum, 1.05 * cell.plateau);
     } else {
       EXPECT_LT(cell.maximum, 1.05 * cell.plateau);  // touching but not overlapping
@@ -99,7 +101,8 @@ int microlensImageOrientation(double distance) {
   const SensorCapture capture = simulateCapture(scene, camera, {.samplesPerPixel = 4});
   double global = 0, local = 0;
   for (int y = 0; y < camera.sensor.height; ++y)
-    for (int x = 0; x < camera.sensor.width; ++x) global += (x + 0.5 - 0.5 * camera.sensor.width) * signal(capture, camera, x, y);
+    for (int x = 0; x < camera.sensor.width; ++x)
+      global += (x + 0.5 - 0.5 * camera.sensor.width) * signal(capture, camera, x, y);
   const auto [columns, rows] = camera.microlensCounts();
   const double half = 7;
   for (int j = 0; j < rows; ++j)
@@ -144,7 +147,10 @@ TEST(SimulateOptics, ConventionalBlurCircleMatchesThinLens) {
     for (int x = 0; x < 128; ++x) {
       const double v = capture.irradiance.at(x, y, 0);
       sum += v;
-      if (std::hypot(x + 0.5 - 64, y + 0.5 - 64) < 10) { plateau += v; ++count; }
+      if (std::hypot(x + 0.5 - 64, y + 0.5 - 64) < 10) {
+        plateau += v;
+        ++count;
+      }
     }
   plateau /= count;
   const double measured = 2 * std::sqrt(sum / (M_PI * plateau));
@@ -177,7 +183,8 @@ TEST(SimulateOptics, WhiteImageFallsOffAsTheGeometryPredicts) {
     const int nm = 12, na = 48;
     for (int a = 0; a < nm; ++a)
       for (int b = 0; b < nm; ++b) {
-        const double mx = c[0] + ((a + 0.5) / nm - 0.5) * array.pitchMm, my = c[1] + ((b + 0.5) / nm - 0.5) * array.pitchMm;
+        const double mx = c[0] + ((a + 0.5) / nm - 0.5) * array.pitchMm,
+                     my = c[1] + ((b + 0.5) / nm - 0.5) * array.pitchMm;
         for (int p = 0; p < na; ++p)
           for (int q = 0; q < na; ++q) {
             const double ux = ((p + 0.5) / na * 2 - 1) * R, uy = ((q + 0.5) / na * 2 - 1) * R;
@@ -190,7 +197,8 @@ TEST(SimulateOptics, WhiteImageFallsOffAsTheGeometryPredicts) {
   };
   auto measured = [&](int i, int j) { return measureCell(capture, camera, i, j).sum; };
   const int mid = columns / 2;
-  for (auto [i, j] : {std::pair{0, 0}, std::pair{columns - 1, rows - 1}, std::pair{0, mid}, std::pair{mid / 2, mid / 2}}) {
+  for (auto [i, j] :
+       {std::pair{0, 0}, std::pair{columns - 1, rows - 1}, std::pair{0, mid}, std::pair{mid / 2, mid / 2}}) {
     const double ratio = measured(i, j) / measured(mid, mid);
     const double expected = predicted(i, j) / predicted(mid, mid);
     std::printf("white image: microlens (%d, %d) / centre = %.4f measured, %.4f predicted\n", i, j, ratio, expected);

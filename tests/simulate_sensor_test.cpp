@@ -67,7 +67,8 @@ TEST(SimulateSensor, NoiseVarianceMatchesTheModel) {
   mean /= n;
   const double variance = (sum2 - sum * sum / n) / (n - 1) / 2;
   const double electrons = irradianceLevel * sensor.exposure * sensor.electronsPerIrradiance;
-  const double expected = sensor.gain() * sensor.gain() * (electrons + sensor.readNoiseElectrons * sensor.readNoiseElectrons) + 1.0 / 12;
+  const double expected =
+      sensor.gain() * sensor.gain() * (electrons + sensor.readNoiseElectrons * sensor.readNoiseElectrons) + 1.0 / 12;
   std::printf("noise: variance %.3f DN^2 measured, %.3f predicted; mean %.2f DN, predicted %.2f\n", variance, expected,
               mean, sensor.blackLevel + electrons * sensor.gain());
   EXPECT_NEAR(variance / expected, 1.0, 0.05);
@@ -177,7 +178,8 @@ TEST(SimulateOutputs, RawOverWhiteIsTheIdealLightField) {
   camera.sensor.colorFilter = ColorFilter::Mono;
   Scene scene;
   Plane plane;
-  const double period = 3 * 0.126 * camera.mainLens.focusDistanceMm / camera.mainLens.imageDistanceMm();  // 3 microlenses
+  const double period =
+      3 * 0.126 * camera.mainLens.focusDistanceMm / camera.mainLens.imageDistanceMm();  // 3 microlenses
   // Off centre by a third of a square, so that turning the pattern 180 degrees changes it.
   plane.centreMm = {period / 3, 0, camera.mainLens.focusDistanceMm};
   plane.widthMm = plane.heightMm = 100;

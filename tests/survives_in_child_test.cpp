@@ -20,7 +20,12 @@ TEST(SurvivesInChild, OutcomeOfEachEnding) {
   EXPECT_EQ(survivesInChild([] { std::raise(SIGSEGV); }, 10s), ChildOutcome::Crashed);
   EXPECT_EQ(survivesInChild([] { std::abort(); }, 10s), ChildOutcome::Crashed);
   EXPECT_EQ(survivesInChild([] { std::_Exit(1); }, 10s), ChildOutcome::Crashed);  // a sanitizer's exit
-  EXPECT_EQ(survivesInChild([] { for (;;) pause(); }, 200ms), ChildOutcome::TimedOut);
+  EXPECT_EQ(survivesInChild(
+                [] {
+                  for (;;) pause();
+                },
+                200ms),
+            ChildOutcome::TimedOut);
 }
 
 }  // namespace

@@ -3,11 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 namespace lfcam::test {
 
@@ -37,8 +37,7 @@ class TempDir {
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "lfcam";
-    path_ = std::filesystem::temp_directory_path() /
-            ("lfcam-test-" + name + "-" + std::to_string(::getpid()));
+    path_ = std::filesystem::temp_directory_path() / ("lfcam-test-" + name + "-" + std::to_string(::getpid()));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
@@ -53,8 +52,7 @@ class TempDir {
 }  // namespace lfcam::test
 
 // Skips the current test, with a visible message, when ../shared/data/<sub> is absent.
-#define LFCAM_REQUIRE_SHARED_DATA(sub, var)                                                  \
-  const std::filesystem::path var = ::lfcam::test::sharedDataDir() / (sub);                  \
-  if (!std::filesystem::exists(var))                                                         \
-  GTEST_SKIP() << "real data not found at " << var                                          \
-               << " (set LFCAM_DATA_DIR to the shared data folder to run this test)"
+#define LFCAM_REQUIRE_SHARED_DATA(sub, var)                                 \
+  const std::filesystem::path var = ::lfcam::test::sharedDataDir() / (sub); \
+  if (!std::filesystem::exists(var))                                        \
+  GTEST_SKIP() << "real data not found at " << var << " (set LFCAM_DATA_DIR to the shared data folder to run this test)"

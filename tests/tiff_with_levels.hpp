@@ -38,19 +38,23 @@ inline void writeTiffWithLevels(const std::filesystem::path& path, const Image& 
     std::vector<std::uint32_t> values;  // SHORT or LONG values, or RATIONAL numerator/denominator pairs
   };
   const std::uint32_t width = std::uint32_t(codes.width()), height = std::uint32_t(codes.height());
-  std::vector<Entry> entries = {{256, 4, 1, {width}},  {257, 4, 1, {height}}, {258, 3, 1, {16}},
-                                {259, 3, 1, {1}},      {262, 3, 1, {1}},      {273, 4, 1, {0}},
-                                {277, 3, 1, {1}},      {278, 4, 1, {height}}, {279, 4, 1, {width * height * 2}}};
+  std::vector<Entry> entries = {{256, 4, 1, {width}}, {257, 4, 1, {height}}, {258, 3, 1, {16}},
+                                {259, 3, 1, {1}},     {262, 3, 1, {1}},      {273, 4, 1, {0}},
+                                {277, 3, 1, {1}},     {278, 4, 1, {height}}, {279, 4, 1, {width * height * 2}}};
   if (!tags.black.empty()) {
     Entry black{50714, std::uint16_t(tags.rational ? 5 : 3), std::uint32_t(tags.black.size()), {}};
     for (double value : tags.black) {
-      if (tags.rational) black.values.insert(black.values.end(), {std::uint32_t(std::lround(value * 1000)), 1000});
-      else black.values.push_back(std::uint32_t(value));
+      if (tags.rational)
+        black.values.insert(black.values.end(), {std::uint32_t(std::lround(value * 1000)), 1000});
+      else
+        black.values.push_back(std::uint32_t(value));
     }
     entries.push_back(black);
   }
   if (tags.white) entries.push_back({50717, 4, 1, {std::uint32_t(*tags.white)}});
-  const auto sizeOf = [](const Entry& e) { return std::uint32_t(e.type == 3 ? 2 : 4) * std::uint32_t(e.values.size()); };
+  const auto sizeOf = [](const Entry& e) {
+    return std::uint32_t(e.type == 3 ? 2 : 4) * std::uint32_t(e.values.size());
+  };
 
   // Header, directory, values too long for their entry, then the pixels.
   const std::uint32_t directory = 8, afterDirectory = directory + 2 + 12 * std::uint32_t(entries.size()) + 4;

@@ -60,8 +60,7 @@ TEST(ImageEncode, JpegAndPngDecodeBackToTheImage) {
     double worst = 0;
     for (int c = 0; c < 3; ++c)
       for (int y = 0; y < 9; ++y)
-        for (int x = 0; x < 17; ++x)
-          worst = std::max(worst, std::abs(double(back->at(x, y, c)) - image.at(x, y, c)));
+        for (int x = 0; x < 17; ++x) worst = std::max(worst, std::abs(double(back->at(x, y, c)) - image.at(x, y, c)));
     EXPECT_LT(worst, format == EncodedFormat::Png ? 0.005 : 0.05);
   }
   EXPECT_TRUE(encodeImage(Image(4, 4, 2)).ok());  // grey from the first channel
@@ -151,8 +150,11 @@ TEST(ViewerSession, ClickFocusesThePlaneUnderThePointer) {
 
 TEST(ViewerSession, RendersEveryControlAndKeepsTheCacheBounded) {
   for (int i = 0; i < 40; ++i) {
-    auto answer = get("/api/image", {{"slope", std::to_string(-1 + 0.05 * i)}, {"f", std::to_string(1 + i % 12)},
-                                     {"u", std::to_string((i % 5) - 2.0)}, {"v", "0.5"}, {"q", "90"}});
+    auto answer = get("/api/image", {{"slope", std::to_string(-1 + 0.05 * i)},
+                                     {"f", std::to_string(1 + i % 12)},
+                                     {"u", std::to_string((i % 5) - 2.0)},
+                                     {"v", "0.5"},
+                                     {"q", "90"}});
     ASSERT_EQ(answer.status, 200) << answer.body;
     ASSERT_TRUE(isJpeg(answer.body));
     EXPECT_LE(session().cacheBytes(), 200000u);
@@ -231,9 +233,12 @@ TEST_F(ViewerServerTest, ServesSeveralClientsAtOnce) {
       auto c = client();
       for (int i = 0; i < 5; ++i) {
         auto answer = c.Get("/api/image?slope=" + std::to_string(0.1 * k + 0.013 * i) + "&f=2");
-        if (answer && answer->status == 200 && isJpeg(answer->body)) ++ok;
-        else if (answer && answer->status == 503) ++busy;
-        else ++other;
+        if (answer && answer->status == 200 && isJpeg(answer->body))
+          ++ok;
+        else if (answer && answer->status == 503)
+          ++busy;
+        else
+          ++other;
       }
     });
   for (auto& t : clients) t.join();

@@ -35,17 +35,17 @@ struct AllInFocusOptions {
   // estimateDepth: replaces the focus measure. Non-finite pixels take the middle slice.
   const Image* disparity = nullptr;
   std::optional<double> disparityMin, disparityMax;
-  double sliceStep = 0;       // slope between slices; 0: 1 / (max(nu, nv) - 1)
-  int maxSlices = 64;         // the step grows if the range would need more
-  int focusRadius = 3;        // focus measure window
-  double smoothness = 1.0;    // label regularisation; 0: the sharpest slice per pixel
-  int levels = 0;             // pyramid levels; 0: automatic (about log2(size) - 3)
+  double sliceStep = 0;     // slope between slices; 0: 1 / (max(nu, nv) - 1)
+  int maxSlices = 64;       // the step grows if the range would need more
+  int focusRadius = 3;      // focus measure window
+  double smoothness = 1.0;  // label regularisation; 0: the sharpest slice per pixel
+  int levels = 0;           // pyramid levels; 0: automatic (about log2(size) - 3)
 };
 
 struct AllInFocus {
-  Image photo;                  // ns x nt, the light field's channels
-  Image slope;                  // ns x nt, 1 channel: the slope of the slice chosen per pixel
-  std::vector<double> slopes;   // the focal stack's slopes, ascending
+  Image photo;                 // ns x nt, the light field's channels
+  Image slope;                 // ns x nt, 1 channel: the slope of the slice chosen per pixel
+  std::vector<double> slopes;  // the focal stack's slopes, ascending
 };
 
 // Usage error for an empty light field, a disparity map of the wrong size, or an empty range.

@@ -14,11 +14,11 @@
 #include <optional>
 #include <vector>
 
-#include "lfcam/sensor_layout.hpp"
 #include "lfcam/image.hpp"
 #include "lfcam/lenslet_grid.hpp"
 #include "lfcam/raw_image.hpp"
 #include "lfcam/result.hpp"
+#include "lfcam/sensor_layout.hpp"
 
 namespace lfcam {
 
@@ -47,8 +47,8 @@ struct CalibrationOptions {
 // One measured microlens centre, in the fitted grid's (i, j).
 struct DetectedCentre {
   int i = 0, j = 0;
-  double x = 0, y = 0;     // pixels
-  double residualPx = 0;   // distance to the fitted lattice
+  double x = 0, y = 0;    // pixels
+  double residualPx = 0;  // distance to the fitted lattice
   bool inlier = false;
 };
 

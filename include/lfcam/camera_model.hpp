@@ -25,8 +25,8 @@
 //   hexagonal: a = (i - (columns - 1) / 2 + (j odd ? 1/2 : 0)) pitch,
 //              b = (j - (rows - 1) / 2) pitch sqrt(3) / 2
 // on the microlens plane. Each microlens's cell is its Voronoi cell: a square, or a hexagon with
-// flat sides left and right and corners at the top and bottom (before rotation); its refracting part is the cell scaled by
-// sqrt(fillFactor) about the centre, and the rest of the cell is opaque.
+// flat sides left and right and corners at the top and bottom (before rotation); its refracting part is the cell scaled
+// by sqrt(fillFactor) about the centre, and the rest of the cell is opaque.
 #pragma once
 
 #include <array>
@@ -42,9 +42,9 @@
 namespace lfcam {
 
 struct MainLens {
-  double focalLengthMm = 140.0;     // the paper's prototype: 140 mm ...
-  double fNumber = 2.8;             // ... at f/2.8 (object side: focal length / aperture diameter)
-  double focusDistanceMm = 457.2;   // 18 inches (section 6.1); its image-side f-number is ~f/4
+  double focalLengthMm = 140.0;    // the paper's prototype: 140 mm ...
+  double fNumber = 2.8;            // ... at f/2.8 (object side: focal length / aperture diameter)
+  double focusDistanceMm = 457.2;  // 18 inches (section 6.1); its image-side f-number is ~f/4
 
   double apertureDiameterMm() const { return focalLengthMm / fNumber; }
   // F: where the focus plane is imaged (1/f = 1/d + 1/F).
@@ -56,10 +56,10 @@ struct MainLens {
 };
 
 struct MicrolensArray {
-  double pitchMm = 0.125;        // centre to centre (the paper: 125 um)
-  double focalLengthMm = 0.5;    // the paper: 500 um, so f/4
+  double pitchMm = 0.125;      // centre to centre (the paper: 125 um)
+  double focalLengthMm = 0.5;  // the paper: 500 um, so f/4
   Packing packing = Packing::Square;
-  double rotationDeg = 0;        // of the lattice about the optical axis, x towards y
+  double rotationDeg = 0;                // of the lattice about the optical axis, x towards y
   std::array<double, 2> offsetMm{0, 0};  // lateral shift of the lattice (microlens plane)
   std::optional<double> toSensorMm;      // default: focalLengthMm (section 3.1)
   double fillFactor = 1.0;               // refracting area / cell area, (0, 1]
@@ -76,18 +76,18 @@ struct Sensor {
   double pixelPitchMm = 0.009;      // 9 um
   ColorFilter colorFilter = ColorFilter::RGGB;
   int bitDepth = 12;
-  int blackLevel = 64;      // digital numbers (DN)
-  int whiteLevel = 4095;    // DN; the highest code a pixel reports
+  int blackLevel = 64;    // digital numbers (DN)
+  int whiteLevel = 4095;  // DN; the highest code a pixel reports
   // Mean photo-electrons = exposure * electronsPerIrradiance * E, where E (steradians) is the
   // irradiance on the pixel per unit scene radiance: the integral of L cos(theta) d(omega) for
   // L = 1. A white surface (L = 1) seen through an image-side f/4 gives E = pi / 64 ~ 0.049.
   double exposure = 1.0;
   double electronsPerIrradiance = 200000.0;
   double fullWellElectrons = 20000.0;
-  double readNoiseElectrons = 3.0;   // Gaussian, rms
-  bool noise = true;                 // photon shot noise (Poisson) and read noise
-  double hotPixelFraction = 0;       // share of pixels stuck at whiteLevel
-  std::uint64_t seed = 1;            // noise, hot pixels and ray samples
+  double readNoiseElectrons = 3.0;  // Gaussian, rms
+  bool noise = true;                // photon shot noise (Poisson) and read noise
+  double hotPixelFraction = 0;      // share of pixels stuck at whiteLevel
+  std::uint64_t seed = 1;           // noise, hot pixels and ray samples
 
   // DN per electron: (whiteLevel - blackLevel) / fullWellElectrons.
   double gain() const { return (whiteLevel - blackLevel) / fullWellElectrons; }

@@ -33,13 +33,13 @@
 namespace lfcam {
 
 enum class DemosaicMethod {
-  MalvarHeCutler,  // gradient-corrected bilinear (Malvar, He, Cutler 2004): the default
-  HamiltonAdams,   // the paper's choice: edge-directed green, colour differences for red and blue
-  LensletAware,    // bilinear within each microlens image from its own pixels only: nothing leaks
-                   // across a microlens boundary
-  LightFieldAware, // each missing colour blended from the microlens image's neighbours (2D) and the
-                   // same view of the neighbouring microlenses (4D), by which predicts the
-                   // measured colour better: defocused content is smooth only in the second
+  MalvarHeCutler,   // gradient-corrected bilinear (Malvar, He, Cutler 2004): the default
+  HamiltonAdams,    // the paper's choice: edge-directed green, colour differences for red and blue
+  LensletAware,     // bilinear within each microlens image from its own pixels only: nothing leaks
+                    // across a microlens boundary
+  LightFieldAware,  // each missing colour blended from the microlens image's neighbours (2D) and the
+                    // same view of the neighbouring microlenses (4D), by which predicts the
+                    // measured colour better: defocused content is smooth only in the second
 };
 
 enum class Sampling {
@@ -79,7 +79,8 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
 Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid = nullptr);
 // Plain per-pixel implementations of the same, the references the fast kernels are tested against
 // (LightFieldAware's with bounds-checked taps everywhere; LensletAware has only the one).
-Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid = nullptr);
+Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method,
+                        const LensletGrid* grid = nullptr);
 
 // Replaces each photosite more than `threshold` above every same-colour neighbour (8 of them, two
 // pixels away in a Bayer mosaic) by their median. Returns the number repaired.

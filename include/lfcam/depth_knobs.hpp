@@ -19,7 +19,7 @@ struct DepthKnob {
   const char* name;   // "defocus-weight"
   const char* help;
   std::variant<std::optional<double> DepthOptions::*, int DepthOptions::*, double DepthOptions::*> member;
-  double min, max;    // the accepted values, inclusive
+  double min, max;  // the accepted values, inclusive
 };
 std::span<const DepthKnob> depthKnobs();
 

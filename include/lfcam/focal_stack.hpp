@@ -19,8 +19,8 @@ std::vector<double> evenlySpaced(double first, double last, int n);
 // One photograph of `camera` per slope (the camera's own slope is replaced), handed to `sink` in
 // order as it is made, so that a stack of any depth needs the memory of one photograph. Stops at
 // the first error, the sink's included. `camera.beta` and the aperture apply to every slice.
-Status renderFocalStack(const LightField& lightField, const std::vector<double>& slopes,
-                        const SyntheticCamera& camera, const RenderOptions& options,
+Status renderFocalStack(const LightField& lightField, const std::vector<double>& slopes, const SyntheticCamera& camera,
+                        const RenderOptions& options,
                         const std::function<Status(int index, double slope, Image&& photo)>& sink);
 
 // The slope that brings image point (x, y) (pixels, as in image.hpp) into sharpest focus: the

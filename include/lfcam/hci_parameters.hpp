@@ -36,12 +36,12 @@ struct HciParameters {
   std::optional<double> sensorSizeMm;          // sensor_size_mm: > 0, across the longer side
   std::optional<double> fstop;                 // fstop: > 0
   // [extrinsics]
-  std::optional<int> camerasX, camerasY;       // num_cams_x, num_cams_y: 1 .. 100000
-  std::optional<double> baselineMm;            // baseline_mm: > 0, between adjacent cameras
-  std::optional<double> focusDistanceM;        // focus_distance_m: > 0
+  std::optional<int> camerasX, camerasY;  // num_cams_x, num_cams_y: 1 .. 100000
+  std::optional<double> baselineMm;       // baseline_mm: > 0, between adjacent cameras
+  std::optional<double> focusDistanceM;   // focus_distance_m: > 0
   // [meta]
   std::optional<double> disparityMin, disparityMax;  // disp_min, disp_max: finite
-  std::string scene;                                  // scene (free text, at most 256 characters)
+  std::string scene;                                 // scene (free text, at most 256 characters)
 };
 
 // Parses the text of a parameters.cfg; `name` (the file) starts every error message.

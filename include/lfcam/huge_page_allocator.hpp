@@ -56,7 +56,9 @@ struct HugePageAllocator {
     ::new (static_cast<void*>(pointer)) U(std::forward<Args>(args)...);
   }
   template <typename U>
-  bool operator==(const HugePageAllocator<U>&) const noexcept { return true; }
+  bool operator==(const HugePageAllocator<U>&) const noexcept {
+    return true;
+  }
 
   Pages pages = Pages::Huge;
 };

@@ -31,8 +31,7 @@ struct ImageWriteOptions {
 };
 
 Result<Image> readImage(const std::filesystem::path& path);
-Status writeImage(const std::filesystem::path& path, const Image& image,
-                  const ImageWriteOptions& options = {});
+Status writeImage(const std::filesystem::path& path, const Image& image, const ImageWriteOptions& options = {});
 // What writeImage checks before it writes, short of the image itself: a known extension, a sample
 // type the format holds, a JPEG quality in range. Lets a command refuse an output before its work.
 Status checkImageWriteOptions(const std::filesystem::path& path, const ImageWriteOptions& options = {});

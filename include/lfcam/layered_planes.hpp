@@ -20,14 +20,14 @@ namespace lfcam {
 enum class PlaneTexture { Checkerboard, Noise, Stripes, Rings };
 
 struct TexturedPlane {
-  double disparity = 0;                  // pixels per view step
+  double disparity = 0;  // pixels per view step
   PlaneTexture texture = PlaneTexture::Noise;
-  double period = 16;                    // feature size of the texture, pixels
-  float colour[3] = {1, 1, 1};           // linear RGB tint
+  double period = 16;           // feature size of the texture, pixels
+  float colour[3] = {1, 1, 1};  // linear RGB tint
   // Extent in centre-view pixel coordinates; a plane with an empty extent covers everything
   // (a background).
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  bool elliptical = false;               // an ellipse inscribed in the extent instead of a box
+  bool elliptical = false;  // an ellipse inscribed in the extent instead of a box
 };
 
 struct LayeredPlanesScene {

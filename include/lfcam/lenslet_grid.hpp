@@ -15,8 +15,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "lfcam/sensor_layout.hpp"
 #include "lfcam/result.hpp"
+#include "lfcam/sensor_layout.hpp"
 
 namespace lfcam {
 
@@ -29,11 +29,11 @@ struct GridFitReport {
 
 struct LensletGrid {
   Packing packing = Packing::Square;
-  double pitchX = 0, pitchY = 0;      // pixels
+  double pitchX = 0, pitchY = 0;  // pixels
   double rotationRad = 0;
   std::array<double, 2> origin{0, 0};  // centre of microlens (0, 0), pixels
   int columns = 0, rows = 0;
-  int hexParity = 0;                   // 0 or 1, see above
+  int hexParity = 0;  // 0 or 1, see above
   GridFitReport fit;
 
   std::array<double, 2> centre(int i, int j) const;

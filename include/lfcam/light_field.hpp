@@ -56,9 +56,9 @@ struct LightFieldShape {
 
 // The optics behind a light field, when known: what converts the paper's alpha into a slope.
 struct Optics {
-  double lensStepMm = 0;       // du: spacing of adjacent views on the main-lens plane
-  double spatialStepMm = 0;    // ds: spacing of adjacent (s, t) samples on the microlens plane
-  double lensToMicrolensMm = 0;  // F: main lens (principal plane) to microlens plane
+  double lensStepMm = 0;                // du: spacing of adjacent views on the main-lens plane
+  double spatialStepMm = 0;             // ds: spacing of adjacent (s, t) samples on the microlens plane
+  double lensToMicrolensMm = 0;         // F: main lens (principal plane) to microlens plane
   std::optional<double> focalLengthMm;  // main lens, for metric distances
 
   // Refocusing to relative film depth alpha (Equation 6) shifts each view by this many pixels
@@ -107,7 +107,10 @@ class LightField {
   bool hasWeight() const { return !weight_.empty(); }
   // Adds a weight plane for every view, filled with `value`.
   void enableWeight(float value = 1.0f);
-  void dropWeight() { weight_.clear(); weight_.shrink_to_fit(); }
+  void dropWeight() {
+    weight_.clear();
+    weight_.shrink_to_fit();
+  }
   float* weightPlane(int u, int v) { return weight_.data() + viewIndex(u, v) * shape_.viewPixels(); }
   const float* weightPlane(int u, int v) const { return weight_.data() + viewIndex(u, v) * shape_.viewPixels(); }
 

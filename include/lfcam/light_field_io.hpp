@@ -58,13 +58,10 @@ struct LightFieldInfo {
 };
 
 Result<LightFieldFormat> detectLightFieldFormat(const std::filesystem::path& path);
-Result<LightFieldInfo> probeLightField(const std::filesystem::path& path,
-                                       const LightFieldReadOptions& options = {});
-Result<LightField> readLightField(const std::filesystem::path& path,
-                                  const LightFieldReadOptions& options = {},
+Result<LightFieldInfo> probeLightField(const std::filesystem::path& path, const LightFieldReadOptions& options = {});
+Result<LightField> readLightField(const std::filesystem::path& path, const LightFieldReadOptions& options = {},
                                   const ProgressCallback& progress = {});
 Status writeLightField(const std::filesystem::path& path, const LightField& lightField,
-                       const LightFieldWriteOptions& options = {},
-                       const ProgressCallback& progress = {});
+                       const LightFieldWriteOptions& options = {}, const ProgressCallback& progress = {});
 
 }  // namespace lfcam

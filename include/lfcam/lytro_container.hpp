@@ -28,9 +28,9 @@ const char* lytroSectionKindName(LytroSectionKind kind);       // "LFP", "LFM", 
 
 struct LytroSection {
   LytroSectionKind kind = LytroSectionKind::Component;
-  std::string name;          // "sha1-..." (empty for the LFP header)
-  std::uint32_t version = 0; // the 4 bytes after the magic, big-endian (1 in the LFP header)
-  std::uint64_t offset = 0;  // of its header in the file (set by the reader)
+  std::string name;           // "sha1-..." (empty for the LFP header)
+  std::uint32_t version = 0;  // the 4 bytes after the magic, big-endian (1 in the LFP header)
+  std::uint64_t offset = 0;   // of its header in the file (set by the reader)
   std::vector<std::uint8_t> payload;
 };
 

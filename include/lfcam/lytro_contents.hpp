@@ -15,8 +15,17 @@
 
 namespace lfcam {
 
-enum class LytroItemKind { TableOfContents, FrameMetadata, PrivateMetadata, RawFrame, Jpeg, H264, DepthMap,
-                           ConfidenceMap, Component };
+enum class LytroItemKind {
+  TableOfContents,
+  FrameMetadata,
+  PrivateMetadata,
+  RawFrame,
+  Jpeg,
+  H264,
+  DepthMap,
+  ConfidenceMap,
+  Component
+};
 const char* lytroItemKindName(LytroItemKind kind);
 
 struct LytroItem {

@@ -16,10 +16,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/sensor_layout.hpp"
 #include "lfcam/raw_image.hpp"
 #include "lfcam/raw_packing.hpp"
 #include "lfcam/result.hpp"
+#include "lfcam/sensor_layout.hpp"
 
 namespace lfcam {
 
@@ -32,7 +32,7 @@ struct LytroFrameFormat {
   std::optional<LensletHint> lenslet;  // pitchPx = lensPitch / pixelPitch; offset = sensorOffset / pixelPitch
   std::optional<std::array<double, 3>> whiteBalance;  // r, (gr + gb) / 2, b
   std::optional<std::array<double, 9>> colorMatrix;   // camera RGB -> sRGB, row-major
-  std::string camera;  // make and model, when given
+  std::string camera;                                 // make and model, when given
 };
 
 // The frame metadata object inside `document`: the document itself when it has "image", else

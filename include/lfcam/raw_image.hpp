@@ -20,8 +20,8 @@ namespace lfcam {
 // What the camera's own metadata says about its microlens array, in sensor pixels. Calibration
 // uses it as a starting guess; it is never trusted without a fit.
 struct LensletHint {
-  double pitchPx = 0;                  // microlens pitch over pixel pitch
-  double rotationRad = 0;              // of the lattice, x towards y
+  double pitchPx = 0;                    // microlens pitch over pixel pitch
+  double rotationRad = 0;                // of the lattice, x towards y
   std::array<double, 2> offsetPx{0, 0};  // centre of the lattice relative to the sensor centre
   Packing packing = Packing::Square;
 };
@@ -30,11 +30,11 @@ struct RawImage {
   // One channel, width x height photosites, values in DN (not scaled to [0, 1]).
   Image mosaic;
   ColorFilter colorFilter = ColorFilter::Mono;
-  double blackLevel = 0;   // DN
-  double whiteLevel = 1;   // DN of a saturated photosite
+  double blackLevel = 0;  // DN
+  double whiteLevel = 1;  // DN of a saturated photosite
   std::optional<LensletHint> lenslet;
-  std::optional<std::array<double, 3>> whiteBalance;   // gains for R, G, B
-  std::optional<std::array<double, 9>> colorMatrix;    // camera RGB -> linear sRGB, row-major
+  std::optional<std::array<double, 3>> whiteBalance;  // gains for R, G, B
+  std::optional<std::array<double, 9>> colorMatrix;   // camera RGB -> linear sRGB, row-major
   // Where the raw came from ("lytro-lfp", "lytro-lfr", "simulator", "libraw", "image") and the
   // frame metadata as the file gave it, for `lfcam info`.
   std::string source;

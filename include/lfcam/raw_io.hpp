@@ -30,8 +30,8 @@ struct RawReadOptions {
   // DN of the file, overrides what the file says. Usage error when negative, not below the white
   // level, or not below the file's largest value (every sample would be black).
   std::optional<double> blackLevel;
-  std::optional<double> whiteLevel;        // DN, overrides what the file says
-  bool useCameraJson = true;               // images: read camera.json beside the file
+  std::optional<double> whiteLevel;  // DN, overrides what the file says
+  bool useCameraJson = true;         // images: read camera.json beside the file
 };
 
 Result<RawImage> readRaw(const std::filesystem::path& path, const RawReadOptions& options = {});
@@ -44,9 +44,9 @@ std::optional<ColorFilter> parseColorFilterName(std::string_view name);
 
 struct LytroWriteOptions {
   LytroStyle style = LytroStyle::FirstGeneration;
-  double pixelPitchMm = 0.0014;   // the Lytro sensors' 1.4 um unless the caller knows better
-  bool modulationFrame = false;   // a white image (Lytro's "modulation" frame)
-  nlohmann::json extra;           // stored in the frame metadata under "lfcam" when not null
+  double pixelPitchMm = 0.0014;  // the Lytro sensors' 1.4 um unless the caller knows better
+  bool modulationFrame = false;  // a white image (Lytro's "modulation" frame)
+  nlohmann::json extra;          // stored in the frame metadata under "lfcam" when not null
 };
 
 // A container holding `raw` (integer DN in [0, 65535]) with real-style metadata: F01 style packs

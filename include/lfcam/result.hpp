@@ -71,8 +71,8 @@ using Status = Result<void>;
 #define LFCAM_ASSIGN_OR_RETURN(declaration, ...) \
   LFCAM_ASSIGN_OR_RETURN_NAMED(declaration, LFCAM_CONCAT(lfcam_assign_result_, __COUNTER__), __VA_ARGS__)
 #define LFCAM_ASSIGN_OR_RETURN_NAMED(declaration, name, ...) \
-  auto name = (__VA_ARGS__);                                  \
-  if (!name) return name.error();                             \
+  auto name = (__VA_ARGS__);                                 \
+  if (!name) return name.error();                            \
   declaration = std::move(name).value()
 
 // Propagates an error from an expression returning Result<...> / Status. Each use gets its own
@@ -80,8 +80,8 @@ using Status = Result<void>;
 #define LFCAM_TRY(expr) LFCAM_TRY_NAMED(expr, LFCAM_CONCAT(lfcam_try_result_, __COUNTER__))
 #define LFCAM_CONCAT(a, b) LFCAM_CONCAT_INNER(a, b)
 #define LFCAM_CONCAT_INNER(a, b) a##b
-#define LFCAM_TRY_NAMED(expr, name)            \
-  do {                                         \
-    auto&& name = (expr);                      \
-    if (!name) return name.error();            \
+#define LFCAM_TRY_NAMED(expr, name) \
+  do {                              \
+    auto&& name = (expr);           \
+    if (!name) return name.error(); \
   } while (0)

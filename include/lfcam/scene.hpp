@@ -36,14 +36,14 @@ struct Texture {
   TextureKind kind = TextureKind::Constant;
   Rgb dark{0.05f, 0.05f, 0.05f};  // the two colours of the procedural patterns
   Rgb light{0.9f, 0.9f, 0.9f};
-  double periodMm = 10;            // checker square, glyph height, noise feature
+  double periodMm = 10;  // checker square, glyph height, noise feature
   // Chart: `groups` bar groups, frequencies geometric from minFrequency to maxFrequency
   // (cycles/mm on the plane), left to right; vertical bars in the top half, horizontal below.
   int groups = 6;
   double minFrequency = 0.2, maxFrequency = 2.0;
-  int spokes = 36;       // Siemens star
-  double angleDeg = 0;   // edge: the edge's angle from vertical, clockwise
-  std::uint64_t seed = 1;  // text and noise
+  int spokes = 36;                     // Siemens star
+  double angleDeg = 0;                 // edge: the edge's angle from vertical, clockwise
+  std::uint64_t seed = 1;              // text and noise
   std::shared_ptr<const Image> image;  // Image: RGB, linear
   std::string imagePath;               // where it came from (for messages and camera.json)
 
@@ -83,8 +83,7 @@ std::vector<std::string> builtinSceneNames();
 
 // Parses a scene from JSON text; `where` names its source in errors ("scene.json: planes[1].size:
 // expected ..."). Relative image paths are taken from `baseFolder`.
-Result<Scene> parseScene(const std::string& text, const std::string& where,
-                         const std::filesystem::path& baseFolder);
+Result<Scene> parseScene(const std::string& text, const std::string& where, const std::filesystem::path& baseFolder);
 // A built-in name or a JSON file.
 Result<Scene> loadScene(const std::string& nameOrPath);
 

@@ -46,8 +46,8 @@ struct SensorCapture {
 };
 
 // Traces the scene through the camera onto the sensor, then applies the sensor model.
-SensorCapture simulateCapture(const Scene& scene, const CameraModel& camera,
-                              const SimulationOptions& options = {}, const ProgressCallback& progress = {});
+SensorCapture simulateCapture(const Scene& scene, const CameraModel& camera, const SimulationOptions& options = {},
+                              const ProgressCallback& progress = {});
 
 // The sensor model alone: irradiance (as in SensorCapture) -> DN with shot noise, read noise,
 // full-well clipping, quantisation and hot pixels.
@@ -77,8 +77,8 @@ Result<LightField> idealLightFieldBoxFiltered(const Scene& scene, const CameraMo
 Result<Image> idealDepth(const Scene& scene, const CameraModel& camera);
 
 struct CaptureOutputs {
-  bool white = true;        // white.png
-  bool groundTruth = true;  // depth.pfm and ideal.lf.h5 (light-field mode only)
+  bool white = true;                  // white.png
+  bool groundTruth = true;            // depth.pfm and ideal.lf.h5 (light-field mode only)
   std::string rawExtension = ".png";  // or ".tiff"
 };
 

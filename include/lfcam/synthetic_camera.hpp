@@ -42,7 +42,7 @@ namespace lfcam {
 struct Aperture {
   enum class Shape { Full, Circle, Square, Mask };
   Shape shape = Shape::Full;
-  double radius = 0;               // Circle: radius; Square: half its side; view steps. 0: one view
+  double radius = 0;                // Circle: radius; Square: half its side; view steps. 0: one view
   double centreU = 0, centreV = 0;  // where the aperture is centred, view steps from the centre
   // Mask: an image laid over the whole lens, [-nu/2, nu/2] x [-nv/2, nv/2] view steps (x with u,
   // y with v), moved by the centre; A is the mean of its channels clamped to [0, 1], sampled at

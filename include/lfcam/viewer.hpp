@@ -34,11 +34,11 @@ enum class ViewerLayer { Photo, AllInFocus, Depth };
 // One photograph as the page describes it. Units of light_field.hpp.
 struct ViewerView {
   ViewerLayer layer = ViewerLayer::Photo;
-  double slope = 0;                    // focus: the disparity brought into focus
+  double slope = 0;                                  // focus: the disparity brought into focus
   std::optional<std::pair<double, double>> focusAt;  // pixel (x, y): pick the slope that makes it sharpest
-  double fNumber = 1;                  // aperture, relative to the whole lens (1): radius = lens radius / fNumber
-  double u = 0, v = 0;                 // observer: the aperture's centre, view steps from the lens centre
-  int quality = 80;                    // JPEG quality
+  double fNumber = 1;   // aperture, relative to the whole lens (1): radius = lens radius / fNumber
+  double u = 0, v = 0;  // observer: the aperture's centre, view steps from the lens centre
+  int quality = 80;     // JPEG quality
 };
 
 struct ViewerLimits {
@@ -115,7 +115,6 @@ struct ViewerAnswer {
 ViewerAnswer answerRequest(ViewerSession& session, const ViewerRequest& request);
 
 // The parameters of /api/image, checked (400 material on error) against the light field.
-Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>& params,
-                                   const ViewerSession& session);
+Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>& params, const ViewerSession& session);
 
 }  // namespace lfcam

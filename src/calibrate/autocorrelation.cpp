@@ -85,7 +85,10 @@ Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::str
       bool isMax = true;
       for (int ey = -2; ey <= 2 && isMax; ++ey)
         for (int ex = -2; ex <= 2; ++ex)
-          if ((ex || ey) && at(dx + ex, dy + ey) >= v) { isMax = false; break; }
+          if ((ex || ey) && at(dx + ex, dy + ey) >= v) {
+            isMax = false;
+            break;
+          }
       if (!isMax) continue;
       const double valley = at(int(std::lround(dx / 2.0)), int(std::lround(dy / 2.0)));
       if (v - valley < 0.02) continue;
@@ -94,7 +97,8 @@ Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::str
         const double d = m - 2 * c + p;
         return d < 0 ? 0.5 * (m - p) / d : 0.0;
       };
-      peaks.push_back({dx + vertex(at(dx - 1, dy), v, at(dx + 1, dy)), dy + vertex(at(dx, dy - 1), v, at(dx, dy + 1)), v});
+      peaks.push_back(
+          {dx + vertex(at(dx - 1, dy), v, at(dx + 1, dy)), dy + vertex(at(dx, dy - 1), v, at(dx, dy + 1)), v});
     }
   if (peaks.empty()) return makeError(ErrorCode::Format, where + ": no periodic microlens pattern found");
   double strongest = 0;
@@ -102,7 +106,8 @@ Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::str
   // The lattice vectors nearest the origin are all about as strong as the strongest peak (the
   // caller's minPeak: see calibrate.cpp).
   std::erase_if(peaks, [&](const Peak& p) { return p.value < minPeak * strongest; });
-  std::sort(peaks.begin(), peaks.end(), [](const Peak& a, const Peak& b) { return std::hypot(a.x, a.y) < std::hypot(b.x, b.y); });
+  std::sort(peaks.begin(), peaks.end(),
+            [](const Peak& a, const Peak& b) { return std::hypot(a.x, a.y) < std::hypot(b.x, b.y); });
   std::array<double, 2> a{peaks[0].x, peaks[0].y}, b{0, 0};
   bool found = false;
   for (std::size_t k = 1; k < peaks.size() && !found; ++k) {
@@ -112,16 +117,20 @@ Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::str
       found = true;
     }
   }
-  if (!found) return makeError(ErrorCode::Format, where + ": found only one direction of periodicity, not a microlens lattice");
+  if (!found)
+    return makeError(ErrorCode::Format, where + ": found only one direction of periodicity, not a microlens lattice");
   reduceBasis(a, b);
   const double la = std::hypot(a[0], a[1]), lb = std::hypot(b[0], b[1]);
   const double cosine = (a[0] * b[0] + a[1] * b[1]) / (la * lb);
   Lattice lattice;
   // A reduced basis of a hexagonal lattice: equal lengths at 60 or 120 degrees.
-  lattice.packing = std::abs(la - lb) < 0.1 * la && std::abs(std::abs(cosine) - 0.5) < 0.15 ? Packing::Hexagonal : Packing::Square;
+  lattice.packing =
+      std::abs(la - lb) < 0.1 * la && std::abs(std::abs(cosine) - 0.5) < 0.15 ? Packing::Hexagonal : Packing::Square;
   // The row direction: the shortest lattice vector closest to the x axis.
   std::vector<std::array<double, 2>> candidates = {a, b};
-  if (lattice.packing == Packing::Hexagonal) candidates.push_back(cosine > 0 ? std::array<double, 2>{a[0] - b[0], a[1] - b[1]} : std::array<double, 2>{a[0] + b[0], a[1] + b[1]});
+  if (lattice.packing == Packing::Hexagonal)
+    candidates.push_back(cosine > 0 ? std::array<double, 2>{a[0] - b[0], a[1] - b[1]}
+                                    : std::array<double, 2>{a[0] + b[0], a[1] + b[1]});
   double best = INFINITY;
   std::array<double, 2> row{};
   for (auto v : candidates) {

@@ -19,7 +19,6 @@ using calibrate_detail::Sample;
 
 namespace {
 
-
 // A scene raw: divided by its local mean (over about two microlenses each way), so that every
 // microlens image looks like a white one whatever the scene's brightness there.
 void flattenScene(Image& work, double pitch) {
@@ -44,7 +43,8 @@ struct IndexBox {
 IndexBox indexBoxOfImage(const Lattice& l, int width, int height) {
   const double c = std::cos(l.theta), s = std::sin(l.theta);
   double aLo = INFINITY, aHi = -INFINITY, bLo = INFINITY, bHi = -INFINITY;
-  for (const auto& [x, y] : {std::array<double, 2>{0, 0}, {double(width), 0}, {0, double(height)}, {double(width), double(height)}}) {
+  for (const auto& [x, y] :
+       {std::array<double, 2>{0, 0}, {double(width), 0}, {0, double(height)}, {double(width), double(height)}}) {
     const double dx = x - l.ox, dy = y - l.oy;
     const double a = (c * dx + s * dy) / l.pitchX, b = (-s * dx + c * dy) / l.pitchY;
     aLo = std::min(aLo, a);
@@ -120,8 +120,8 @@ Result<Calibration> calibrateFrom(const Image& image, const calibrate_detail::Ph
     for (int n = box.n0; n <= box.n1; ++n)
       for (int k = box.k0; k <= box.k1; ++k) {
         const auto c = lattice.centre(k, n);
-        if (c[0] - centroidRadius - 1 < 0 || c[1] - centroidRadius - 1 < 0 || c[0] + centroidRadius + 1 > smooth.width() ||
-            c[1] + centroidRadius + 1 > smooth.height())
+        if (c[0] - centroidRadius - 1 < 0 || c[1] - centroidRadius - 1 < 0 ||
+            c[0] + centroidRadius + 1 > smooth.width() || c[1] + centroidRadius + 1 > smooth.height())
           continue;
         predicted.push_back({k, n, c[0], c[1]});
       }
@@ -169,8 +169,8 @@ Result<Calibration> calibrateFrom(const Image& image, const calibrate_detail::Ph
       if (fine[m].ok) samples.push_back({predicted[m].k, predicted[m].n, fine[m].x, fine[m].y});
     }
     if (samples.size() < 6)
-      return makeError(ErrorCode::Format, where + ": too few microlens images found (" + std::to_string(samples.size()) +
-                                              ") to fit a lattice");
+      return makeError(ErrorCode::Format, where + ": too few microlens images found (" +
+                                              std::to_string(samples.size()) + ") to fit a lattice");
     fit = calibrate_detail::fitLattice(samples, lattice);
     if (fit.used < 6 || !(fit.lattice.pitchX > 2) || !(fit.lattice.pitchY > 2))
       return makeError(ErrorCode::Format, where + ": the microlens centres do not fit a lattice");
@@ -210,12 +210,13 @@ Result<Calibration> calibrateFrom(const Image& image, const calibrate_detail::Ph
   grid.fit = {found, fit.used, fit.rms, fit.max};
   result.centres.reserve(samples.size());
   for (std::size_t m = 0; m < samples.size(); ++m)
-    result.centres.push_back({samples[m].k - k0, samples[m].n - n0, samples[m].x, samples[m].y, fit.residual[m],
-                              bool(fit.inlier[m])});
+    result.centres.push_back(
+        {samples[m].k - k0, samples[m].n - n0, samples[m].x, samples[m].y, fit.residual[m], bool(fit.inlier[m])});
   return result;
 }
 
-Result<Calibration> calibrateGridDetailed(const Image& image, const CalibrationOptions& options, const std::string& where) {
+Result<Calibration> calibrateGridDetailed(const Image& image, const CalibrationOptions& options,
+                                          const std::string& where) {
   if (image.empty() || image.channels() < 1) return makeError(ErrorCode::Usage, where + ": empty image");
   const calibrate_detail::PhaseGains gains = calibrate_detail::phaseGains(image, options);
   // The autocorrelation needs only the prepared central part (latticeFromAutocorrelation's crop).

@@ -33,10 +33,10 @@ struct Sample {
 
 struct LatticeFit {
   Lattice lattice;
-  std::vector<char> inlier;       // per sample
-  std::vector<double> residual;   // per sample, pixels
+  std::vector<char> inlier;      // per sample
+  std::vector<double> residual;  // per sample, pixels
   int used = 0;
-  double rms = 0, max = 0;        // over the inliers
+  double rms = 0, max = 0;  // over the inliers
 };
 
 // Least squares (Gauss-Newton on origin, rotation, pitchX, pitchY) with iterative rejection of
@@ -50,8 +50,8 @@ Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::str
 
 struct CentreEstimate {
   double x = 0, y = 0;
-  double contrast = 0;   // max - min of the image in the window
-  bool ok = false;       // converged with the window inside the image
+  double contrast = 0;  // max - min of the image in the window
+  bool ok = false;      // converged with the window inside the image
 };
 
 // Iterated centroid of max(image - level, 0) over a soft-edged disc of `radius` around the
@@ -60,8 +60,8 @@ struct CentreEstimate {
 // step (a flat disc's centroid moves only half-way). Not ok when the window leaves the image or
 // the steps do not settle.
 // Stops when a step is below `tolerance` pixels.
-CentreEstimate refineCentre(const Image& image, double x, double y, double radius, int iterations,
-                            double relax = 1.0, double tolerance = 1e-3);
+CentreEstimate refineCentre(const Image& image, double x, double y, double radius, int iterations, double relax = 1.0,
+                            double tolerance = 1e-3);
 // The same with every pixel of the window through the weight's formula (the reference).
 CentreEstimate refineCentreReference(const Image& image, double x, double y, double radius, int iterations,
                                      double relax = 1.0, double tolerance = 1e-3);

@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/atomic_file.hpp"
 #include "calibrate/calibrate_internal.hpp"
 #include "core/json_reader.hpp"
+#include "lfcam/atomic_file.hpp"
 
 namespace lfcam {
 
@@ -56,9 +56,12 @@ Result<LensletGrid> gridFromJson(const nlohmann::json& json, const std::string& 
     return makeError(ErrorCode::Unsupported, where + ": version: " + std::to_string(version) + " is not supported");
   LensletGrid grid;
   LFCAM_TRY(root.string("packing", packing));
-  if (packing == "square") grid.packing = Packing::Square;
-  else if (packing == "hexagonal") grid.packing = Packing::Hexagonal;
-  else return root.fail("packing", "expected \"square\" or \"hexagonal\"");
+  if (packing == "square")
+    grid.packing = Packing::Square;
+  else if (packing == "hexagonal")
+    grid.packing = Packing::Hexagonal;
+  else
+    return root.fail("packing", "expected \"square\" or \"hexagonal\"");
   for (const char* key : {"pitch_x_px", "pitch_y_px", "rotation_deg", "origin_px", "columns", "rows"})
     if (!root.has(key)) return root.fail(key, "missing");
   double rotationDeg = 0;

@@ -29,7 +29,8 @@ bool isNumber(const nlohmann::json& json, const char* key) { return json.contain
 
 Result<LensletHint> lensletHintFromJson(const nlohmann::json& json, const std::string& where) {
   // camera.json (docs/formats.md): "lattice_px" with pitch_px, rotation_deg, packing, offset_px.
-  if (const nlohmann::json* owner = findObject(json, [](const nlohmann::json& o) { return o.contains("lattice_px"); })) {
+  if (const nlohmann::json* owner =
+          findObject(json, [](const nlohmann::json& o) { return o.contains("lattice_px"); })) {
     const nlohmann::json& l = owner->at("lattice_px");
     if (!l.is_object() || !isNumber(l, "pitch_px") || !isNumber(l, "rotation_deg"))
       return makeError(ErrorCode::Format, where + ": lattice_px: expected pitch_px and rotation_deg numbers");
@@ -49,15 +50,17 @@ Result<LensletHint> lensletHintFromJson(const nlohmann::json& json, const std::s
            o.at("sensor").is_object() && isNumber(o.at("sensor"), "pixelPitch");
   });
   if (!devices)
-    return makeError(ErrorCode::Format,
-                     where + ": no lenslet geometry: expected lattice_px (camera.json) or devices.mla (Lytro metadata)");
+    return makeError(
+        ErrorCode::Format,
+        where + ": no lenslet geometry: expected lattice_px (camera.json) or devices.mla (Lytro metadata)");
   const nlohmann::json& mla = devices->at("mla");
   const double pixelPitch = devices->at("sensor").at("pixelPitch").get<double>();
   if (!(pixelPitch > 0)) return makeError(ErrorCode::Format, where + ": devices.sensor.pixelPitch: must be positive");
   LensletHint hint;
   hint.pitchPx = mla.at("lensPitch").get<double>() / pixelPitch;
   hint.rotationRad = isNumber(mla, "rotation") ? mla.at("rotation").get<double>() : 0.0;
-  const std::string tiling = mla.contains("tiling") && mla.at("tiling").is_string() ? mla.at("tiling").get<std::string>() : "";
+  const std::string tiling =
+      mla.contains("tiling") && mla.at("tiling").is_string() ? mla.at("tiling").get<std::string>() : "";
   hint.packing = tiling.rfind("hex", 0) == 0 ? Packing::Hexagonal : Packing::Square;
   if (mla.contains("sensorOffset") && mla.at("sensorOffset").is_object() && isNumber(mla.at("sensorOffset"), "x") &&
       isNumber(mla.at("sensorOffset"), "y"))

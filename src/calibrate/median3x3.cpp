@@ -81,12 +81,24 @@ void median3x3Row(const float* above, const float* row, const float* below, int 
     // The 19-exchange median-of-9 network (Paeth).
     float p0 = r0[x - 1], p1 = r0[x], p2 = r0[x + 1], p3 = r1[x - 1], p4 = r1[x], p5 = r1[x + 1];
     float p6 = r2[x - 1], p7 = r2[x], p8 = r2[x + 1];
-    order(p1, p2); order(p4, p5); order(p7, p8);
-    order(p0, p1); order(p3, p4); order(p6, p7);
-    order(p1, p2); order(p4, p5); order(p7, p8);
-    order(p0, p3); order(p5, p8); order(p4, p7);
-    order(p3, p6); order(p1, p4); order(p2, p5);
-    order(p4, p7); order(p4, p2); order(p6, p4);
+    order(p1, p2);
+    order(p4, p5);
+    order(p7, p8);
+    order(p0, p1);
+    order(p3, p4);
+    order(p6, p7);
+    order(p1, p2);
+    order(p4, p5);
+    order(p7, p8);
+    order(p0, p3);
+    order(p5, p8);
+    order(p4, p7);
+    order(p3, p6);
+    order(p1, p4);
+    order(p2, p5);
+    order(p4, p7);
+    order(p4, p2);
+    order(p6, p4);
     order(p4, p2);
     out[x] = p4;
   }

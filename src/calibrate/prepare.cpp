@@ -34,7 +34,8 @@ void greyRow(const Image& image, int y, float black, int x0, int x1, float* out)
 // within three consecutive rows (a 3-row filter clamped at the borders), so three are kept.
 class RowRing {
  public:
-  RowRing(int width, std::function<void(int, float*)> make) : rows_(3 * std::size_t(width)), width_(width), make_(std::move(make)) {}
+  RowRing(int width, std::function<void(int, float*)> make)
+      : rows_(3 * std::size_t(width)), width_(width), make_(std::move(make)) {}
   const float* row(int y) {
     if (next_ < 0) next_ = y;
     for (; next_ <= y; ++next_) make_(next_, slot(next_));
@@ -56,7 +57,8 @@ void prepareBand(const Image& image, const CalibrationOptions& options, const Ph
   const int width = image.width(), height = image.height();
   const bool median = options.target != CalibrationTarget::Pinhole, binomial = isMosaic(options.colorFilter);
   // Each 3-wide step needs one more column each side than the step after it.
-  const int haloWork = smoothed ? 1 : 0, haloBefore = haloWork + (binomial ? 1 : 0), haloGrey = haloBefore + (median ? 1 : 0);
+  const int haloWork = smoothed ? 1 : 0, haloBefore = haloWork + (binomial ? 1 : 0),
+            haloGrey = haloBefore + (median ? 1 : 0);
   const auto from = [&](int halo) { return std::max(x0 - halo, 0); };
   const auto to = [&](int halo) { return std::min(x1 + halo, width); };
   const float black = float(options.blackLevel);
@@ -100,7 +102,8 @@ void prepareBand(const Image& image, const CalibrationOptions& options, const Ph
     const float* below = work.row(std::min(y + 1, height - 1));
     float* c = column.data();
     for (int x = from(1); x < to(1); ++x) c[x] = above[x] + 2 * middle[x] + below[x];
-    for (int x = x0; x < x1; ++x) o[x - x0] = (c[std::max(x - 1, 0)] + 2 * c[x] + c[std::min(x + 1, width - 1)]) * (1.0f / 16);
+    for (int x = x0; x < x1; ++x)
+      o[x - x0] = (c[std::max(x - 1, 0)] + 2 * c[x] + c[std::min(x + 1, width - 1)]) * (1.0f / 16);
   }
 }
 

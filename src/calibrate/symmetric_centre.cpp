@@ -45,8 +45,8 @@ class PointSampler {
 // horizontal interpolation first (each row once), then the vertical, as bilinear() does per sample.
 class GridSampler {
  public:
-  GridSampler(const Image& image, int reach) : data_(image.plane(0)), width_(image.width()), reach_(reach),
-                                               size_(2 * reach + 1) {
+  GridSampler(const Image& image, int reach)
+      : data_(image.plane(0)), width_(image.width()), reach_(reach), size_(2 * reach + 1) {
     thread_local std::vector<float> rows, grid;
     rows.resize(std::size_t(size_) * (size_ + 1));
     grid.resize(std::size_t(size_) * size_);
@@ -118,7 +118,9 @@ CentreEstimate symmetricCentre(const Image& image, double x, double y, double ra
   CentreEstimate estimate;
   const int width = image.width(), height = image.height();
   const int reach = int(std::ceil(radius));
-  auto inside = [&] { return x - reach - 2 >= 0 && y - reach - 2 >= 0 && x + reach + 2 <= width && y + reach + 2 <= height; };
+  auto inside = [&] {
+    return x - reach - 2 >= 0 && y - reach - 2 >= 0 && x + reach + 2 <= width && y + reach + 2 <= height;
+  };
   if (!inside()) return estimate;
   const HalfDisc& disc = halfDisc(radius, reach, neighbours);
   const auto& offsets = disc.offsets;
@@ -142,8 +144,10 @@ CentreEstimate symmetricCentre(const Image& image, double x, double y, double ra
     const int dx = offsets[k][0], dy = offsets[k][1];
     // The bilinear interpolation of the central differences, which is the central difference of
     // the bilinear interpolation (both linear): no gradient images needed.
-    jx[k] = 0.5 * (sampler.at(dx + 1, dy) - sampler.at(dx - 1, dy) - sampler.at(-dx + 1, -dy) + sampler.at(-dx - 1, -dy));
-    jy[k] = 0.5 * (sampler.at(dx, dy + 1) - sampler.at(dx, dy - 1) - sampler.at(-dx, -dy + 1) + sampler.at(-dx, -dy - 1));
+    jx[k] =
+        0.5 * (sampler.at(dx + 1, dy) - sampler.at(dx - 1, dy) - sampler.at(-dx + 1, -dy) + sampler.at(-dx - 1, -dy));
+    jy[k] =
+        0.5 * (sampler.at(dx, dy + 1) - sampler.at(dx, dy - 1) - sampler.at(-dx, -dy + 1) + sampler.at(-dx, -dy - 1));
     normal(0, 0) += jx[k] * jx[k];
     normal(0, 1) += jx[k] * jy[k];
     normal(1, 1) += jy[k] * jy[k];

@@ -5,7 +5,9 @@
 namespace lfcam {
 
 Image::Image(int width, int height, int channels)
-    : width_(width), height_(height), channels_(channels),
+    : width_(width),
+      height_(height),
+      channels_(channels),
       data_(std::size_t(width) * std::size_t(height) * std::size_t(channels), 0.0f) {
   assert(width >= 0 && height >= 0 && channels >= 0);
 }

@@ -40,7 +40,10 @@ class JsonObject {
     return {};
   }
   Status optionalNumber(const char* key, std::optional<double>& out, double lo, double hi, bool openLow = false) const {
-    if (!has(key)) { seen_.insert(key); return {}; }
+    if (!has(key)) {
+      seen_.insert(key);
+      return {};
+    }
     double x = 0;
     LFCAM_TRY(number(key, x, lo, hi, openLow));
     out = x;
@@ -50,10 +53,11 @@ class JsonObject {
     seen_.insert(key);
     if (!has(key)) return {};
     const auto& value = json_.at(key);
-    if (!value.is_number_integer() && !value.is_number_unsigned())
-      return fail(keyPath(key), "expected an integer");
+    if (!value.is_number_integer() && !value.is_number_unsigned()) return fail(keyPath(key), "expected an integer");
     const long long x = value.get<long long>();
-    if (x < lo || x > hi) return fail(keyPath(key), "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + value.dump());
+    if (x < lo || x > hi)
+      return fail(keyPath(key), "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                                    "], got " + value.dump());
     out = int(x);
     return {};
   }

@@ -5,13 +5,9 @@
 
 namespace lfcam {
 
-double Optics::slopeFromAlpha(double alpha) const {
-  return lensStepMm / spatialStepMm * (1.0 - 1.0 / alpha);
-}
+double Optics::slopeFromAlpha(double alpha) const { return lensStepMm / spatialStepMm * (1.0 - 1.0 / alpha); }
 
-double Optics::alphaFromSlope(double slope) const {
-  return 1.0 / (1.0 - slope * spatialStepMm / lensStepMm);
-}
+double Optics::alphaFromSlope(double slope) const { return 1.0 / (1.0 - slope * spatialStepMm / lensStepMm); }
 
 LightField::LightField(const LightFieldShape& shape, Pages pages)
     : shape_(shape), data_(shape.samples(), HugePageAllocator<float>(pages)) {
@@ -36,15 +32,13 @@ void LightField::enableWeight(float value) {
 
 Image LightField::subApertureImage(int u, int v) const {
   Image image(shape_.ns, shape_.nt, shape_.channels);
-  for (int c = 0; c < shape_.channels; ++c)
-    std::copy_n(plane(u, v, c), shape_.viewPixels(), image.plane(c));
+  for (int c = 0; c < shape_.channels; ++c) std::copy_n(plane(u, v, c), shape_.viewPixels(), image.plane(c));
   return image;
 }
 
 void LightField::setSubApertureImage(int u, int v, const Image& image) {
   assert(image.width() == shape_.ns && image.height() == shape_.nt && image.channels() == shape_.channels);
-  for (int c = 0; c < shape_.channels; ++c)
-    std::copy_n(image.plane(c), shape_.viewPixels(), plane(u, v, c));
+  for (int c = 0; c < shape_.channels; ++c) std::copy_n(image.plane(c), shape_.viewPixels(), plane(u, v, c));
 }
 
 }  // namespace lfcam

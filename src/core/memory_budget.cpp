@@ -62,12 +62,18 @@ Result<std::uint64_t> parseMemorySize(std::string_view text) {
     bytes = double(physicalMemoryBytes()) * number / 100;
   } else {
     int shift = 0;
-    if (suffix.empty() || suffix == "B" || suffix == "b") shift = 0;
-    else if (suffix == "K" || suffix == "k") shift = 10;
-    else if (suffix == "M" || suffix == "m") shift = 20;
-    else if (suffix == "G" || suffix == "g") shift = 30;
-    else if (suffix == "T" || suffix == "t") shift = 40;
-    else return bad();
+    if (suffix.empty() || suffix == "B" || suffix == "b")
+      shift = 0;
+    else if (suffix == "K" || suffix == "k")
+      shift = 10;
+    else if (suffix == "M" || suffix == "m")
+      shift = 20;
+    else if (suffix == "G" || suffix == "g")
+      shift = 30;
+    else if (suffix == "T" || suffix == "t")
+      shift = 40;
+    else
+      return bad();
     bytes = std::ldexp(number, shift);
   }
   if (bytes < 1 || bytes >= 1.8e19) return bad();
@@ -80,8 +86,10 @@ std::string formatBytes(std::uint64_t bytes) {
   int unit = 0;
   while (value >= 1024 && unit < 6) value /= 1024, ++unit;
   char text[32];
-  if (unit == 0) std::snprintf(text, sizeof text, "%llu bytes", static_cast<unsigned long long>(bytes));
-  else std::snprintf(text, sizeof text, "%.1f %s", value, units[unit]);
+  if (unit == 0)
+    std::snprintf(text, sizeof text, "%llu bytes", static_cast<unsigned long long>(bytes));
+  else
+    std::snprintf(text, sizeof text, "%.1f %s", value, units[unit]);
   return text;
 }
 

@@ -40,8 +40,8 @@ void setThreadCount(int threads) {
     threadLimit().reset();
     return;
   }
-  threadLimit() = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                        std::size_t(threads));
+  threadLimit() =
+      std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
 }
 
 }  // namespace lfcam

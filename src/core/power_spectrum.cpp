@@ -1,8 +1,8 @@
 #include "core/power_spectrum.hpp"
 
 #include <cmath>
-#include <cstdint>
 #include <complex>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <numeric>

@@ -18,7 +18,9 @@ using decode_detail::CfaTable;
 constexpr float kHotPixelThreshold = 0.25f;  // of full scale above every same-colour neighbour
 constexpr float kDarkWhite = 0.02f;          // white response (of its brightest) below which a photosite is unlit
 
-std::string sizeText(const Image& image) { return std::to_string(image.width()) + "x" + std::to_string(image.height()); }
+std::string sizeText(const Image& image) {
+  return std::to_string(image.width()) + "x" + std::to_string(image.height());
+}
 
 Status checkSameSize(const Image& image, const Image& mosaic, const std::string& what) {
   if (image.width() != mosaic.width() || image.height() != mosaic.height() || image.channels() < 1)
@@ -179,7 +181,8 @@ Result<Devignetted> devignettedMosaic(const RawImage& raw, const LensletGrid& gr
   const int channels = raw.colorFilter == ColorFilter::Mono ? 1 : 3;
   const int n = viewCount(grid, options);
   const double samples = double(n) * n * grid.columns * grid.rows * (channels + 1);
-  if (samples > 4e9) return makeError(ErrorCode::Resource, "decode: light field too large (" + std::to_string(samples) + " samples)");
+  if (samples > 4e9)
+    return makeError(ErrorCode::Resource, "decode: light field too large (" + std::to_string(samples) + " samples)");
   const ColorFilter filter = raw.colorFilter;
 
   // 1. Offset and scale, hot pixels.
@@ -242,19 +245,19 @@ Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& 
   // 5. Colour: the white image already divided out each colour's response, so the camera's white
   //    balance gains apply only without it.
   if (channels == 3 && options.applyWhiteBalance && (raw.colorMatrix || (!hasWhite && raw.whiteBalance))) {
-    const std::array<double, 3> gains = !hasWhite && raw.whiteBalance ? *raw.whiteBalance : std::array<double, 3>{1, 1, 1};
+    const std::array<double, 3> gains =
+        !hasWhite && raw.whiteBalance ? *raw.whiteBalance : std::array<double, 3>{1, 1, 1};
     const std::array<double, 9> identity{1, 0, 0, 0, 1, 0, 0, 0, 1};
     correctColour(lf, gains, raw.colorMatrix.value_or(identity));
   }
 
   // 6. Hexagonal rows onto a rectangular s grid.
-  if (grid.packing == Packing::Hexagonal && options.hexToRectangular)
-    hexRowsToRectangular(lf, 1 - grid.hexParity);
+  if (grid.packing == Packing::Hexagonal && options.hexToRectangular) hexRowsToRectangular(lf, 1 - grid.hexParity);
 
   lf.metadata.optics = options.optics;
   lf.metadata.source = "lfcam decode" + (raw.source.empty() ? std::string() : " of a " + raw.source + " raw") + ": " +
-                       std::to_string(grid.columns) + "x" + std::to_string(grid.rows) + " " + packingName(grid.packing) +
-                       " microlenses, pitch " + std::to_string(grid.pitchX) + " px";
+                       std::to_string(grid.columns) + "x" + std::to_string(grid.rows) + " " +
+                       packingName(grid.packing) + " microlenses, pitch " + std::to_string(grid.pitchX) + " px";
   return lf;
 }
 
@@ -267,10 +270,11 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
   const ColorFilter filter = raw.colorFilter;
 
   // 3. Demosaicing.
-  Image planes = filter != ColorFilter::Mono && options.demosaic == DemosaicMethod::LightFieldAware
-                     ? decode_detail::demosaicLightField(value, filter, grid, prepared->weight, options.referenceKernels)
-                 : options.referenceKernels ? demosaicReference(value, filter, options.demosaic, &grid)
-                                            : demosaic(value, filter, options.demosaic, &grid);
+  Image planes =
+      filter != ColorFilter::Mono && options.demosaic == DemosaicMethod::LightFieldAware
+          ? decode_detail::demosaicLightField(value, filter, grid, prepared->weight, options.referenceKernels)
+      : options.referenceKernels ? demosaicReference(value, filter, options.demosaic, &grid)
+                                 : demosaic(value, filter, options.demosaic, &grid);
   value = Image();
   return decode_detail::decodeDemosaiced(std::move(planes), std::move(prepared->weight), raw, grid, options);
 }

@@ -47,7 +47,8 @@ struct Direct {
 template <class M>
 inline float mhcGreenAtRB(const M& m, int x, int y) {
   return (4 * m(x, y) + 2 * (m(x, y - 1) + m(x, y + 1) + m(x - 1, y) + m(x + 1, y)) -
-          (m(x, y - 2) + m(x, y + 2) + m(x - 2, y) + m(x + 2, y))) * 0.125f;
+          (m(x, y - 2) + m(x, y + 2) + m(x - 2, y) + m(x + 2, y))) *
+         0.125f;
 }
 
 // Hamilton-Adams's green at a red or blue photosite: the direction (across or down) with the

@@ -30,14 +30,16 @@ using decode_detail::Mosaic;
 template <class M>
 inline float mhcRowNeighbours(const M& m, int x, int y) {
   return (5 * m(x, y) + 4 * (m(x - 1, y) + m(x + 1, y)) - (m(x - 2, y) + m(x + 2, y)) -
-          (m(x - 1, y - 1) + m(x + 1, y - 1) + m(x - 1, y + 1) + m(x + 1, y + 1)) + 0.5f * (m(x, y - 2) + m(x, y + 2))) *
+          (m(x - 1, y - 1) + m(x + 1, y - 1) + m(x - 1, y + 1) + m(x + 1, y + 1)) +
+          0.5f * (m(x, y - 2) + m(x, y + 2))) *
          0.125f;
 }
 // At a green pixel whose upper and lower neighbours have the wanted colour.
 template <class M>
 inline float mhcColumnNeighbours(const M& m, int x, int y) {
   return (5 * m(x, y) + 4 * (m(x, y - 1) + m(x, y + 1)) - (m(x, y - 2) + m(x, y + 2)) -
-          (m(x - 1, y - 1) + m(x + 1, y - 1) + m(x - 1, y + 1) + m(x + 1, y + 1)) + 0.5f * (m(x - 2, y) + m(x + 2, y))) *
+          (m(x - 1, y - 1) + m(x + 1, y - 1) + m(x - 1, y + 1) + m(x + 1, y + 1)) +
+          0.5f * (m(x - 2, y) + m(x + 2, y))) *
          0.125f;
 }
 // Red at blue or blue at red: the diagonal neighbours.
@@ -80,13 +82,14 @@ inline void haPixel(const M& m, const M& g, const CfaTable& cfa, int x, int y, f
   }
   out[c] = m(x, y);
   // The other colour on the diagonals: along the one with the smaller gradient.
-  const float d1 = std::abs(m(x - 1, y - 1) - m(x + 1, y + 1)) + std::abs(2 * green - g(x - 1, y - 1) - g(x + 1, y + 1));
-  const float d2 = std::abs(m(x + 1, y - 1) - m(x - 1, y + 1)) + std::abs(2 * green - g(x + 1, y - 1) - g(x - 1, y + 1));
+  const float d1 =
+      std::abs(m(x - 1, y - 1) - m(x + 1, y + 1)) + std::abs(2 * green - g(x - 1, y - 1) - g(x + 1, y + 1));
+  const float d2 =
+      std::abs(m(x + 1, y - 1) - m(x - 1, y + 1)) + std::abs(2 * green - g(x + 1, y - 1) - g(x - 1, y + 1));
   const float e1 = 0.5f * ((m(x - 1, y - 1) - g(x - 1, y - 1)) + (m(x + 1, y + 1) - g(x + 1, y + 1)));
   const float e2 = 0.5f * ((m(x + 1, y - 1) - g(x + 1, y - 1)) + (m(x - 1, y + 1) - g(x - 1, y + 1)));
   out[2 - c] = green + (d1 < d2 ? e1 : d2 < d1 ? e2 : 0.5f * (e1 + e2));
 }
-
 
 Image monoCopy(const Image& mosaic) { return mosaic.copy(); }
 
@@ -203,7 +206,8 @@ Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, c
   if (filter == ColorFilter::Mono) return monoCopy(mosaic);
   const CfaTable cfa(filter);
   if (method == DemosaicMethod::LensletAware && grid) return demosaicLensletAware(mosaic, cfa, *grid);
-  if (method == DemosaicMethod::LightFieldAware && grid) return decode_detail::demosaicLightField(mosaic, filter, *grid, Image());
+  if (method == DemosaicMethod::LightFieldAware && grid)
+    return decode_detail::demosaicLightField(mosaic, filter, *grid, Image());
   const int w = mosaic.width(), h = mosaic.height();
   if (w < 8 || h < 8) return demosaicReference(mosaic, filter, method);
   Image out(w, h, 3);
@@ -239,9 +243,12 @@ Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, c
         const bool border = isBorder(y);
         for (int x = 0; x < w; ++x) {
           float value;
-          if (cfa(x, y) == 1) value = direct(x, y);
-          else if (border || x < 2 || x >= w - 2) value = haGreen(reflected, x, y);
-          else value = haGreen(direct, x, y);
+          if (cfa(x, y) == 1)
+            value = direct(x, y);
+          else if (border || x < 2 || x >= w - 2)
+            value = haGreen(reflected, x, y);
+          else
+            value = haGreen(direct, x, y);
           gp[std::size_t(y) * w + x] = value;
         }
       }

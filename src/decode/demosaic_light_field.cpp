@@ -272,7 +272,8 @@ Image demosaicFused(const Image& mosaic, const CfaTable& cfa, const LatticeTaps&
 
   parallelFor(0, std::size_t(h), 32, [&](std::size_t begin, std::size_t end) {
     // Ring of error rows: slot y % 3 holds row `rowOf[slot]`.
-    std::vector<float> e2(3 * std::size_t(w)), e4(3 * std::size_t(w)), sum2(std::size_t(w) + 2), sum4(std::size_t(w) + 2);
+    std::vector<float> e2(3 * std::size_t(w)), e4(3 * std::size_t(w)), sum2(std::size_t(w) + 2),
+        sum4(std::size_t(w) + 2);
     std::array<int, 3> rowOf{-1, -1, -1};
     auto errorRow = [&](int y) {
       const std::size_t slot = std::size_t(y % 3), at = slot * std::size_t(w);
@@ -280,7 +281,8 @@ Image demosaicFused(const Image& mosaic, const CfaTable& cfa, const LatticeTaps&
         forRow(
             y, [&](int x) { predictionErrors(m, cfa, taps, x, y, w, h, e2[at + x], e4[at + x]); },
             [&](int x, std::size_t k, int phase) {
-              const float around = 0.25f * (m[k - 2] + m[k + 2] + m[k - 2 * std::size_t(w)] + m[k + 2 * std::size_t(w)]);
+              const float around =
+                  0.25f * (m[k - 2] + m[k + 2] + m[k - 2 * std::size_t(w)] + m[k + 2 * std::size_t(w)]);
               float predicted = around;
               const bool has4d = estimate(mosaicValue, cfa.phase[std::size_t(phase)], phase, k, predicted);
               e2[at + x] = has4d ? (m[k] - around) * (m[k] - around) : 0.0f;
@@ -297,7 +299,8 @@ Image demosaicFused(const Image& mosaic, const CfaTable& cfa, const LatticeTaps&
         sum2[std::size_t(x) + 1] = e2[up + x] + e2[mid + x] + e2[down + x];
         sum4[std::size_t(x) + 1] = e4[up + x] + e4[mid + x] + e4[down + x];
       }
-      sum2[0] = sum2[1], sum4[0] = sum4[1], sum2[std::size_t(w) + 1] = sum2[std::size_t(w)], sum4[std::size_t(w) + 1] = sum4[std::size_t(w)];
+      sum2[0] = sum2[1], sum4[0] = sum4[1], sum2[std::size_t(w) + 1] = sum2[std::size_t(w)],
+      sum4[std::size_t(w) + 1] = sum4[std::size_t(w)];
       const std::size_t row = std::size_t(y) * w;
       for (int x = 0; x < w; ++x) {
         const float s2 = sum2[std::size_t(x)] + sum2[std::size_t(x) + 1] + sum2[std::size_t(x) + 2];
@@ -370,7 +373,8 @@ Image demosaicFused(const Image& mosaic, const CfaTable& cfa, const LatticeTaps&
             }
             // At red, blue from the four diagonal neighbours (and the other way round).
             const std::size_t wu = std::size_t(w);
-            const float d2 = 0.25f * (difference(k - wu - 1) + difference(k - wu + 1) + difference(k + wu - 1) + difference(k + wu + 1));
+            const float d2 = 0.25f * (difference(k - wu - 1) + difference(k - wu + 1) + difference(k + wu - 1) +
+                                      difference(k + wu + 1));
             float d4 = d2;
             estimate(difference, 2 - own, phase, k, d4);
             const float other = g + share * d4 + (1 - share) * d2;
@@ -389,7 +393,8 @@ Image demosaicLightField(const Image& mosaic, ColorFilter filter, const LensletG
   const LatticeTaps taps(grid, cfa, mosaic.width(), mosaic.height(), weight.empty() ? nullptr : weight.plane(0));
   if (reference) return demosaicReferencePasses(mosaic, cfa, taps);
   const bool lit = !weight.empty();
-  if (taps.shifts() == 6) return lit ? demosaicFused<6, true>(mosaic, cfa, taps) : demosaicFused<6, false>(mosaic, cfa, taps);
+  if (taps.shifts() == 6)
+    return lit ? demosaicFused<6, true>(mosaic, cfa, taps) : demosaicFused<6, false>(mosaic, cfa, taps);
   return lit ? demosaicFused<4, true>(mosaic, cfa, taps) : demosaicFused<4, false>(mosaic, cfa, taps);
 }
 

@@ -100,12 +100,14 @@ bool sampleMicrolensSeparable(const Image& planes, const Image& weight, const Le
     for (int r = 0; r < n + 3; ++r) {
       const float* src = plane + std::size_t(top + r) * w + left;
       float* dst = rows + std::size_t(r) * n;
-      for (int u = 0; u < n; ++u) dst[u] = wx[0] * src[u] + wx[1] * src[u + 1] + wx[2] * src[u + 2] + wx[3] * src[u + 3];
+      for (int u = 0; u < n; ++u)
+        dst[u] = wx[0] * src[u] + wx[1] * src[u + 1] + wx[2] * src[u + 2] + wx[3] * src[u + 3];
     }
     // Vertical pass: view v reads rows v .. v+3.
     for (int v = 0; v < n; ++v, o += n) {
       const float* r0 = rows + std::size_t(v) * n;
-      for (int u = 0; u < n; ++u) o[u] = wy[0] * r0[u] + wy[1] * r0[u + n] + wy[2] * r0[u + 2 * n] + wy[3] * r0[u + 3 * n];
+      for (int u = 0; u < n; ++u)
+        o[u] = wy[0] * r0[u] + wy[1] * r0[u + n] + wy[2] * r0[u + 2 * n] + wy[3] * r0[u + 3 * n];
     }
   };
   const std::size_t views = std::size_t(n) * n;

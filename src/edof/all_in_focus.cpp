@@ -103,7 +103,8 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
         contrast += sum / slices - *std::min_element(c, c + slices);
       }
       const double scale = std::max(contrast / double(n), 1e-20);
-      const Image guide = edof::luminance(lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2));
+      const Image guide =
+          edof::luminance(lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2));
       // The centre view is one ray per pixel and may be noisy; its edges matter only when they
       // stand well above that noise, hence the larger edge scale than depth's.
       const std::vector<float> summed =

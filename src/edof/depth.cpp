@@ -26,8 +26,6 @@ namespace {
 // move along the edge see the occluder too (measured on antinous: MSE x100 28 -> 14).
 constexpr int kHalves = 6;
 
-
-
 struct StarView {
   int u = 0, v = 0;
   double uc = 0, vc = 0;  // view steps from the aperture centre
@@ -59,7 +57,7 @@ std::vector<StarView> starViews(const LightField& lightField, int referenceU, in
 // Samples row y of `plane` (ns x nt) shifted by (shiftX, shiftY), bilinearly, with coordinates
 // clamped to the view: out[x] = plane(x + shiftX, y + shiftY). `padded` is scratch of ns + 2 pad.
 LFCAM_EDOF_CLONES void sampleShiftedRow(const float* __restrict plane, int ns, int nt, int y, double shiftX,
-                                         double shiftY, int pad, float* __restrict padded, float* __restrict out) {
+                                        double shiftY, int pad, float* __restrict padded, float* __restrict out) {
   const double rowPosition = y + shiftY;
   const double rowFloor = std::floor(rowPosition);
   const float fy = float(rowPosition - rowFloor);
@@ -82,13 +80,12 @@ LFCAM_EDOF_CLONES void sampleShiftedRow(const float* __restrict plane, int ns, i
 
 // accumulator += (sample - reference)^2
 LFCAM_EDOF_CLONES void accumulateSquaredDifference(const float* __restrict sample, const float* __restrict reference,
-                                                    float* __restrict accumulator, int count) {
+                                                   float* __restrict accumulator, int count) {
   for (int x = 0; x < count; ++x) {
     const float difference = sample[x] - reference[x];
     accumulator[x] += difference * difference;
   }
 }
-
 
 // Bilinear interpolation blurs a view sampled between pixels, by f (1 - f) / 2 times the second
 // difference of the signal at fraction f, and that blur adds its square to the cost of every
@@ -156,8 +153,7 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
   const std::vector<int> subsets = subsetsWithViews(views, viewsIn);
 
   double largestOffset = 0, largestDisparity = 0;
-  for (const StarView& view : views)
-    largestOffset = std::max({largestOffset, std::abs(view.uc), std::abs(view.vc)});
+  for (const StarView& view : views) largestOffset = std::max({largestOffset, std::abs(view.uc), std::abs(view.vc)});
   for (double d : disparities) largestDisparity = std::max(largestDisparity, std::abs(d));
   const int pad = int(std::ceil(largestOffset * largestDisparity)) + 3;
 
@@ -181,8 +177,8 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
         for (const StarView& view : views) {
           for (int y = y0; y < y1; ++y) {
             const float* referenceRow = reference.data() + std::size_t(y - y0) * ns;
-            sampleShiftedRow(grey.plane(view.u, view.v, 0), ns, nt, y, -view.uc * d, -view.vc * d, pad,
-                             padded.data(), sample.data());
+            sampleShiftedRow(grey.plane(view.u, view.v, 0), ns, nt, y, -view.uc * d, -view.vc * d, pad, padded.data(),
+                             sample.data());
             for (int h = 0; h < kHalves; ++h)
               if ((view.halves >> h) & 1)
                 accumulateSquaredDifference(sample.data(), referenceRow,
@@ -576,8 +572,8 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     // A quarter of the correction in the fine search: its slices, a fraction of a label apart,
     // see far smaller differences of blur (measured on antinous: 1 there is worse than none).
     refineDisparity(grey, refineFilter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps,
-                    0.25 * std::max(experiment.lockingCorrection, 0.0), experiment.refineAggregateHalves, curvature.data(),
-                    residual.data());
+                    0.25 * std::max(experiment.lockingCorrection, 0.0), experiment.refineAggregateHalves,
+                    curvature.data(), residual.data());
     // The fine search may step past the ends of the range searched; the map stays inside it.
     for (std::size_t p = 0; p < n; ++p)
       result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));

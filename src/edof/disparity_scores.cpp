@@ -25,7 +25,8 @@ struct Plane {
   int width, height;
   std::vector<double> values;
   double at(int x, int y) const {
-    return values[std::size_t(std::clamp(y, 0, height - 1)) * std::size_t(width) + std::size_t(std::clamp(x, 0, width - 1))];
+    return values[std::size_t(std::clamp(y, 0, height - 1)) * std::size_t(width) +
+                  std::size_t(std::clamp(x, 0, width - 1))];
   }
 };
 
@@ -57,9 +58,11 @@ Plane hessianNorm(const Plane& plane) {
 }
 
 Plane truthPlane(const Image& truth) {
-  Plane plane{truth.width(), truth.height(), std::vector<double>(std::size_t(truth.width()) * std::size_t(truth.height()))};
+  Plane plane{truth.width(), truth.height(),
+              std::vector<double>(std::size_t(truth.width()) * std::size_t(truth.height()))};
   for (int y = 0; y < truth.height(); ++y)
-    for (int x = 0; x < truth.width(); ++x) plane.values[std::size_t(y) * std::size_t(truth.width()) + std::size_t(x)] = truth.at(x, y, 0);
+    for (int x = 0; x < truth.width(); ++x)
+      plane.values[std::size_t(y) * std::size_t(truth.width()) + std::size_t(x)] = truth.at(x, y, 0);
   return plane;
 }
 

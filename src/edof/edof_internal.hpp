@@ -50,8 +50,8 @@ class GuidedFilter {
 // neighbours linked by exp(-|I_p - I_q| / sigma) of the guide (guideChannels planes of
 // width x height, L2 over channels) and overall smoothness `lambda`; `iterations` row + column
 // passes. Pixels of low confidence take the values of confident ones on their side of an edge.
-void globalSmooth(const float* guide, int guideChannels, int width, int height, const float* confidence,
-                  float* values, float lambda, float sigma, int iterations);
+void globalSmooth(const float* guide, int guideChannels, int width, int height, const float* confidence, float* values,
+                  float lambda, float sigma, int iterations);
 
 // Weighted median of (value, weight) pairs, weights >= 0 with a positive total: the smallest value
 // whose cumulative weight in ascending order reaches half the total. Both reorder `window`.

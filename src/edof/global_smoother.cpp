@@ -18,8 +18,7 @@ namespace {
 // Solves (I + lambda L_w) u = b in place along one line of `count` samples spaced by
 // `stride`: L_w the weighted path Laplacian with w[i] linking samples i and i + 1, a = 1.
 // Thomas algorithm; the unit diagonal keeps the system diagonally dominant.
-void solveLine(float* b, const float* w, int count, std::size_t stride, float lambda,
-               float* scratch) {
+void solveLine(float* b, const float* w, int count, std::size_t stride, float lambda, float* scratch) {
   float previous = 0;  // lambda w[i - 1]
   float denominator = 1;
   for (int i = 0; i < count; ++i) {
@@ -37,8 +36,8 @@ void solveLine(float* b, const float* w, int count, std::size_t stride, float la
 
 }  // namespace
 
-void globalSmooth(const float* guide, int guideChannels, int width, int height, const float* confidence,
-                  float* values, float lambda, float sigma, int iterations) {
+void globalSmooth(const float* guide, int guideChannels, int width, int height, const float* confidence, float* values,
+                  float lambda, float sigma, int iterations) {
   const std::size_t n = std::size_t(width) * height;
   if (n == 0 || iterations <= 0 || !(lambda > 0)) return;
   // Edge weights exp(-|I_p - I_q| / sigma) (L2 over channels), to the right and below.
@@ -63,8 +62,7 @@ void globalSmooth(const float* guide, int guideChannels, int width, int height, 
   for (std::size_t p = 0; p < n; ++p) weighted[p] = confidence[p] * values[p];
   for (int t = 0; t < iterations; ++t) {
     // lambda_t = 1.5 lambda 4^(T - t - 1) / (4^T - 1) (Min et al., equation 9).
-    const float lambdaT =
-        float(1.5 * lambda * std::pow(4.0, iterations - t - 1) / (std::pow(4.0, iterations) - 1.0));
+    const float lambdaT = float(1.5 * lambda * std::pow(4.0, iterations - t - 1) / (std::pow(4.0, iterations) - 1.0));
     for (std::vector<float>* target : {&weighted, &mass}) {
       float* data = target->data();
       parallelFor(0, std::size_t(height), 8, [&](std::size_t begin, std::size_t end) {

@@ -33,7 +33,8 @@ Plane reduce(const Plane& in) {
     for (int x = 0; x < w; ++x) {
       const int c = 2 * x;
       if (c >= 2 && c + 2 < in.width)
-        target[x] = (column[c - 2] + 4 * column[c - 1] + 6 * column[c] + 4 * column[c + 1] + column[c + 2]) * (1.0f / 16);
+        target[x] =
+            (column[c - 2] + 4 * column[c - 1] + 6 * column[c] + 4 * column[c + 1] + column[c + 2]) * (1.0f / 16);
       else
         target[x] = (at(c - 2) + 4 * at(c - 1) + 6 * at(c) + 4 * at(c + 1) + at(c + 2)) * (1.0f / 16);
     }

@@ -87,8 +87,7 @@ std::vector<float> semiGlobalMatching(const std::vector<float>& cost, int width,
             startPath(&cost[p * L], cur, &sum[p * L], labels);
           } else {
             const std::size_t q = std::size_t(y - dy) * width + std::size_t(px);
-            pathStep(&cost[p * L], &previousRow[std::size_t(px) * L], cur, &sum[p * L], labels, p1,
-                     jumpPenalty(p, q));
+            pathStep(&cost[p * L], &previousRow[std::size_t(px) * L], cur, &sum[p * L], labels, p1, jumpPenalty(p, q));
           }
         }
       });

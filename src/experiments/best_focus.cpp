@@ -63,15 +63,16 @@ Result<BestFocus> refocusToSharpest(const LightField& lightField) {
   // supersampled aperture spreads fewer ghosts): the cutoff alone is fooled far from focus by
   // ghost copies and Monte Carlo speckle, whose fine structure it counts as detail.
   const RenderOptions quadratureMethod{RenderMethod::Quadrature, 0}, viewsMethod{RenderMethod::Quadrature, 1};
-  LFCAM_ASSIGN_OR_RETURN(auto coarse, search(lightField, quadratureMethod, 0, std::min(range, 12.0), 61, 3, concentrationOf));
+  LFCAM_ASSIGN_OR_RETURN(auto coarse,
+                         search(lightField, quadratureMethod, 0, std::min(range, 12.0), 61, 3, concentrationOf));
   // Then the paper's criterion, the highest cutoff, within +-0.5 pixel per view step of it: by the
   // quadrature method, and by the views alone (shift-and-add, one term per view), which line up
   // there and need no blending of neighbouring views, the quadrilinear filter's blur in u that
   // section 6.3 names among the paper's losses.
   LFCAM_ASSIGN_OR_RETURN(auto quadrature, search(lightField, quadratureMethod, coarse.slope, 0.5, 41, 2, cutoffOf));
   LFCAM_ASSIGN_OR_RETURN(auto views, search(lightField, viewsMethod, coarse.slope, 0.5, 41, 2, cutoffOf));
-  return BestFocus{views.slope, views.cutoff, std::move(views.photo), quadrature.slope, quadrature.cutoff,
-                   std::move(quadrature.photo)};
+  return BestFocus{views.slope,      views.cutoff,      std::move(views.photo),
+                   quadrature.slope, quadrature.cutoff, std::move(quadrature.photo)};
 }
 
 }  // namespace lfcam::experiments

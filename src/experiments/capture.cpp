@@ -84,7 +84,8 @@ Result<LightField> captureLightField(const TracedCapture& traced, bool noise, st
   raw.blackLevel = sensor.blackLevel;
   raw.whiteLevel = sensor.whiteLevel;
   raw.source = "simulator";
-  const double perUnit = sensor.gain() * sensor.exposure * sensor.electronsPerIrradiance / (sensor.whiteLevel - sensor.blackLevel);
+  const double perUnit =
+      sensor.gain() * sensor.exposure * sensor.electronsPerIrradiance / (sensor.whiteLevel - sensor.blackLevel);
   Image white(traced.whiteIrradiance.width(), traced.whiteIrradiance.height(), 1);
   const auto in = traced.whiteIrradiance.pixels();
   auto out = white.pixels();
@@ -92,11 +93,12 @@ Result<LightField> captureLightField(const TracedCapture& traced, bool noise, st
   DecodeOptions options;
   options.whiteImage = &white;
   options.repairHotPixels = false;  // the experiments' sensors have none; shot noise must stay
-  options.views = int(std::lround(camera.microlenses->pitchMm * (1 + camera.microlenses->separationMm() /
-                                                                        camera.mainLens.imageDistanceMm()) /
+  options.views = int(std::lround(camera.microlenses->pitchMm *
+                                  (1 + camera.microlenses->separationMm() / camera.mainLens.imageDistanceMm()) /
                                   camera.sensor.pixelPitchMm));
   Optics optics;
-  optics.lensStepMm = camera.mainLens.imageDistanceMm() * camera.sensor.pixelPitchMm / camera.microlenses->separationMm();
+  optics.lensStepMm =
+      camera.mainLens.imageDistanceMm() * camera.sensor.pixelPitchMm / camera.microlenses->separationMm();
   optics.spatialStepMm = camera.microlenses->pitchMm;
   optics.lensToMicrolensMm = camera.mainLens.imageDistanceMm();
   optics.focalLengthMm = camera.mainLens.focalLengthMm;

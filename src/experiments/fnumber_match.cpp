@@ -32,8 +32,8 @@ Status runFNumberMatch(const std::filesystem::path& folder, const ExperimentOpti
   for (double stop : stops) {
     CameraModel camera = plenopticCamera(array, n);
     camera.mainLens.setImageSideFNumber(stop);
-    pitchPx = camera.microlenses->pitchMm * (1 + camera.microlenses->separationMm() / camera.mainLens.imageDistanceMm()) /
-              camera.sensor.pixelPitchMm;
+    pitchPx = camera.microlenses->pitchMm *
+              (1 + camera.microlenses->separationMm() / camera.mainLens.imageDistanceMm()) / camera.sensor.pixelPitchMm;
     // One microlens alone on a sensor three images wide: its whole image, whatever overlaps it.
     CameraModel single = camera;
     single.microlenses->columns = single.microlenses->rows = 1;
@@ -53,14 +53,17 @@ Status runFNumberMatch(const std::filesystem::path& folder, const ExperimentOpti
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) crop.at(x, y, 0) = raw.at(x0 + x, y0 + y, 0);
     const std::string name = fixed(stop, 1);
-    report.image("raw_f" + name + ".png", forDisplay(crop, 4, peak), "Raw close-up of a white field, main lens at f/" + name);
+    report.image("raw_f" + name + ".png", forDisplay(crop, 4, peak),
+                 "Raw close-up of a white field, main lens at f/" + name);
     measured.push_back(diameter);
     predicted.push_back(camera.microlensImageDiameterPx());
     ratios.push_back(diameter / pitchPx);
     darkShares.push_back(darkShare);
     rows.push_back({"f/" + name, fixed(diameter, 2), fixed(camera.microlensImageDiameterPx(), 2), fixed(pitchPx, 2),
                     fixed(diameter / pitchPx, 3), fixed(100 * darkShare, 1),
-                    diameter > 1.02 * pitchPx ? "overlap" : diameter < 0.9 * pitchPx ? "too small" : "matched"});
+                    diameter > 1.02 * pitchPx  ? "overlap"
+                    : diameter < 0.9 * pitchPx ? "too small"
+                                               : "matched"});
     if (options.progress) options.progress(double(rows.size()) / stops.size());
   }
   // The widest aperture whose images do not overlap.
@@ -71,14 +74,16 @@ Status runFNumberMatch(const std::filesystem::path& folder, const ExperimentOpti
       break;
     }
   report.heading("Setup");
-  report.paragraph("Microlenses of 125 um at f/4 (the paper's), " + std::to_string(n) +
-                   " pixels per microlens image pitch, the main lens stopped to image-side f/2.8, f/4 and f/8, a white field. " +
-                   "Diameter: the disc with the area of the light of one microlens traced alone (summed irradiance over the " +
-                   "brightest pixel's), against the pitch of the microlens images on the sensor. Dark pixels: under 5% of the " +
-                   "brightest in the whole array.");
+  report.paragraph(
+      "Microlenses of 125 um at f/4 (the paper's), " + std::to_string(n) +
+      " pixels per microlens image pitch, the main lens stopped to image-side f/2.8, f/4 and f/8, a white field. " +
+      "Diameter: the disc with the area of the light of one microlens traced alone (summed irradiance over the " +
+      "brightest pixel's), against the pitch of the microlens images on the sensor. Dark pixels: under 5% of the " +
+      "brightest in the whole array.");
   report.heading("Results");
   report.table("diameters.csv",
-               {"main lens", "image diameter (px)", "predicted (px)", "pitch (px)", "diameter / pitch", "dark pixels (%)", "verdict"},
+               {"main lens", "image diameter (px)", "predicted (px)", "pitch (px)", "diameter / pitch",
+                "dark pixels (%)", "verdict"},
                rows);
   Plot plot{"Microlens image diameter against f-number", "image-side f-number", "diameter / pitch", true, {}, {}, {}};
   plot.series.push_back({"measured", stops, ratios, true, true, false});
@@ -88,8 +93,10 @@ Status runFNumberMatch(const std::filesystem::path& folder, const ExperimentOpti
   plot.horizontalLines.push_back({"pitch", 1.0});
   report.plot("diameter.svg", plot, "Diameter of a microlens image over the pitch: above 1 the images overlap.");
   report.heading("Against the paper");
-  report.paragraph("The paper: at f/4 the images are as large as possible without overlapping; at f/2.8 they overlap, at f/8 "
-                   "they are too small and pixels are wasted. Here the widest stop without overlap is f/" + fixed(matched, 1) + ".");
+  report.paragraph(
+      "The paper: at f/4 the images are as large as possible without overlapping; at f/2.8 they overlap, at f/8 "
+      "they are too small and pixels are wasted. Here the widest stop without overlap is f/" +
+      fixed(matched, 1) + ".");
   auto& r = report.results();
   r["experiment"] = "fnumber-match";
   r["quick"] = options.quick;

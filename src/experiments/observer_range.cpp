@@ -14,7 +14,8 @@ namespace {
 // No pixel without light.
 Result<bool> unvignetted(const LightField& lf, double u, double beta) {
   const Optics& optics = *lf.metadata.optics;
-  Observer observer{.u = u, .v = 0, .beta = beta, .parallax = optics.lensStepMm / optics.spatialStepMm, .clampToLens = false};
+  Observer observer{
+      .u = u, .v = 0, .beta = beta, .parallax = optics.lensStepMm / optics.spatialStepMm, .clampToLens = false};
   LFCAM_ASSIGN_OR_RETURN(auto photo, observe(lf, observer));
   for (float value : photo.pixels())
     if (!(value > 0.5f)) return false;
@@ -65,20 +66,32 @@ Status runObserverRange(const std::filesystem::path& folder, const ExperimentOpt
 
   Report report("Observer range (Figure 6)");
   report.heading("Setup");
-  report.paragraph("A white field captured with " + std::to_string(microlenses) + " x " + std::to_string(microlenses) +
-                   " microlenses and " + std::to_string(n) + " pixels under each, the main lens at image-side f/4 focused at " +
-                   "18 and at 72 inches. A synthetic pinhole (Equation 7) at lens position x = u du and at the plane beta F in " +
-                   "front of the microlens plane (z = (1 - beta) F behind the main lens, negative: in front of it); its " +
-                   "photograph is vignetted when some pixel receives no ray. For each beta the farthest |x| is found by bisection.");
+  report.paragraph(
+      "A white field captured with " + std::to_string(microlenses) + " x " + std::to_string(microlenses) +
+      " microlenses and " + std::to_string(n) + " pixels under each, the main lens at image-side f/4 focused at " +
+      "18 and at 72 inches. A synthetic pinhole (Equation 7) at lens position x = u du and at the plane beta F in " +
+      "front of the microlens plane (z = (1 - beta) F behind the main lens, negative: in front of it); its " +
+      "photograph is vignetted when some pixel receives no ray. For each beta the farthest |x| is found by bisection.");
   report.heading("Results");
-  Plot plot{"Pinhole positions without vignetting", "z, distance behind the main lens relative to F", "x / scene distance", false, {}, {}, {}};
+  Plot plot{"Pinhole positions without vignetting",
+            "z, distance behind the main lens relative to F",
+            "x / scene distance",
+            false,
+            {},
+            {},
+            {}};
   std::vector<std::vector<std::string>> rows;
   auto& r = report.results();
   r["experiment"] = "observer-range";
   r["quick"] = options.quick;
   r["regions"] = nlohmann::json::array();
   for (const Region& region : regions) {
-    Series shaded{"focus " + fixed(region.focusMm / 25.4, 0) + " in (m = " + fixed(region.magnification, 3) + ")", {}, {}, true, false, true};
+    Series shaded{"focus " + fixed(region.focusMm / 25.4, 0) + " in (m = " + fixed(region.magnification, 3) + ")",
+                  {},
+                  {},
+                  true,
+                  false,
+                  true};
     double lateral = 0, betaMin = INFINITY, betaMax = 0, area = 0;
     std::vector<std::pair<double, double>> upper;
     for (std::size_t k = 0; k < region.beta.size(); ++k) {
@@ -96,7 +109,8 @@ Status runObserverRange(const std::filesystem::path& folder, const ExperimentOpt
                 (region.halfWidth[k] + region.halfWidth[k - 1]) * region.lensStepMm;
     }
     for (const auto& [z, x] : upper) shaded.x.push_back(z), shaded.y.push_back(x);
-    for (auto it = upper.rbegin(); it != upper.rend(); ++it) shaded.x.push_back(it->first), shaded.y.push_back(-it->second);
+    for (auto it = upper.rbegin(); it != upper.rend(); ++it)
+      shaded.x.push_back(it->first), shaded.y.push_back(-it->second);
     plot.series.push_back(std::move(shaded));
     r["regions"].push_back({{"focus_distance_mm", region.focusMm},
                             {"magnification", region.magnification},
@@ -107,7 +121,8 @@ Status runObserverRange(const std::filesystem::path& folder, const ExperimentOpt
                             {"area_mm2", area}});
   }
   report.table("range.csv", {"focus (mm)", "beta", "z (mm)", "unvignetted width 2|x| (mm)"}, rows);
-  report.plot("range.svg", plot, "Shaded: where the pinhole may stand (x relative to the scene distance), for the two focus settings.");
+  report.plot("range.svg", plot,
+              "Shaded: where the pinhole may stand (x relative to the scene distance), for the two focus settings.");
   const auto& a = r["regions"][0];
   const auto& b = r["regions"][1];
   r["lateral_range_over_distance"] = {a["lateral_range_over_distance"], b["lateral_range_over_distance"]};
@@ -116,11 +131,12 @@ Status runObserverRange(const std::filesystem::path& folder, const ExperimentOpt
                            ? double(b["lateral_range_over_distance"]) / double(a["lateral_range_over_distance"])
                            : 0.0;
   report.heading("Against the paper");
-  report.paragraph("The paper: the space shrinks relative to the distance to the scene as the magnification decreases, so close-up "
-                   "photography allows the greatest movement of the observer. Here the unvignetted width at the lens plane is " +
-                   fixed(double(a["lateral_range_over_distance"]) * 100, 2) + "% of the scene distance at magnification " +
-                   fixed(double(a["magnification"]), 3) + " and " + fixed(double(b["lateral_range_over_distance"]) * 100, 2) +
-                   "% at " + fixed(double(b["magnification"]), 3) + ".");
+  report.paragraph(
+      "The paper: the space shrinks relative to the distance to the scene as the magnification decreases, so close-up "
+      "photography allows the greatest movement of the observer. Here the unvignetted width at the lens plane is " +
+      fixed(double(a["lateral_range_over_distance"]) * 100, 2) + "% of the scene distance at magnification " +
+      fixed(double(a["magnification"]), 3) + " and " + fixed(double(b["lateral_range_over_distance"]) * 100, 2) +
+      "% at " + fixed(double(b["magnification"]), 3) + ".");
   return report.write(folder);
 }
 

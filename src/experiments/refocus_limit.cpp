@@ -54,8 +54,10 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
   for (double stop : stops) {
     // Enough traces that a pixel inside the blur disc gets about 50 rays that hit the pinhole.
     const double blurHere = blur * lfFNumber0 / stop;
-    const int traces = std::clamp(int(std::ceil(50 * blurHere * blurHere / conventionalSamples)), 1, options.quick ? 4 : 16);
-    LFCAM_ASSIGN_OR_RETURN(auto conventional, traceCapture(pinhole, conventionalCamera(plenoptic, stop), conventionalSamples, traces));
+    const int traces =
+        std::clamp(int(std::ceil(50 * blurHere * blurHere / conventionalSamples)), 1, options.quick ? 4 : 16);
+    LFCAM_ASSIGN_OR_RETURN(auto conventional,
+                           traceCapture(pinhole, conventionalCamera(plenoptic, stop), conventionalSamples, traces));
     LFCAM_ASSIGN_OR_RETURN(auto photo, conventionalPhoto(conventional, false, 1));
     LFCAM_ASSIGN_OR_RETURN(auto transfer, transferFunction(photo));
     cutoffs.push_back(cutoffFrequency(transfer, 0.75));
@@ -88,54 +90,76 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
   const std::size_t match = views.stop;
   const double equivalent = views.equivalent;
   auto fStop = [](double f) { return "f/" + fixed(f, f < 10 ? 1 : 0); };
-  auto equivalentText = [](double f) { return std::isfinite(f) ? "f/" + fixed(f, 1) : std::string("beyond the stops"); };
+  auto equivalentText = [](double f) {
+    return std::isfinite(f) ? "f/" + fixed(f, 1) : std::string("beyond the stops");
+  };
   const double lfFNumber = plenoptic.mainLens.imageSideFNumber();
   const double theoryExact = lfFNumber * n;  // section 4.2: N times narrower
   std::size_t theoryStop = 0;
   for (std::size_t i = 1; i < stops.size(); ++i)
-    if (std::abs(std::log(stops[i] / theoryExact)) < std::abs(std::log(stops[theoryStop] / theoryExact))) theoryStop = i;
+    if (std::abs(std::log(stops[i] / theoryExact)) < std::abs(std::log(stops[theoryStop] / theoryExact)))
+      theoryStop = i;
 
   Report report("Refocusing limit (Figures 10 and 11)");
   report.heading("Setup");
-  report.paragraph("Simulated prototype (section 5): " + std::to_string(microlenses) + " x " + std::to_string(microlenses) +
-                   " microlenses of 125 um at f/4, " + std::to_string(n) + " x " + std::to_string(n) +
-                   " pixels under each, 140 mm main lens at image-side f/" + fixed(lfFNumber, 2) + ", focused at " +
-                   fixed(focus, 1) + " mm (18 inches). The pinhole target (a point light whose sharp image is one microlens across) " +
-                   "moved closer to " + fixed(target, 1) + " mm, where its blur at f/4 is " + fixed(blur, 0) +
-                   " microlenses across (section 6.1, step 2). Light field: raw frame traced with " + std::to_string(lfSamples) +
-                   " samples per pixel, decoded, refocused at the slope of highest cutoff: first with the quadrature method " +
-                   "of section 5.2 (aperture supersampled, neighbouring views blended quadrilinearly, as the paper did), " +
-                   "then by shift-and-add of the views alone within half a pixel per view step of that slope. " +
-                   "Conventional photographs: the same main lens stopped down, one pixel per microlens (the light under each " +
-                   "microlens added up), " + std::to_string(conventionalSamples) + " samples per pixel. Noise-free sensor, " +
-                   "no diffraction (section 6.3's first loss) and whole-pixel microlens images (its second); its third, " +
-                   "quadrilinear filtering, is measured: the quadrature row below has it, the shift-and-add row does not. " +
-                   "At the sharpest slope the views line up, so adding them needs no filter between views.");
-  report.paragraph("Transfer function: |FFT| of the photograph of the pinhole, normalised at zero frequency. Cutoff: the " +
-                   std::string("smallest radial frequency whose disc holds 75% of the transfer function's energy (sum of |H|^2), ") +
-                   "in cycles per microlens (cycles per pixel of the photographs).");
+  report.paragraph(
+      "Simulated prototype (section 5): " + std::to_string(microlenses) + " x " + std::to_string(microlenses) +
+      " microlenses of 125 um at f/4, " + std::to_string(n) + " x " + std::to_string(n) +
+      " pixels under each, 140 mm main lens at image-side f/" + fixed(lfFNumber, 2) + ", focused at " +
+      fixed(focus, 1) +
+      " mm (18 inches). The pinhole target (a point light whose sharp image is one microlens across) " +
+      "moved closer to " + fixed(target, 1) + " mm, where its blur at f/4 is " + fixed(blur, 0) +
+      " microlenses across (section 6.1, step 2). Light field: raw frame traced with " + std::to_string(lfSamples) +
+      " samples per pixel, decoded, refocused at the slope of highest cutoff: first with the quadrature method " +
+      "of section 5.2 (aperture supersampled, neighbouring views blended quadrilinearly, as the paper did), " +
+      "then by shift-and-add of the views alone within half a pixel per view step of that slope. " +
+      "Conventional photographs: the same main lens stopped down, one pixel per microlens (the light under each " +
+      "microlens added up), " + std::to_string(conventionalSamples) + " samples per pixel. Noise-free sensor, " +
+      "no diffraction (section 6.3's first loss) and whole-pixel microlens images (its second); its third, " +
+      "quadrilinear filtering, is measured: the quadrature row below has it, the shift-and-add row does not. " +
+      "At the sharpest slope the views line up, so adding them needs no filter between views.");
+  report.paragraph(
+      "Transfer function: |FFT| of the photograph of the pinhole, normalised at zero frequency. Cutoff: the " +
+      std::string("smallest radial frequency whose disc holds 75% of the transfer function's energy (sum of |H|^2), ") +
+      "in cycles per microlens (cycles per pixel of the photographs).");
   report.heading("Results");
   std::vector<std::vector<std::string>> rows;
   for (std::size_t i = 0; i < stops.size(); ++i)
     rows.push_back({"conventional", "f/" + fixed(stops[i], stops[i] < 10 ? 1 : 0), fixed(cutoffs[i], 4)});
-  rows.push_back({"light field, refocused (quadrature, section 5.2)", "f/" + fixed(lfFNumber, 2), fixed(best.quadratureCutoff, 4)});
-  rows.push_back({"light field, refocused (shift-and-add of the views)", "f/" + fixed(lfFNumber, 2), fixed(best.cutoff, 4)});
+  rows.push_back({"light field, refocused (quadrature, section 5.2)", "f/" + fixed(lfFNumber, 2),
+                  fixed(best.quadratureCutoff, 4)});
+  rows.push_back(
+      {"light field, refocused (shift-and-add of the views)", "f/" + fixed(lfFNumber, 2), fixed(best.cutoff, 4)});
   report.table("cutoffs.csv", {"camera", "f-number", "cutoff (cycles/microlens)"}, rows);
   report.table("summary.csv", {"quantity", "lfcam", "paper"},
                {{"matched conventional f-number", fStop(stops[match]), "f/22"},
                 {"interpolated equivalent f-number", equivalentText(equivalent), "-"},
-                {"matched, quadrature refocusing (the paper's filter)", fStop(stops[quadrature.stop]) + " (" +
-                     equivalentText(quadrature.equivalent) + ")", "f/22"},
+                {"matched, quadrature refocusing (the paper's filter)",
+                 fStop(stops[quadrature.stop]) + " (" + equivalentText(quadrature.equivalent) + ")", "f/22"},
                 {"theory (N x f/4)", "f/" + fixed(stops[theoryStop], 0) + " (" + fixed(theoryExact, 1) + ")", "f/45"},
                 {"cutoff gain over conventional f/4", fixed(best.cutoff / cutoffs[0], 2) + "x", "-"},
-                {"refocus slope (pixels per view step)", fixed(best.slope, 3) + " (quadrature: " + fixed(best.quadratureSlope, 3) + ")", "-"}});
-  Plot cutoffPlot{"Cutoff frequency against f-number (Figure 11)", "image-side f-number", "cutoff (cycles per microlens)", true, {}, {}, {}};
+                {"refocus slope (pixels per view step)",
+                 fixed(best.slope, 3) + " (quadrature: " + fixed(best.quadratureSlope, 3) + ")", "-"}});
+  Plot cutoffPlot{"Cutoff frequency against f-number (Figure 11)",
+                  "image-side f-number",
+                  "cutoff (cycles per microlens)",
+                  true,
+                  {},
+                  {},
+                  {}};
   cutoffPlot.series.push_back({"conventional", stops, cutoffs, true, true, false});
   cutoffPlot.horizontalLines.push_back({"light field f/4, shift-and-add", best.cutoff});
   cutoffPlot.horizontalLines.push_back({"light field f/4, quadrature", best.quadratureCutoff});
-  report.plot("cutoff.svg", cutoffPlot, "Cutoff frequency (75% of the transfer function's energy) of the conventional "
-                                        "photographs against f-number; dashed: the refocused light field at f/4, by each method.");
-  Plot transferPlot{"Transfer functions, centre column (Figure 10, bottom)", "frequency (cycles per microlens)", "|H| (normalised)", false, {}, {}, {}};
+  report.plot("cutoff.svg", cutoffPlot,
+              "Cutoff frequency (75% of the transfer function's energy) of the conventional "
+              "photographs against f-number; dashed: the refocused light field at f/4, by each method.");
+  Plot transferPlot{"Transfer functions, centre column (Figure 10, bottom)",
+                    "frequency (cycles per microlens)",
+                    "|H| (normalised)",
+                    false,
+                    {},
+                    {},
+                    {}};
   transferPlot.series.push_back(centreColumn(transfers[0], "conventional f/4"));
   const std::size_t f22 = 5;
   transferPlot.series.push_back(centreColumn(transfers[f22], "conventional f/22"));
@@ -145,7 +169,8 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
   const int scale = std::max(1, 256 / microlenses);
   report.image("pinhole_conventional_f4.png", forDisplay(photos[0], scale), "Pinhole, conventional f/4");
   report.image("pinhole_conventional_f22.png", forDisplay(photos[f22], scale), "Pinhole, conventional f/22");
-  report.image("pinhole_lightfield_f4.png", forDisplay(best.photo, scale), "Pinhole, light field f/4 refocused (shift-and-add)");
+  report.image("pinhole_lightfield_f4.png", forDisplay(best.photo, scale),
+               "Pinhole, light field f/4 refocused (shift-and-add)");
   report.image("pinhole_lightfield_f4_quadrature.png", forDisplay(best.quadraturePhoto, scale),
                "Pinhole, light field f/4 refocused (quadrature)");
 
@@ -156,7 +181,8 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
     LFCAM_ASSIGN_OR_RETURN(auto chartField, captureLightField(chartTraced, false, 1));
     SyntheticCamera camera;
     camera.slope = best.slope;
-    LFCAM_ASSIGN_OR_RETURN(auto refocused, renderSyntheticPhoto(chartField, camera, RenderOptions{RenderMethod::Quadrature, 1}));
+    LFCAM_ASSIGN_OR_RETURN(auto refocused,
+                           renderSyntheticPhoto(chartField, camera, RenderOptions{RenderMethod::Quadrature, 1}));
     progress();
     for (std::size_t i : {std::size_t(0), f22, stops.size() - 1}) {
       LFCAM_ASSIGN_OR_RETURN(auto conventional, traceCapture(chart, conventionalCamera(plenoptic, stops[i]), 64));
@@ -165,17 +191,19 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
                    "Resolution chart, conventional f/" + fixed(stops[i], 0));
       progress();
     }
-    report.image("chart_lightfield_f4.png", forDisplay(refocused, scale), "Resolution chart, light field f/4 refocused");
+    report.image("chart_lightfield_f4.png", forDisplay(refocused, scale),
+                 "Resolution chart, light field f/4 refocused");
   }
 
   report.heading("Against the paper");
-  report.paragraph("The paper's refocused f/4 light field matched a conventional f/22 photograph, a factor of 2 short of the "
-                   "f/45 that 12 pixels per microlens allow in theory (section 6.3). Here it matches f/" +
-                   fixed(stops[match], 0) + " (theory: f/" + fixed(theoryExact, 1) + " for " + std::to_string(n) +
-                   " pixels per microlens); refocused with the paper's quadrilinear quadrature it matches " +
-                   fStop(stops[quadrature.stop]) + ". Of the paper's three losses, the simulator has no diffraction and " +
-                   "whole-pixel microlens images by construction; the third, the quadrilinear filter, is the difference " +
-                   "between the two rows.");
+  report.paragraph(
+      "The paper's refocused f/4 light field matched a conventional f/22 photograph, a factor of 2 short of the "
+      "f/45 that 12 pixels per microlens allow in theory (section 6.3). Here it matches f/" +
+      fixed(stops[match], 0) + " (theory: f/" + fixed(theoryExact, 1) + " for " + std::to_string(n) +
+      " pixels per microlens); refocused with the paper's quadrilinear quadrature it matches " +
+      fStop(stops[quadrature.stop]) + ". Of the paper's three losses, the simulator has no diffraction and " +
+      "whole-pixel microlens images by construction; the third, the quadrilinear filter, is the difference " +
+      "between the two rows.");
   auto& r = report.results();
   r["experiment"] = "refocus-limit";
   r["quick"] = options.quick;

@@ -42,9 +42,13 @@ std::vector<double> ticks(double lo, double hi) {
   const double span = hi - lo;
   if (!(span > 0)) return {lo};
   const double raw = span / 5, power = std::pow(10, std::floor(std::log10(raw)));
-  const double step = raw / power < 1.5 ? power : raw / power < 3.5 ? 2 * power : raw / power < 7.5 ? 5 * power : 10 * power;
+  const double step = raw / power < 1.5   ? power
+                      : raw / power < 3.5 ? 2 * power
+                      : raw / power < 7.5 ? 5 * power
+                                          : 10 * power;
   std::vector<double> out;
-  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span; t += step) out.push_back(std::abs(t) < 1e-12 * step ? 0 : t);
+  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span; t += step)
+    out.push_back(std::abs(t) < 1e-12 * step ? 0 : t);
   return out;
 }
 
@@ -88,7 +92,8 @@ std::string plotSvg(const Plot& plot) {
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" viewBox=\"0 0 " << width << ' ' << height << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << escapeXml(plot.title) << "</text>\n"
+      << "<text x=\"" << width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << escapeXml(plot.title)
+      << "</text>\n"
       << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << plotW << "\" height=\"" << plotH
       << "\" fill=\"none\" stroke=\"#333\"/>\n";
   for (double t : ticks(y0, y1)) {
@@ -129,14 +134,17 @@ std::string plotSvg(const Plot& plot) {
       svg << "<polygon points=\"" << points.str() << "\" fill=\"" << colour(k) << "\" fill-opacity=\"0.3\" stroke=\""
           << colour(k) << "\"/>\n";
     else if (s.line)
-      svg << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colour(k) << "\" stroke-width=\"2\"/>\n";
+      svg << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << colour(k)
+          << "\" stroke-width=\"2\"/>\n";
     if (s.points && !s.filled)
       for (std::size_t i = 0; i < s.x.size(); ++i)
         if (std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && (!plot.logX || s.x[i] > 0))
-          svg << "<circle cx=\"" << px(s.x[i]) << "\" cy=\"" << py(s.y[i]) << "\" r=\"3.5\" fill=\"" << colour(k) << "\"/>\n";
+          svg << "<circle cx=\"" << px(s.x[i]) << "\" cy=\"" << py(s.y[i]) << "\" r=\"3.5\" fill=\"" << colour(k)
+              << "\"/>\n";
     const double ly = top + 10 + 20 * double(k);
-    svg << "<rect x=\"" << left + plotW + 12 << "\" y=\"" << ly - 9 << "\" width=\"14\" height=\"10\" fill=\"" << colour(k)
-        << "\"/><text x=\"" << left + plotW + 32 << "\" y=\"" << ly << "\">" << escapeXml(s.name) << "</text>\n";
+    svg << "<rect x=\"" << left + plotW + 12 << "\" y=\"" << ly - 9 << "\" width=\"14\" height=\"10\" fill=\""
+        << colour(k) << "\"/><text x=\"" << left + plotW + 32 << "\" y=\"" << ly << "\">" << escapeXml(s.name)
+        << "</text>\n";
   }
   svg << "</svg>\n";
   return svg.str();
@@ -206,8 +214,8 @@ Status Report::write(const std::filesystem::path& folder) const {
       }
       case Block::Figure:
         md += "![" + b.text + "](" + b.file + ")\n\n*" + b.text + "*\n\n";
-        html += "<figure><img src=\"" + b.file + "\" alt=\"" + escapeXml(b.text) + "\"><figcaption>" + escapeXml(b.text) +
-                "</figcaption></figure>\n";
+        html += "<figure><img src=\"" + b.file + "\" alt=\"" + escapeXml(b.text) + "\"><figcaption>" +
+                escapeXml(b.text) + "</figcaption></figure>\n";
         break;
     }
   }

@@ -67,7 +67,8 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
   // The blur is twice the microlens image (N pixels): in focus, the views shift by a whole 2
   // pixels per view step, so shift-and-add needs no interpolation, which would average noise.
   const double blur = 2.0 * n;
-  const int samples = options.quick ? 4 : 16, standardFrames = options.quick ? 8 : 32, testFrames = options.quick ? 2 : 8;
+  const int samples = options.quick ? 4 : 16, standardFrames = options.quick ? 8 : 32,
+            testFrames = options.quick ? 2 : 8;
   const std::vector<double> stops{4, 5.6, 8, 11, 16, 22};
   const CameraModel plenoptic = plenopticCamera(microlenses, n);
   const double target = defocusedDistanceMm(plenoptic, blur);
@@ -75,7 +76,8 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
 
   LFCAM_ASSIGN_OR_RETURN(auto traced, traceCapture(chart, plenoptic, samples));
   // The refocus depth: where the pinhole target at the chart's distance is sharpest (section 6.1).
-  LFCAM_ASSIGN_OR_RETURN(auto pinholeTraced, traceCapture(pinholeScene(plenoptic, target), plenoptic, options.quick ? 16 : 64));
+  LFCAM_ASSIGN_OR_RETURN(auto pinholeTraced,
+                         traceCapture(pinholeScene(plenoptic, target), plenoptic, options.quick ? 16 : 64));
   LFCAM_ASSIGN_OR_RETURN(auto clean, captureLightField(pinholeTraced, false, 1));
   LFCAM_ASSIGN_OR_RETURN(auto best, refocusToSharpest(clean));
   if (options.progress) options.progress(0.3);
@@ -95,7 +97,8 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
     camera.slope = wholeSlope;
     LFCAM_ASSIGN_OR_RETURN(auto views, renderSyntheticPhoto(lf, camera, RenderOptions{RenderMethod::Quadrature, 1}));
     camera.slope = best.quadratureSlope;
-    LFCAM_ASSIGN_OR_RETURN(auto quadrature, renderSyntheticPhoto(lf, camera, RenderOptions{RenderMethod::Quadrature, 0}));
+    LFCAM_ASSIGN_OR_RETURN(auto quadrature,
+                           renderSyntheticPhoto(lf, camera, RenderOptions{RenderMethod::Quadrature, 0}));
     std::vector<Image> both;
     both.push_back(std::move(views));
     both.push_back(std::move(quadrature));
@@ -109,7 +112,8 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
   std::vector<Measured> conventional;
   std::vector<double> lightRatio;
   for (double stop : stops) {
-    LFCAM_ASSIGN_OR_RETURN(auto conventionalTraced, traceCapture(chart, conventionalCamera(plenoptic, stop), samples * 4));
+    LFCAM_ASSIGN_OR_RETURN(auto conventionalTraced,
+                           traceCapture(chart, conventionalCamera(plenoptic, stop), samples * 4));
     auto photo = [&](std::uint64_t seed) -> Result<std::vector<Image>> {
       LFCAM_ASSIGN_OR_RETURN(auto image, conventionalPhoto(conventionalTraced, true, seed));
       std::vector<Image> one;
@@ -128,42 +132,46 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
 
   Report report("Signal-to-noise ratio (Figure 12)");
   report.heading("Setup");
-  report.paragraph("The resolution chart at " + fixed(target, 1) + " mm (the camera focused at " +
-                   fixed(plenoptic.mainLens.focusDistanceMm, 1) + " mm; blur " + fixed(blur, 0) +
-                   " microlenses at f/4), the same exposure time for every photograph. Light field: " +
-                   std::to_string(microlenses) + " x " + std::to_string(microlenses) + " microlenses, " + std::to_string(n) +
-                   " pixels under each, f/4, refocused by adding the views shifted by whole pixels, at slope " +
-                   fixed(wholeSlope, 0) + " (the sharpest slope for the pinhole target at that distance, " +
-                   fixed(best.slope, 3) + ", rounded): no interpolation, as the paper added its pixels. " +
-                   "Also measured: the quadrature method (section 5.2) at its sharpest slope, " + fixed(best.quadratureSlope, 3) +
-                   ". Conventional: the main lens stopped down, one pixel per microlens gathering the light of " +
-                   "the pixels it replaces. Sensor: photon shot noise, " +
-                   fixed(plenoptic.sensor.readNoiseElectrons, 0) + " e- read noise, 12-bit quantisation. Noise-free standard: " +
-                   "the mean of " + std::to_string(standardFrames) + " frames; noise: rms difference of " +
-                   std::to_string(testFrames) + " other frames from it (the standard's own residual noise taken out), " +
-                   "over the image less a border of " + std::to_string(border) + " pixels.");
+  report.paragraph(
+      "The resolution chart at " + fixed(target, 1) + " mm (the camera focused at " +
+      fixed(plenoptic.mainLens.focusDistanceMm, 1) + " mm; blur " + fixed(blur, 0) +
+      " microlenses at f/4), the same exposure time for every photograph. Light field: " + std::to_string(microlenses) +
+      " x " + std::to_string(microlenses) + " microlenses, " + std::to_string(n) +
+      " pixels under each, f/4, refocused by adding the views shifted by whole pixels, at slope " +
+      fixed(wholeSlope, 0) + " (the sharpest slope for the pinhole target at that distance, " + fixed(best.slope, 3) +
+      ", rounded): no interpolation, as the paper added its pixels. " +
+      "Also measured: the quadrature method (section 5.2) at its sharpest slope, " + fixed(best.quadratureSlope, 3) +
+      ". Conventional: the main lens stopped down, one pixel per microlens gathering the light of " +
+      "the pixels it replaces. Sensor: photon shot noise, " + fixed(plenoptic.sensor.readNoiseElectrons, 0) +
+      " e- read noise, 12-bit quantisation. Noise-free standard: " + "the mean of " + std::to_string(standardFrames) +
+      " frames; noise: rms difference of " + std::to_string(testFrames) +
+      " other frames from it (the standard's own residual noise taken out), " + "over the image less a border of " +
+      std::to_string(border) + " pixels.");
   report.heading("Results");
   std::vector<std::vector<std::string>> rows;
   for (std::size_t i = 0; i < stops.size(); ++i)
     rows.push_back({"conventional f/" + fixed(stops[i], stops[i] < 10 ? 1 : 0), fixed(conventional[i].snr.signal, 4),
-                    fixed(conventional[i].snr.noise, 5), fixed(conventional[i].snr.snr, 2), fixed(1 / lightRatio[i], 4)});
+                    fixed(conventional[i].snr.noise, 5), fixed(conventional[i].snr.snr, 2),
+                    fixed(1 / lightRatio[i], 4)});
   rows.push_back({"light field f/4, refocused (views shifted by whole pixels)", fixed(lfMeasured.snr.signal, 4),
                   fixed(lfMeasured.snr.noise, 5), fixed(lfMeasured.snr.snr, 2), "1"});
-  rows.push_back({"light field f/4, refocused (quadrature)", fixed(lfQuadrature.snr.signal, 4), fixed(lfQuadrature.snr.noise, 5),
-                  fixed(lfQuadrature.snr.snr, 2), "1"});
+  rows.push_back({"light field f/4, refocused (quadrature)", fixed(lfQuadrature.snr.signal, 4),
+                  fixed(lfQuadrature.snr.noise, 5), fixed(lfQuadrature.snr.snr, 2), "1"});
   report.table("snr.csv", {"photograph", "signal", "noise (rms)", "SNR", "light relative to the light field"}, rows);
-  report.table("summary.csv", {"quantity", "lfcam", "paper"},
-               {{"SNR ratio, light field f/4 over conventional f/22", fixed(ratio, 2) + "x", "5.8x"},
-                {"the same, refocused by quadrature (interpolation averages noise)", fixed(ratioQuadrature, 2) + "x", "-"},
-                {"shot-noise prediction sqrt(light ratio)", fixed(predicted, 2) + "x", "5-6x (25-36 times the light)"},
-                {"light ratio", fixed(lightRatio[f22], 1), "25-36"}});
+  report.table(
+      "summary.csv", {"quantity", "lfcam", "paper"},
+      {{"SNR ratio, light field f/4 over conventional f/22", fixed(ratio, 2) + "x", "5.8x"},
+       {"the same, refocused by quadrature (interpolation averages noise)", fixed(ratioQuadrature, 2) + "x", "-"},
+       {"shot-noise prediction sqrt(light ratio)", fixed(predicted, 2) + "x", "5-6x (25-36 times the light)"},
+       {"light ratio", fixed(lightRatio[f22], 1), "25-36"}});
   Plot plot{"SNR against aperture at equal exposure", "image-side f-number", "SNR", true, {}, {}, {}};
   std::vector<double> snrs;
   for (const auto& m : conventional) snrs.push_back(m.snr.snr);
   plot.series.push_back({"conventional", stops, snrs, true, true, false});
   plot.horizontalLines.push_back({"light field f/4, whole-pixel shifts", lfMeasured.snr.snr});
   plot.horizontalLines.push_back({"light field f/4, quadrature", lfQuadrature.snr.snr});
-  report.plot("snr.svg", plot, "SNR of the conventional photographs against f-number; dashed: the refocused light field.");
+  report.plot("snr.svg", plot,
+              "SNR of the conventional photographs against f-number; dashed: the refocused light field.");
   // Each photograph scaled by its standard's brightest pixel (f/22 brightened, as in the paper).
   const int scale = std::max(1, 256 / microlenses);
   auto peak = [](const Image& image) {
@@ -178,12 +186,13 @@ Status runSnr(const std::filesystem::path& folder, const ExperimentOptions& opti
   report.image("lightfield_f4.png", forDisplay(lfMeasured.frame, scale, peak(lfMeasured.standard)),
                "Light field f/4, refocused (one frame)");
   report.heading("Against the paper");
-  report.paragraph("The paper measured 5.8 times the SNR of the f/22 photograph with the refocused f/4 light field, which " +
-                   std::string("gathers 25-36 times the light: SNR grows as the square root of the light, so its sensor was ") +
-                   "limited by photon noise. Here: " + fixed(ratio, 2) + "x measured, " + fixed(predicted, 2) +
-                   "x predicted by shot noise alone from the light gathered (" + fixed(lightRatio[f22], 1) +
-                   " times). Refocused by the quadrature method instead, the ratio is " + fixed(ratioQuadrature, 2) +
-                   "x: its interpolation averages neighbouring samples' noise, and lifts the ratio above the photon-noise law.");
+  report.paragraph(
+      "The paper measured 5.8 times the SNR of the f/22 photograph with the refocused f/4 light field, which " +
+      std::string("gathers 25-36 times the light: SNR grows as the square root of the light, so its sensor was ") +
+      "limited by photon noise. Here: " + fixed(ratio, 2) + "x measured, " + fixed(predicted, 2) +
+      "x predicted by shot noise alone from the light gathered (" + fixed(lightRatio[f22], 1) +
+      " times). Refocused by the quadrature method instead, the ratio is " + fixed(ratioQuadrature, 2) +
+      "x: its interpolation averages neighbouring samples' noise, and lifts the ratio above the photon-noise law.");
   auto& r = report.results();
   r["experiment"] = "snr";
   r["quick"] = options.quick;

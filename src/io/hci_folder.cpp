@@ -4,16 +4,16 @@
 // (optics, for metric distances).
 #include <algorithm>
 #include <cctype>
-#include <climits>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
 #include <system_error>
 
 #include "io/io_support.hpp"
-#include "lfcam/hci_parameters.hpp"
 #include "io/view_folder.hpp"
+#include "lfcam/hci_parameters.hpp"
 
 namespace lfcam::io {
 
@@ -31,7 +31,9 @@ std::optional<int> hciViewIndex(const std::string& filename) {
     return std::nullopt;
   if (!isViewFileExtension(extension)) return std::nullopt;
   const std::string digits = filename.substr(kPrefix.size(), filename.size() - kPrefix.size() - extension.size());
-  if (digits.empty() || digits.size() > 6 || !std::all_of(digits.begin(), digits.end(), [](unsigned char ch) { return std::isdigit(ch); })) return std::nullopt;
+  if (digits.empty() || digits.size() > 6 ||
+      !std::all_of(digits.begin(), digits.end(), [](unsigned char ch) { return std::isdigit(ch); }))
+    return std::nullopt;
   return std::stoi(digits);
 }
 
@@ -47,8 +49,9 @@ Result<ViewGrid> placeHciViews(const fs::path& folder, const fs::path& configFol
   std::sort(files.begin(), files.end());
   for (std::size_t i = 1; i < files.size(); ++i)
     if (files[i].first == files[i - 1].first)
-      return fileError(ErrorCode::Format, files[i].second,
-                       "view " + std::to_string(files[i].first) + " is also " + files[i - 1].second.filename().string());
+      return fileError(
+          ErrorCode::Format, files[i].second,
+          "view " + std::to_string(files[i].first) + " is also " + files[i - 1].second.filename().string());
 
   ViewGrid grid;
   grid.format = LightFieldFormat::HciFolder;
@@ -102,8 +105,9 @@ Result<ViewGrid> placeHciViews(const fs::path& folder, const fs::path& configFol
   grid.files.resize(std::size_t(views));
   for (const auto& [index, path] : files) {
     if (index >= views)
-      return fileError(ErrorCode::Format, path, "view " + std::to_string(index) + " lies outside the " + gridText +
-                                                    " grid (from " + (gridFromConfig ? "parameters.cfg" : "the file count") + ")");
+      return fileError(ErrorCode::Format, path,
+                       "view " + std::to_string(index) + " lies outside the " + gridText + " grid (from " +
+                           (gridFromConfig ? "parameters.cfg" : "the file count") + ")");
     grid.files[std::size_t(index)] = path;
   }
   for (int index = 0; index < views; ++index)
@@ -123,8 +127,8 @@ std::string hciParameters(const LightField& lightField) {
     if (inverseFocus > 0 && optics->lensStepMm > 0 && optics->spatialStepMm > 0) {
       intrinsics = "focal_length_mm = " + shortestNumber(optics->lensToMicrolensMm) + "\nsensor_size_mm = " +
                    shortestNumber(optics->spatialStepMm * std::max(lightField.ns(), lightField.nt())) + "\n";
-      extrinsics = "baseline_mm = " + shortestNumber(optics->lensStepMm) + "\nfocus_distance_m = " +
-                   shortestNumber(1.0 / inverseFocus / 1000.0) + "\n";
+      extrinsics = "baseline_mm = " + shortestNumber(optics->lensStepMm) +
+                   "\nfocus_distance_m = " + shortestNumber(1.0 / inverseFocus / 1000.0) + "\n";
     }
   }
   std::ostringstream text;

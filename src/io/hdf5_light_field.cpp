@@ -207,12 +207,10 @@ Result<OpenedFile> openLightFieldFile(const fs::path& path) {
     return fileError(ErrorCode::Format, path,
                      "not an lfcam light field: no /lightfield dataset (an HDF5 file of another layout)");
   opened.samples = std::make_unique<Handle>(H5Dopen2(file, "lightfield", H5P_DEFAULT), H5Dclose);
-  if (!opened.samples->valid())
-    return hdf5Error(ErrorCode::Format, path, "/lightfield is not a readable dataset");
+  if (!opened.samples->valid()) return hdf5Error(ErrorCode::Format, path, "/lightfield is not a readable dataset");
   LFCAM_ASSIGN_OR_RETURN(auto dims, floatDatasetDims(path, opened.samples->get(), "/lightfield", 5, kAxes));
   LightFieldShape& shape = opened.info.shape;
-  shape = {.nu = int(dims[1]), .nv = int(dims[0]), .ns = int(dims[4]), .nt = int(dims[3]),
-           .channels = int(dims[2])};
+  shape = {.nu = int(dims[1]), .nv = int(dims[0]), .ns = int(dims[4]), .nt = int(dims[3]), .channels = int(dims[2])};
   // Samples the file cannot hold mean a corrupt header (or chunks never written): deflate, the
   // only filter lfcam writes, compresses at most about 1032:1.
   {
@@ -238,16 +236,18 @@ Result<OpenedFile> openLightFieldFile(const fs::path& path) {
   // Metadata.
   LightFieldMetadata& metadata = opened.info.metadata;
   std::optional<double> numbers[6];
-  const char* names[6] = {"lens_step_mm", "spatial_step_mm", "lens_to_microlens_mm",
-                          "focal_length_mm", "disparity_min", "disparity_max"};
+  const char* names[6] = {"lens_step_mm",    "spatial_step_mm", "lens_to_microlens_mm",
+                          "focal_length_mm", "disparity_min",   "disparity_max"};
   for (int i = 0; i < 6; ++i) {
     LFCAM_ASSIGN_OR_RETURN(auto number, readNumberAttribute(path, file, names[i]));
     numbers[i] = number;
   }
   const int opticsGiven = int(bool(numbers[0])) + int(bool(numbers[1])) + int(bool(numbers[2]));
   if (opticsGiven == 3) {
-    metadata.optics = Optics{.lensStepMm = *numbers[0], .spatialStepMm = *numbers[1],
-                             .lensToMicrolensMm = *numbers[2], .focalLengthMm = numbers[3]};
+    metadata.optics = Optics{.lensStepMm = *numbers[0],
+                             .spatialStepMm = *numbers[1],
+                             .lensToMicrolensMm = *numbers[2],
+                             .focalLengthMm = numbers[3]};
   } else if (opticsGiven > 0) {
     return fileError(ErrorCode::Format, path,
                      "incomplete optics: lens_step_mm, spatial_step_mm and lens_to_microlens_mm go together");
@@ -287,8 +287,8 @@ void selectView(hid_t fileSpace, const std::vector<hsize_t>& dims, std::size_t v
   H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
 }
 
-Status readViews(const fs::path& path, hid_t dataset, int rank, std::size_t views, std::size_t viewValues,
-                 float* out, const std::function<void()>& viewDone) {
+Status readViews(const fs::path& path, hid_t dataset, int rank, std::size_t views, std::size_t viewValues, float* out,
+                 const std::function<void()>& viewDone) {
   if (!readsViewByView(dataset)) {
     if (H5Dread(dataset, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0)
       return hdf5Error(ErrorCode::Format, path, "cannot read samples");
@@ -303,8 +303,8 @@ Status readViews(const fs::path& path, hid_t dataset, int rank, std::size_t view
   Handle memorySpace(H5Screate_simple(rank, count.data(), nullptr), H5Sclose);
   for (std::size_t view = 0; view < views; ++view) {
     selectView(fileSpace.get(), dims, view);
-    if (H5Dread(dataset, H5T_NATIVE_FLOAT, memorySpace.get(), fileSpace.get(), H5P_DEFAULT,
-                out + view * viewValues) < 0)
+    if (H5Dread(dataset, H5T_NATIVE_FLOAT, memorySpace.get(), fileSpace.get(), H5P_DEFAULT, out + view * viewValues) <
+        0)
       return hdf5Error(ErrorCode::Format, path, "cannot read samples");
     viewDone();
   }
@@ -407,8 +407,8 @@ Result<LightField> readOpened(const fs::path& path, const OpenedFile& opened, co
                       lightField.samples().data(), viewDone));
   if (opened.info.hasWeight) {
     lightField.enableWeight();
-    LFCAM_TRY(readViews(path, opened.weight->get(), 4, views, shape.viewPixels(), lightField.weights().data(),
-                        viewDone));
+    LFCAM_TRY(
+        readViews(path, opened.weight->get(), 4, views, shape.viewPixels(), lightField.weights().data(), viewDone));
   }
   return lightField;
 }
@@ -439,7 +439,8 @@ Status refuseWhatCrashesLibhdf5(const fs::path& path) {
       },
       std::chrono::seconds(30));
   if (outcome == ChildOutcome::Crashed)
-    return fileError(ErrorCode::Format, path, "a corrupt HDF5 file: libhdf5 crashed reading it (in a throwaway process)");
+    return fileError(ErrorCode::Format, path,
+                     "a corrupt HDF5 file: libhdf5 crashed reading it (in a throwaway process)");
   if (outcome == ChildOutcome::TimedOut)
     return fileError(ErrorCode::Format, path, "a corrupt HDF5 file: libhdf5 did not finish reading it within 30 s");
   return {};

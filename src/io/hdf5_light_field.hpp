@@ -23,7 +23,7 @@ bool startsLikeHdf5(const std::filesystem::path& path);
 Result<LightFieldInfo> probeHdf5(const std::filesystem::path& path);
 Result<LightField> readHdf5(const std::filesystem::path& path, const ProgressCallback& progress);
 // Writes `file` directly (callers make it atomic); errors name `reportAs`.
-Status writeHdf5(const std::filesystem::path& file, const LightField& lightField,
-                 const ProgressCallback& progress, const std::filesystem::path& reportAs);
+Status writeHdf5(const std::filesystem::path& file, const LightField& lightField, const ProgressCallback& progress,
+                 const std::filesystem::path& reportAs);
 
 }  // namespace lfcam::io

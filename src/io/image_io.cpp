@@ -1,6 +1,6 @@
 // Image files: PNG, JPEG and OpenEXR through io/png_file, io/jpeg_file and io/exr_file (their own
-// libraries), PFM through io/pfm, TIFF through OpenImageIO. Which reader runs is decided by the file's first bytes; which writer runs, by the
-// name's extension.
+// libraries), PFM through io/pfm, TIFF through OpenImageIO. Which reader runs is decided by the file's first bytes;
+// which writer runs, by the name's extension.
 #include "lfcam/image_io.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -14,10 +14,10 @@
 #include <system_error>
 #include <vector>
 
-#include "io/io_support.hpp"
-#include "io/pfm.hpp"
 #include "io/exr_file.hpp"
+#include "io/io_support.hpp"
 #include "io/jpeg_file.hpp"
+#include "io/pfm.hpp"
 #include "io/png_file.hpp"
 #include "io/srgb.hpp"
 #include "lfcam/atomic_file.hpp"
@@ -48,8 +48,7 @@ Kind kindFromContent(const fs::path& path) {
   };
   if (starts({0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'})) return Kind::Png;
   if (starts({0xff, 0xd8, 0xff})) return Kind::Jpeg;
-  if (starts({'I', 'I', 42, 0}) || starts({'M', 'M', 0, 42}) || starts({'I', 'I', 43, 0}) ||
-      starts({'M', 'M', 0, 43}))
+  if (starts({'I', 'I', 42, 0}) || starts({'M', 'M', 0, 42}) || starts({'I', 'I', 43, 0}) || starts({'M', 'M', 0, 43}))
     return Kind::Tiff;
   if (starts({0x76, 0x2f, 0x31, 0x01})) return Kind::Exr;
   if (io::startsLikePfm(std::span(h.data(), length))) return Kind::Pfm;
@@ -121,13 +120,13 @@ Status checkAgainstFileLength(const fs::path& path, Kind kind, int width, int he
     std::error_code ec;
     const std::uint64_t fileSize = fs::file_size(path, ec);
     const std::uint64_t ratio = kind == Kind::Png ? 1100 : 4096;
-    const auto bytes = checkedProduct({std::uint64_t(width), std::uint64_t(height), std::uint64_t(channels),
-                                       std::uint64_t(bytesPerSample)});
+    const auto bytes = checkedProduct(
+        {std::uint64_t(width), std::uint64_t(height), std::uint64_t(channels), std::uint64_t(bytesPerSample)});
     if (!ec && (!bytes || *bytes / ratio > fileSize + 1024))
       return fileError(ErrorCode::Format, path,
                        "truncated or corrupt: the header claims " + std::to_string(width) + "x" +
-                           std::to_string(height) + " pixels but the file has only " +
-                           std::to_string(fileSize) + " bytes");
+                           std::to_string(height) + " pixels but the file has only " + std::to_string(fileSize) +
+                           " bytes");
   }
   return io::checkSampleCount(path, {std::uint64_t(width), std::uint64_t(height), std::uint64_t(channels)});
 }
@@ -326,7 +325,8 @@ Status checkImageWriteOptions(const fs::path& path, const ImageWriteOptions& opt
     return fileError(ErrorCode::Usage, path,
                      std::string(rules.name) + " cannot hold " + sampleTypeName(type) + " samples");
   if (kind == Kind::Jpeg && (options.jpegQuality < 1 || options.jpegQuality > 100))
-    return fileError(ErrorCode::Usage, path, "JPEG quality must be in 1..100, not " + std::to_string(options.jpegQuality));
+    return fileError(ErrorCode::Usage, path,
+                     "JPEG quality must be in 1..100, not " + std::to_string(options.jpegQuality));
   return {};
 }
 
@@ -345,8 +345,12 @@ Status writeImage(const fs::path& path, const Image& image, const ImageWriteOpti
     if (kind == Kind::Pfm) return io::writePfm(temporary, image, path);
     if (kind == Kind::Exr) return io::writeExr(temporary, path, image, options.description);
     if (kind == Kind::Png || kind == Kind::Jpeg) {
-      io::InterleavedCodes codes{image.width(), image.height(), image.channels(), type,
-                                 encodePixels(image, type, pngAlphaChannel(image.channels())), options.description};
+      io::InterleavedCodes codes{image.width(),
+                                 image.height(),
+                                 image.channels(),
+                                 type,
+                                 encodePixels(image, type, pngAlphaChannel(image.channels())),
+                                 options.description};
       return kind == Kind::Png ? io::writePng(temporary, path, codes)
                                : io::writeJpeg(temporary, path, codes, options.jpegQuality);
     }

@@ -35,8 +35,7 @@ Status checkSampleCount(const fs::path& path, std::initializer_list<std::uint64_
   std::optional<std::uint64_t> samples = checkedProduct(dims);
   std::string what;
   for (std::uint64_t dim : dims) what += (what.empty() ? "" : " x ") + std::to_string(dim);
-  return checkMemory(path.string(), samples ? checkedProduct({*samples, sizeof(float)}) : samples,
-                     what + " samples");
+  return checkMemory(path.string(), samples ? checkedProduct({*samples, sizeof(float)}) : samples, what + " samples");
 }
 
 Status checkFinite(const fs::path& path, std::span<const float> values, std::string_view what) {

@@ -1,8 +1,8 @@
 #include "io/jpeg_file.hpp"
 
 // jpeglib.h needs size_t and FILE declared first.
-#include <cstdio>
 #include <jpeglib.h>
+#include <cstdio>
 
 #include <algorithm>
 #include <csetjmp>
@@ -55,7 +55,8 @@ using File = std::unique_ptr<std::FILE, FileCloser>;
 
 std::string commentOf(const jpeg_decompress_struct& info) {
   for (jpeg_saved_marker_ptr marker = info.marker_list; marker; marker = marker->next)
-    if (marker->marker == JPEG_COM) return std::string(reinterpret_cast<const char*>(marker->data), marker->data_length);
+    if (marker->marker == JPEG_COM)
+      return std::string(reinterpret_cast<const char*>(marker->data), marker->data_length);
   return {};
 }
 
@@ -107,8 +108,8 @@ bool decode(std::FILE* file, ErrorManager& errors, InterleavedCodes& out, bool p
 }
 
 // Encodes to a FILE, or to memory when `file` is null (`*bytes`, `*length`: freed by the caller).
-bool encode(const InterleavedCodes& image, int quality, std::FILE* file, unsigned char** bytes,
-            unsigned long* length, ErrorManager& errors) {
+bool encode(const InterleavedCodes& image, int quality, std::FILE* file, unsigned char** bytes, unsigned long* length,
+            ErrorManager& errors) {
   jpeg_compress_struct info;
   info.err = &errors.base;
   if (setjmp(errors.jump)) {
@@ -116,8 +117,10 @@ bool encode(const InterleavedCodes& image, int quality, std::FILE* file, unsigne
     return false;
   }
   jpeg_create_compress(&info);
-  if (file) jpeg_stdio_dest(&info, file);
-  else jpeg_mem_dest(&info, bytes, length);
+  if (file)
+    jpeg_stdio_dest(&info, file);
+  else
+    jpeg_mem_dest(&info, bytes, length);
   info.image_width = JDIMENSION(image.width);
   info.image_height = JDIMENSION(image.height);
   info.input_components = image.channels;

@@ -78,7 +78,8 @@ Result<ViewsPerLens> viewsPerLens(const fs::path& path, const LightFieldReadOpti
                      "image, give the views per lens (--lenslet-views N)");
   return fileError(ErrorCode::Usage, path,
                    "unsure how many pixels repeat under each microlens (plausible across: " + periodsOf(nu) +
-                       "; down: " + periodsOf(nv) + "); if it is a rectified lenslet image, give the views per lens "
+                       "; down: " + periodsOf(nv) +
+                       "); if it is a rectified lenslet image, give the views per lens "
                        "(--lenslet-views N)");
 }
 
@@ -88,8 +89,8 @@ Result<LightFieldShape> shapeOf(const fs::path& path, int width, int height, int
                      std::to_string(width) + "x" + std::to_string(height) + " pixels is not a whole number of " +
                          std::to_string(views.nu) + "x" + std::to_string(views.nv) + " macro-pixels" +
                          (views.given ? ": the views per lens given must divide both sides" : ""));
-  return LightFieldShape{.nu = views.nu, .nv = views.nv, .ns = width / views.nu, .nt = height / views.nv,
-                         .channels = channels};
+  return LightFieldShape{
+      .nu = views.nu, .nv = views.nv, .ns = width / views.nu, .nt = height / views.nv, .channels = channels};
 }
 
 }  // namespace

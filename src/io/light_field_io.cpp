@@ -46,8 +46,7 @@ Result<Source> identify(const fs::path& path, const LightFieldReadOptions& optio
   if (!fs::is_regular_file(status)) return fileError(ErrorCode::Usage, path, "not a regular file or folder");
   if (io::startsLikeHdf5(path)) return Source{LightFieldFormat::Hdf5, std::nullopt};
   if (looksLikeImageFile(path)) return Source{LightFieldFormat::LensletImage, std::nullopt};
-  return fileError(ErrorCode::Format, path,
-                   "not a light field: neither an HDF5 file, an image, nor a folder of views");
+  return fileError(ErrorCode::Format, path, "not a light field: neither an HDF5 file, an image, nor a folder of views");
 }
 
 bool isImageExtension(const std::string& extension) {
@@ -74,9 +73,9 @@ Status writeFolder(const fs::path& path, const LightField& lightField, LightFiel
   std::error_code ec;
   if (fs::is_directory(path, ec))
     if (auto other = io::otherLayoutIn(path, format))
-      return fileError(ErrorCode::Usage, path,
-                       "already holds views of the other layout (" + *other +
-                           "); write to a new folder or remove them");
+      return fileError(
+          ErrorCode::Usage, path,
+          "already holds views of the other layout (" + *other + "); write to a new folder or remove them");
   std::vector<std::string> written;
   LFCAM_TRY(writeFolderAtomically(path, [&](const fs::path& temporary) -> Status {
     LFCAM_ASSIGN_OR_RETURN(auto names, io::writeViewFolder(temporary, lightField, format, options, progress, path));
@@ -132,8 +131,9 @@ Result<LightField> readLightField(const fs::path& path, const LightFieldReadOpti
   if (!lightField) return lightField;
   LFCAM_TRY(io::checkFinite(path, lightField->samples(), "sample"));
   if (lightField->hasWeight())
-    LFCAM_TRY(io::checkFinite(path, {lightField->weightPlane(0, 0), lightField->shape().views() * lightField->shape().viewPixels()},
-                          "weight"));
+    LFCAM_TRY(io::checkFinite(
+        path, {lightField->weightPlane(0, 0), lightField->shape().views() * lightField->shape().viewPixels()},
+        "weight"));
   return lightField;
 }
 
@@ -144,9 +144,8 @@ Status writeLightField(const fs::path& path, const LightField& lightField, const
   if (progress) progress(0.0);
   switch (format) {
     case LightFieldFormat::Hdf5:
-      return writeFileAtomically(path, [&](const fs::path& temporary) {
-        return io::writeHdf5(temporary, lightField, progress, path);
-      });
+      return writeFileAtomically(
+          path, [&](const fs::path& temporary) { return io::writeHdf5(temporary, lightField, progress, path); });
     case LightFieldFormat::LensletImage: return io::writeLensletImage(path, lightField, options.sampleType, progress);
     case LightFieldFormat::HciFolder:
     case LightFieldFormat::RowColumnFolder: return writeFolder(path, lightField, format, options, progress);

@@ -118,9 +118,9 @@ Tooth tooth(const std::vector<double>& spectrum, const Comb& comb, int m, double
 }
 
 struct Score {
-  double score = 0;  // mean excess per tooth over the background per bin
-  double share = 0;  // the teeth's excess over all the power from the comb's first bin up
-  double offset = 0;  // of the teeth's peaks from their harmonics, bins: near 0 for a whole period
+  double score = 0;        // mean excess per tooth over the background per bin
+  double share = 0;        // the teeth's excess over all the power from the comb's first bin up
+  double offset = 0;       // of the teeth's peaks from their harmonics, bins: near 0 for a whole period
   bool harmonics = false;  // two teeth stand out (the one there is, for periods 3 and 4): not a sinusoid
 };
 

@@ -36,7 +36,9 @@ Result<PfmLayout> parseHeader(const fs::path& path) {
   char buffer[256] = {};
   in.read(buffer, sizeof buffer);
   const std::size_t length = std::size_t(in.gcount());
-  const auto bad = [&](const std::string& what) { return fileError(ErrorCode::Format, path, "not a valid PFM: " + what); };
+  const auto bad = [&](const std::string& what) {
+    return fileError(ErrorCode::Format, path, "not a valid PFM: " + what);
+  };
 
   PfmLayout layout;
   if (length < 3 || buffer[0] != 'P' || (buffer[1] != 'F' && buffer[1] != 'f') || !isSpace(buffer[2]))
@@ -69,8 +71,8 @@ Result<PfmLayout> parseHeader(const fs::path& path) {
   layout.bigEndian = scale > 0;
   layout.dataOffset = at + 1;  // exactly one whitespace character ends the header
 
-  const auto bytes = checkedProduct({std::uint64_t(layout.width), std::uint64_t(layout.height),
-                                     std::uint64_t(layout.channels), sizeof(float)});
+  const auto bytes = checkedProduct(
+      {std::uint64_t(layout.width), std::uint64_t(layout.height), std::uint64_t(layout.channels), sizeof(float)});
   std::error_code sizeError;
   const std::uint64_t fileSize = fs::file_size(path, sizeError);
   if (sizeError) return fileError(ErrorCode::Io, path, "cannot read size: " + sizeError.message());
@@ -80,8 +82,8 @@ Result<PfmLayout> parseHeader(const fs::path& path) {
                      "truncated: expected " + (bytes ? std::to_string(*bytes) : std::string("more than 2^64")) +
                          " bytes of pixels, found " + std::to_string(found));
   layout.dataBytes = *bytes;
-  LFCAM_TRY(checkSampleCount(path, {std::uint64_t(layout.width), std::uint64_t(layout.height),
-                                    std::uint64_t(layout.channels)}));
+  LFCAM_TRY(checkSampleCount(
+      path, {std::uint64_t(layout.width), std::uint64_t(layout.height), std::uint64_t(layout.channels)}));
   return layout;
 }
 
@@ -130,8 +132,7 @@ Result<Image> readPfm(const fs::path& path) {
 
 Status writePfm(const fs::path& file, const Image& image, const fs::path& path) {
   if (image.channels() != 1 && image.channels() != 3)
-    return fileError(ErrorCode::Usage, path,
-                     "PFM holds 1 or 3 channels, not " + std::to_string(image.channels()));
+    return fileError(ErrorCode::Usage, path, "PFM holds 1 or 3 channels, not " + std::to_string(image.channels()));
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   if (!out) return fileError(ErrorCode::Io, path, "cannot create: " + std::string(std::strerror(errno)));
   const bool little = std::endian::native == std::endian::little;

@@ -62,7 +62,9 @@ Status checkHeader(const unsigned char* ihdr, const Corrupt& corrupt) {
 Status checkPngStructure(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return fileError(ErrorCode::Io, path, "cannot open: " + std::string(std::strerror(errno)));
-  const auto corrupt = [&](const std::string& what) { return fileError(ErrorCode::Format, path, "not a readable image: " + what); };
+  const auto corrupt = [&](const std::string& what) {
+    return fileError(ErrorCode::Format, path, "not a readable image: " + what);
+  };
 
   unsigned char signature[8];
   if (!in.read(reinterpret_cast<char*>(signature), 8)) return corrupt("truncated PNG signature");

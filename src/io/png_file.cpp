@@ -102,8 +102,10 @@ struct Sink {
 
 void writeBytes(png_structp png, png_bytep data, png_size_t length) {
   auto* sink = static_cast<Sink*>(png_get_io_ptr(png));
-  if (sink->bytes) sink->bytes->append(reinterpret_cast<const char*>(data), length);
-  else if (std::fwrite(data, 1, length, sink->file) != length) sink->failed = true;
+  if (sink->bytes)
+    sink->bytes->append(reinterpret_cast<const char*>(data), length);
+  else if (std::fwrite(data, 1, length, sink->file) != length)
+    sink->failed = true;
 }
 
 void flushBytes(png_structp) {}
@@ -127,8 +129,10 @@ bool encode(const InterleavedCodes& image, Sink& sink, ErrorSink& errors) {
                kColourTypes[image.channels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
   // 8-bit codes are sRGB; 16-bit codes are linear (image_io.hpp).
-  if (sixteen) png_set_gAMA_fixed(png, info, PNG_GAMMA_LINEAR);
-  else png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  if (sixteen)
+    png_set_gAMA_fixed(png, info, PNG_GAMMA_LINEAR);
+  else
+    png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   png_text text{};
   if (!image.description.empty()) {
     text.compression = PNG_TEXT_COMPRESSION_NONE;
@@ -152,7 +156,8 @@ bool encode(const InterleavedCodes& image, Sink& sink, ErrorSink& errors) {
 
 }  // namespace
 
-Result<InterleavedCodes> readPng(const fs::path& path, bool pixels, const std::function<Status(const InterleavedCodes&)>& checkHeader) {
+Result<InterleavedCodes> readPng(const fs::path& path, bool pixels,
+                                 const std::function<Status(const InterleavedCodes&)>& checkHeader) {
   LFCAM_TRY(checkPngStructure(path));
   File file(std::fopen(path.c_str(), "rb"));
   if (!file) return fileError(ErrorCode::Io, path, "cannot open: " + std::string(std::strerror(errno)));
@@ -170,7 +175,8 @@ Status writePng(const fs::path& temporary, const fs::path& path, const Interleav
   if (!file) return fileError(ErrorCode::Io, path, "cannot write: " + std::string(std::strerror(errno)));
   Sink sink{.file = file.get()};
   ErrorSink errors;
-  if (!encode(image, sink, errors)) return fileError(ErrorCode::Io, path, std::string("cannot write: ") + errors.message);
+  if (!encode(image, sink, errors))
+    return fileError(ErrorCode::Io, path, std::string("cannot write: ") + errors.message);
   if (sink.failed || std::fflush(file.get()) != 0)
     return fileError(ErrorCode::Io, path, "cannot write: " + std::string(std::strerror(errno)));
   return {};

@@ -71,8 +71,8 @@ Result<ViewGrid> placeRowColumnViews(const fs::path& folder, std::vector<std::pa
       for (int column = 1; column <= grid.nu; ++column)
         if (!present.count({row, column})) {
           const std::string rowText = padded(row, grid.nv), columnText = padded(column, grid.nu);
-          const std::string expected = order != ViewNumberOrder::ColumnFirst ? rowText + "_" + columnText
-                                                                          : columnText + "_" + rowText;
+          const std::string expected =
+              order != ViewNumberOrder::ColumnFirst ? rowText + "_" + columnText : columnText + "_" + rowText;
           return fileError(ErrorCode::Format, folder,
                            "missing view at row " + std::to_string(row) + ", column " + std::to_string(column) +
                                " (no *_" + expected + files.front().second.extension().string() + ") in a " +

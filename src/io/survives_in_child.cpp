@@ -30,7 +30,8 @@ ChildOutcome survivesInChild(const std::function<void()>& work, std::chrono::mil
   for (;;) {
     int status = 0;
     const pid_t done = waitpid(child, &status, WNOHANG);
-    if (done == child) return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? ChildOutcome::Survived : ChildOutcome::Crashed;
+    if (done == child)
+      return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? ChildOutcome::Survived : ChildOutcome::Crashed;
     if (done < 0 && errno == EINTR) continue;
     if (done < 0) return ChildOutcome::Crashed;
     if (std::chrono::steady_clock::now() >= deadline) {

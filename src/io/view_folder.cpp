@@ -25,8 +25,10 @@ Result<Listing> listViews(const fs::path& folder, ViewNumberOrder order = ViewNu
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     if (!it->is_regular_file(ec)) continue;
     const std::string name = it->path().filename().string();
-    if (auto index = hciViewIndex(name)) listing.hci.emplace_back(*index, it->path());
-    else if (auto place = rowColumnOf(name, order)) listing.rowColumn.emplace_back(*place, it->path());
+    if (auto index = hciViewIndex(name))
+      listing.hci.emplace_back(*index, it->path());
+    else if (auto place = rowColumnOf(name, order))
+      listing.rowColumn.emplace_back(*place, it->path());
   }
   if (ec) return fileError(ErrorCode::Io, folder, "cannot list folder: " + ec.message());
   return listing;
@@ -42,8 +44,9 @@ Status checkViewMatches(const ViewGrid& grid, std::size_t index, int width, int 
                      std::to_string(width) + "x" + std::to_string(height) + " pixels, but " + firstName + " has " +
                          std::to_string(shape.ns) + "x" + std::to_string(shape.nt));
   if (channels != shape.channels)
-    return fileError(ErrorCode::Format, file,
-                     std::to_string(channels) + " channels, but " + firstName + " has " + std::to_string(shape.channels));
+    return fileError(
+        ErrorCode::Format, file,
+        std::to_string(channels) + " channels, but " + firstName + " has " + std::to_string(shape.channels));
   return {};
 }
 
@@ -106,8 +109,8 @@ Result<LightField> readViewGrid(const ViewGrid& grid, const ProgressCallback& pr
   // Every view is checked as it is read.
   LFCAM_ASSIGN_OR_RETURN(auto info, shapeFromHeaders(grid, false));
   const LightFieldShape& shape = info.shape;
-  LFCAM_TRY(checkSampleCount(grid.folder, {std::uint64_t(shape.views()), shape.viewPixels(),
-                                           std::uint64_t(shape.channels)}));
+  LFCAM_TRY(
+      checkSampleCount(grid.folder, {std::uint64_t(shape.views()), shape.viewPixels(), std::uint64_t(shape.channels)}));
   LightField lightField(shape);
   lightField.metadata = grid.metadata;
   LFCAM_TRY(forEachViewInBatches(

@@ -38,12 +38,14 @@ Result<RawImage> readCameraRaw(const std::filesystem::path& path) {
   const libraw_image_sizes_t& size = lr->imgdata.sizes;
   const unsigned short* mosaic = lr->imgdata.rawdata.raw_image;
   if (!mosaic)
-    return makeError(ErrorCode::Unsupported, where + ": not a one-value-per-photosite mosaic (linear DNG, sRAW or "
-                                                     "Foveon); lfcam needs the undemosaiced sensor image");
+    return makeError(ErrorCode::Unsupported, where +
+                                                 ": not a one-value-per-photosite mosaic (linear DNG, sRAW or "
+                                                 "Foveon); lfcam needs the undemosaiced sensor image");
   if (lr->imgdata.idata.filters != 0 && lr->imgdata.idata.filters < 1000)
     return makeError(ErrorCode::Unsupported, where + ": X-Trans or other non-Bayer colour filter");
   const int width = size.width, height = size.height;
-  if (width < 1 || height < 1 || size.left_margin + width > size.raw_width || size.top_margin + height > size.raw_height)
+  if (width < 1 || height < 1 || size.left_margin + width > size.raw_width ||
+      size.top_margin + height > size.raw_height)
     return makeError(ErrorCode::Format, where + ": inconsistent raw dimensions");
   RawImage raw;
   if (lr->imgdata.idata.filters != 0) {
@@ -69,7 +71,8 @@ Result<RawImage> readCameraRaw(const std::filesystem::path& path) {
   raw.blackLevel = black;
   raw.whiteLevel = color.maximum > 0 ? color.maximum : 65535;
   if (color.cam_mul[0] > 0 && color.cam_mul[1] > 0 && color.cam_mul[2] > 0)
-    raw.whiteBalance = std::array<double, 3>{color.cam_mul[0] / color.cam_mul[1], 1.0, color.cam_mul[2] / color.cam_mul[1]};
+    raw.whiteBalance =
+        std::array<double, 3>{color.cam_mul[0] / color.cam_mul[1], 1.0, color.cam_mul[2] / color.cam_mul[1]};
   std::array<double, 9> matrix{};
   bool any = false;
   for (int r = 0; r < 3; ++r)

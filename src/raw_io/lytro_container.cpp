@@ -129,9 +129,8 @@ Result<std::vector<std::uint8_t>> readFileBytes(const std::filesystem::path& pat
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) return makeError(ErrorCode::Io, path.string() + ": cannot read: " + ec.message());
   if (size > maxBytes)
-    return makeError(ErrorCode::Resource, path.string() + ": " + std::to_string(size) +
-                                              " bytes, more than the " + std::to_string(maxBytes) +
-                                              " this kind of file may have");
+    return makeError(ErrorCode::Resource, path.string() + ": " + std::to_string(size) + " bytes, more than the " +
+                                              std::to_string(maxBytes) + " this kind of file may have");
   // The whole file, then a copy of its sections.
   LFCAM_TRY(checkMemory(path.string(), checkedProduct({size, 2}), "the file's contents"));
   std::ifstream in(path, std::ios::binary);
@@ -173,7 +172,8 @@ Result<LytroContainer> parseLytroContainer(std::span<const std::uint8_t> bytes, 
       return makeError(ErrorCode::Format, at + ": truncated: " + lytroSectionKindName(kind) + " payload of " +
                                               std::to_string(length) + " bytes, only " +
                                               std::to_string(total - payloadAt) + " left in the file");
-    section.payload.assign(bytes.begin() + std::ptrdiff_t(payloadAt), bytes.begin() + std::ptrdiff_t(payloadAt + length));
+    section.payload.assign(bytes.begin() + std::ptrdiff_t(payloadAt),
+                           bytes.begin() + std::ptrdiff_t(payloadAt + length));
     if (isSha1Name(section.name)) {
       const std::string actual = sha1Name(section.payload);
       if (lower(section.name) != actual)
@@ -200,7 +200,9 @@ Result<LytroContainer> readLytroContainer(const std::filesystem::path& path) {
 std::vector<std::uint8_t> serializeLytroContainer(const LytroContainer& container) {
   std::vector<std::uint8_t> out;
   for (const LytroSection& section : container.sections) {
-    const char letter = section.kind == LytroSectionKind::Package ? 'P' : section.kind == LytroSectionKind::Metadata ? 'M' : 'C';
+    const char letter = section.kind == LytroSectionKind::Package    ? 'P'
+                        : section.kind == LytroSectionKind::Metadata ? 'M'
+                                                                     : 'C';
     const std::uint8_t magic[8] = {0x89, 'L', 'F', std::uint8_t(letter), '\r', '\n', 0x1a, '\n'};
     out.insert(out.end(), magic, magic + 8);
     appendBigEndian32(out, section.version);

@@ -107,8 +107,10 @@ void classify(const json& toc, const LytroReference& ref, LytroItem& item, std::
     item.file = numbered(type, ".h264");
   } else if (startsWith(bytes, {0xff, 0xd8})) {
     item.kind = LytroItemKind::Jpeg;
-    if (parent && parent->contains("lambda") && (*parent)["lambda"].is_number()) item.lambda = (*parent)["lambda"].get<double>();
-    if (parent && parent->contains("focus") && (*parent)["focus"].is_number()) item.lambda = (*parent)["focus"].get<double>();
+    if (parent && parent->contains("lambda") && (*parent)["lambda"].is_number())
+      item.lambda = (*parent)["lambda"].get<double>();
+    if (parent && parent->contains("focus") && (*parent)["focus"].is_number())
+      item.lambda = (*parent)["focus"].get<double>();
     const bool thumbnail = ref.pointer.find("thumbnail") != std::string::npos;
     item.role = thumbnail ? "thumbnail (JPEG)" : "refocus-stack slice (JPEG)";
     item.file = numbered(thumbnail ? "thumbnail" : "slice", ".jpg");
@@ -218,8 +220,10 @@ Status extractLytroContainer(const LytroContainer& container, const std::filesys
     json index = json::array();
     for (const LytroItem& item : contents.items) {
       const std::vector<std::uint8_t>& bytes = item.section->payload;
-      json entry = {{"section", item.section->name}, {"kind", lytroItemKindName(item.kind)},
-                    {"role", item.role}, {"bytes", bytes.size()}};
+      json entry = {{"section", item.section->name},
+                    {"kind", lytroItemKindName(item.kind)},
+                    {"role", item.role},
+                    {"bytes", bytes.size()}};
       if (item.width) entry["size"] = {item.width, item.height};
       if (item.lambda) entry["lambda"] = *item.lambda;
       std::vector<std::string> files;
@@ -270,14 +274,13 @@ Status extractLytroContainer(const LytroContainer& container, const std::filesys
           files.push_back(item.file + ".png");
           break;
         }
-        default:
-          LFCAM_TRY(writeBytes(dir / item.file, bytes.data(), bytes.size()));
-          files.push_back(item.file);
+        default: LFCAM_TRY(writeBytes(dir / item.file, bytes.data(), bytes.size())); files.push_back(item.file);
       }
       entry["files"] = files;
       index.push_back(entry);
     }
-    return writeText(dir / "index.json", json{{"source", where}, {"summary", contents.summary}, {"items", index}}.dump(2) + "\n");
+    return writeText(dir / "index.json",
+                     json{{"source", where}, {"summary", contents.summary}, {"items", index}}.dump(2) + "\n");
   });
 }
 

@@ -74,9 +74,9 @@ json mosaicJson(ColorFilter filter) {
 const json* findLytroFrameMetadata(const json& document) {
   if (!document.is_object()) return nullptr;
   if (document.contains("image")) return &document;
-  for (const json* candidate : {firstFrame(path(&document, {"master", "picture", "frameArray"})),
-                                firstFrame(path(&document, {"picture", "frameArray"})),
-                                firstFrame(path(&document, {"frames"}))})
+  for (const json* candidate :
+       {firstFrame(path(&document, {"master", "picture", "frameArray"})),
+        firstFrame(path(&document, {"picture", "frameArray"})), firstFrame(path(&document, {"frames"}))})
     if (candidate && candidate->is_object() && candidate->contains("image")) return candidate;
   return nullptr;
 }
@@ -114,9 +114,12 @@ Result<LytroFrameFormat> parseLytroFrameMetadata(const json& metadata, const std
   if (!bits || !endianness || !endianness->is_string())
     return makeError(ErrorCode::Format, where + ": no pixelPacking (bitsPerPixel, endianness) in the frame metadata");
   const std::string endian = endianness->get<std::string>();
-  if (*bits == 12 && endian == "big") f.packing = RawPacking::Bits12BigEndian;
-  else if (*bits == 10 && endian == "little") f.packing = RawPacking::Bits10LittleEndian;
-  else if (*bits == 16 && endian == "little") f.packing = RawPacking::Bits16LittleEndian;
+  if (*bits == 12 && endian == "big")
+    f.packing = RawPacking::Bits12BigEndian;
+  else if (*bits == 10 && endian == "little")
+    f.packing = RawPacking::Bits10LittleEndian;
+  else if (*bits == 16 && endian == "little")
+    f.packing = RawPacking::Bits16LittleEndian;
   else
     return makeError(ErrorCode::Unsupported, where + ": pixel packing of " + std::to_string(int(*bits)) + " bits " +
                                                  endian + "-endian (lfcam reads 12-bit big, 10-bit and 16-bit little)");
@@ -156,7 +159,7 @@ Result<LytroFrameFormat> parseLytroFrameMetadata(const json& metadata, const std
                      number(child(offset, "y")).value_or(0.0) / *f.pixelPitchM};
     const json* tiling = child(mla, "tiling");
     hint.packing = tiling && tiling->is_string() && tiling->get<std::string>().rfind("hex", 0) == 0 ? Packing::Hexagonal
-                                                                                                  : Packing::Square;
+                                                                                                    : Packing::Square;
     f.lenslet = hint;
   }
   const json* make = path(&metadata, {"camera", "make"});
@@ -169,7 +172,8 @@ Result<LytroFrameFormat> parseLytroFrameMetadata(const json& metadata, const std
 json makeLytroFrameMetadata(const LytroFrameFormat& f, LytroStyle style) {
   const bool bigEndian = f.packing == RawPacking::Bits12BigEndian;
   const int bits = rawPackingBits(f.packing);
-  const json pixelFormat = {{"rightShift", 0}, {"black", perChannel(f.blackLevel)}, {"white", perChannel(f.whiteLevel)}};
+  const json pixelFormat = {
+      {"rightShift", 0}, {"black", perChannel(f.blackLevel)}, {"white", perChannel(f.whiteLevel)}};
   const json pixelPacking = {{"endianness", bigEndian ? "big" : "little"}, {"bitsPerPixel", bits}};
   const std::array<double, 3> wb = f.whiteBalance.value_or(std::array<double, 3>{1, 1, 1});
   const std::array<double, 9> ccm = f.colorMatrix.value_or(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1});
@@ -178,7 +182,8 @@ json makeLytroFrameMetadata(const LytroFrameFormat& f, LytroStyle style) {
   if (style == LytroStyle::FirstGeneration) {
     color["ccmRgbToSrgbArray"] = ccm;
     color["gamma"] = 0.41666001081466675;
-    image["rawDetails"] = {{"pixelFormat", pixelFormat}, {"pixelPacking", pixelPacking}, {"mosaic", mosaicJson(f.colorFilter)}};
+    image["rawDetails"] = {
+        {"pixelFormat", pixelFormat}, {"pixelPacking", pixelPacking}, {"mosaic", mosaicJson(f.colorFilter)}};
   } else {
     color["ccm"] = ccm;
     image["pixelFormat"] = pixelFormat;
@@ -191,16 +196,18 @@ json makeLytroFrameMetadata(const LytroFrameFormat& f, LytroStyle style) {
   if (f.pixelPitchM) devices["sensor"]["pixelPitch"] = *f.pixelPitchM;
   if (f.lenslet && f.pixelPitchM) {
     const LensletHint& h = *f.lenslet;
-    devices["mla"] = {{"tiling", h.packing == Packing::Hexagonal ? "hexUniformRowMajor" : "squareUniformRowMajor"},
-                      {"lensPitch", h.pitchPx * *f.pixelPitchM},
-                      {"rotation", h.rotationRad},
-                      {"defectArray", json::array()},
-                      {"config", "lfcam.simulated"},
-                      {"scaleFactor", {{"x", 1}, {"y", 1}}},
-                      {"sensorOffset", {{"x", h.offsetPx[0] * *f.pixelPitchM}, {"y", h.offsetPx[1] * *f.pixelPitchM}, {"z", 0}}}};
+    devices["mla"] = {
+        {"tiling", h.packing == Packing::Hexagonal ? "hexUniformRowMajor" : "squareUniformRowMajor"},
+        {"lensPitch", h.pitchPx * *f.pixelPitchM},
+        {"rotation", h.rotationRad},
+        {"defectArray", json::array()},
+        {"config", "lfcam.simulated"},
+        {"scaleFactor", {{"x", 1}, {"y", 1}}},
+        {"sensorOffset", {{"x", h.offsetPx[0] * *f.pixelPitchM}, {"y", h.offsetPx[1] * *f.pixelPitchM}, {"z", 0}}}};
   }
   json out = {{"type", "lightField"}, {"image", image}, {"devices", devices}};
-  out["camera"] = {{"make", "lfcam"}, {"model", style == LytroStyle::FirstGeneration ? "F01 (simulated)" : "ILLUM (simulated)"}};
+  out["camera"] = {{"make", "lfcam"},
+                   {"model", style == LytroStyle::FirstGeneration ? "F01 (simulated)" : "ILLUM (simulated)"}};
   if (style == LytroStyle::Illum) {
     out["schema"] = "http://schema.lytro.com/lfp/lytro_illum_public/1.3.4/lytro_illum_public_schema.json";
     out["generator"] = "lfcam";

@@ -34,13 +34,15 @@ Result<RawImage> rawFromLytroContainer(const LytroContainer& container, const st
   const json* frame = container.tableOfContents.is_null() ? nullptr : tocFrame(container.tableOfContents);
   const LytroSection* image = frame ? container.find(refString(*frame, "imageRef")) : nullptr;
   if (!image)
-    return makeError(ErrorCode::Unsupported, where + ": holds no raw sensor frame (a processed picture: see `lfcam info` "
-                                                     "and `lfcam extract`)");
+    return makeError(ErrorCode::Unsupported, where +
+                                                 ": holds no raw sensor frame (a processed picture: see `lfcam info` "
+                                                 "and `lfcam extract`)");
   json metadata;
   if (const LytroSection* section = container.find(refString(*frame, "metadataRef"))) {
     metadata = json::parse(section->payload.begin(), section->payload.end(), nullptr, false);
     if (metadata.is_discarded())
-      return makeError(ErrorCode::Format, where + ": the frame metadata section " + section->name + " is not valid JSON");
+      return makeError(ErrorCode::Format,
+                       where + ": the frame metadata section " + section->name + " is not valid JSON");
   } else if (frame->contains("metadata")) {
     metadata = (*frame)["metadata"];
   } else {
@@ -83,7 +85,8 @@ Result<LytroContainer> makeLytroRawContainer(const RawImage& raw, const LytroWri
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const float v = mosaic.plane(0)[k];
     if (!(v >= 0 && v <= 65535 && v == std::floor(v)))
-      return makeError(ErrorCode::Usage, where + ": raw values must be whole DN in [0, 65535], found " + std::to_string(v));
+      return makeError(ErrorCode::Usage,
+                       where + ": raw values must be whole DN in [0, 65535], found " + std::to_string(v));
     samples[k] = std::uint16_t(v);
     largest = std::max(largest, v);
   }
@@ -109,10 +112,11 @@ Result<LytroContainer> makeLytroRawContainer(const RawImage& raw, const LytroWri
   LytroSection meta = makeLytroSection(LytroSectionKind::Component, metadata.dump(1));
   LytroSection privateMeta =
       makeLytroSection(LytroSectionKind::Component, json{{"camera", {{"serialNumber", "lfcam-simulator"}}}}.dump(1));
-  json frame = {{"frame", {{"metadataRef", meta.name}, {"privateMetadataRef", privateMeta.name}, {"imageRef", image.name}}},
-                {"parameters",
-                 {{"vendorContent",
-                   {{"com.lytro.tags", {{"darkFrame", false}, {"modulationFrame", options.modulationFrame}}}}}}}};
+  json frame = {
+      {"frame", {{"metadataRef", meta.name}, {"privateMetadataRef", privateMeta.name}, {"imageRef", image.name}}},
+      {"parameters",
+       {{"vendorContent",
+         {{"com.lytro.tags", {{"darkFrame", false}, {"modulationFrame", options.modulationFrame}}}}}}}};
   json toc;
   if (options.style == LytroStyle::FirstGeneration) {
     toc = {{"picture",
@@ -158,7 +162,8 @@ Status writeSimulationContainers(const std::filesystem::path& folder, LytroStyle
     if (std::string(stem) == "white" && style == LytroStyle::FirstGeneration) continue;
     LFCAM_ASSIGN_OR_RETURN(auto raw, readRaw(source));
     if (raw.source != "simulator")
-      return makeError(ErrorCode::Format, (folder / "camera.json").string() + ": missing or not for " + source.string());
+      return makeError(ErrorCode::Format,
+                       (folder / "camera.json").string() + ": missing or not for " + source.string());
     LytroWriteOptions options;
     options.style = style;
     options.modulationFrame = std::string(stem) == "white";

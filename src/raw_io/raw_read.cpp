@@ -5,8 +5,8 @@
 #include <fstream>
 #include <numbers>
 
-#include "lfcam/image_io.hpp"
 #include "io/io_support.hpp"
+#include "lfcam/image_io.hpp"
 #include "lfcam/raw_io.hpp"
 #include "raw_io/libraw_read.hpp"
 #include "raw_io/tiff_levels.hpp"
@@ -18,9 +18,9 @@ namespace {
 // Extensions LibRaw is asked first about: many are TIFF inside and would pass for images.
 bool hasCameraRawExtension(const std::filesystem::path& path) {
   const std::string ext = io::lowerExtension(path);
-  static const char* known[] = {".dng", ".cr2", ".cr3", ".crw", ".nef", ".nrw", ".arw", ".srf", ".sr2", ".orf",
-                                ".rw2", ".raf", ".pef", ".srw", ".3fr", ".erf", ".kdc", ".dcr", ".mrw", ".mos",
-                                ".iiq", ".rwl", ".x3f"};
+  static const char* known[] = {".dng", ".cr2", ".cr3", ".crw", ".nef", ".nrw", ".arw", ".srf",
+                                ".sr2", ".orf", ".rw2", ".raf", ".pef", ".srw", ".3fr", ".erf",
+                                ".kdc", ".dcr", ".mrw", ".mos", ".iiq", ".rwl", ".x3f"};
   return std::any_of(std::begin(known), std::end(known), [&](const char* k) { return ext == k; });
 }
 
@@ -35,8 +35,10 @@ void applyCameraJson(const std::filesystem::path& path, RawImage& raw) {
   if (!sensor.is_object() || sensor.value("width", -1) != raw.mosaic.width() ||
       sensor.value("height", -1) != raw.mosaic.height())
     return;
-  if (sensor.contains("black_level") && sensor["black_level"].is_number()) raw.blackLevel = sensor["black_level"].get<double>();
-  if (sensor.contains("white_level") && sensor["white_level"].is_number()) raw.whiteLevel = sensor["white_level"].get<double>();
+  if (sensor.contains("black_level") && sensor["black_level"].is_number())
+    raw.blackLevel = sensor["black_level"].get<double>();
+  if (sensor.contains("white_level") && sensor["white_level"].is_number())
+    raw.whiteLevel = sensor["white_level"].get<double>();
   if (sensor.contains("color_filter") && sensor["color_filter"].is_string())
     if (auto filter = parseColorFilterName(sensor["color_filter"].get<std::string>())) raw.colorFilter = *filter;
   const nlohmann::json lattice = json.value("lattice_px", nlohmann::json());
@@ -68,7 +70,7 @@ Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOp
     double sum = 0;
     for (int c = 0; c < colours; ++c) {
       const float v = image.plane(c)[k];
-      sum += type == SampleType::UInt8 ? std::round(linearToSrgb(v) * 255.0)
+      sum += type == SampleType::UInt8    ? std::round(linearToSrgb(v) * 255.0)
              : type == SampleType::UInt16 ? std::round(double(v) * 65535.0)
                                           : double(v);
     }

@@ -20,9 +20,12 @@ class TiffReader {
   bool readHeader(std::uint32_t& firstDirectory) {
     char order[2];
     if (!in_.read(order, 2)) return false;
-    if (order[0] == 'I' && order[1] == 'I') bigEndian_ = false;
-    else if (order[0] == 'M' && order[1] == 'M') bigEndian_ = true;
-    else return false;
+    if (order[0] == 'I' && order[1] == 'I')
+      bigEndian_ = false;
+    else if (order[0] == 'M' && order[1] == 'M')
+      bigEndian_ = true;
+    else
+      return false;
     std::uint16_t magic = 0;
     return read16(magic) && magic == 42 && read32(firstDirectory);
   }

@@ -6,8 +6,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -104,9 +104,10 @@ bool putFrame(GifFileType* gif, const Image& frame, int delay) {
                           indices.data(), colours) == GIF_ERROR)
       return false;
   }
-  std::unique_ptr<ColorMapObject, void (*)(ColorMapObject*)> palette(GifMakeMapObject(256, colours),
-                                                                    GifFreeMapObject);
-  GraphicsControlBlock control{.DisposalMode = DISPOSE_DO_NOT, .UserInputFlag = false, .DelayTime = delay,
+  std::unique_ptr<ColorMapObject, void (*)(ColorMapObject*)> palette(GifMakeMapObject(256, colours), GifFreeMapObject);
+  GraphicsControlBlock control{.DisposalMode = DISPOSE_DO_NOT,
+                               .UserInputFlag = false,
+                               .DelayTime = delay,
                                .TransparentColor = NO_TRANSPARENT_COLOR};
   GifByteType controlBytes[4];
   EGifGCBToExtension(&control, controlBytes);

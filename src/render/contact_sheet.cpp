@@ -10,8 +10,7 @@ Image contactSheet(const LightField& lf, const ContactSheetOptions& options) {
   const int gap = std::max(0, options.gap);
   // The smallest whole shrink factor that fits the sheet into maxWidth.
   int factor = 1;
-  while (factor < lf.ns() &&
-         lf.nu() * (lf.ns() / factor) + (lf.nu() + 1) * gap > std::max(options.maxWidth, 1))
+  while (factor < lf.ns() && lf.nu() * (lf.ns() / factor) + (lf.nu() + 1) * gap > std::max(options.maxWidth, 1))
     ++factor;
   const int tileW = std::max(1, lf.ns() / factor), tileH = std::max(1, lf.nt() / factor);
   Image sheet(lf.nu() * tileW + (lf.nu() + 1) * gap, lf.nv() * tileH + (lf.nv() + 1) * gap, lf.channels());

@@ -15,8 +15,8 @@ std::vector<double> evenlySpaced(double first, double last, int n) {
   return values;
 }
 
-Status renderFocalStack(const LightField& lightField, const std::vector<double>& slopes,
-                        const SyntheticCamera& camera, const RenderOptions& options,
+Status renderFocalStack(const LightField& lightField, const std::vector<double>& slopes, const SyntheticCamera& camera,
+                        const RenderOptions& options,
                         const std::function<Status(int index, double slope, Image&& photo)>& sink) {
   SyntheticCamera slice = camera;
   for (std::size_t i = 0; i < slopes.size(); ++i) {
@@ -65,8 +65,10 @@ double angularVariance(const LightField& lightField, int x, int y, int radius, d
               continue;
             sum += value, sumSquares += value * value, ++count;
           }
-        if (count < 2) enough = false;
-        else variance += sumSquares / count - (sum / count) * (sum / count);
+        if (count < 2)
+          enough = false;
+        else
+          variance += sumSquares / count - (sum / count) * (sum / count);
       }
       if (!enough) continue;
       total += variance, ++pixels;
@@ -82,7 +84,8 @@ Result<double> slopeAtPixel(const LightField& lightField, double x, double y, co
     return makeError(ErrorCode::Usage, "focus at a pixel: (" + std::to_string(x) + ", " + std::to_string(y) +
                                            ") lies outside the " + std::to_string(lightField.ns()) + "x" +
                                            std::to_string(lightField.nt()) + " image");
-  if (lightField.shape().views() < 2) return makeError(ErrorCode::Usage, "focus at a pixel: a single view has no focus");
+  if (lightField.shape().views() < 2)
+    return makeError(ErrorCode::Usage, "focus at a pixel: a single view has no focus");
   double lowest = search.minSlope.value_or(lightField.metadata.disparityMin.value_or(-4.0));
   double highest = search.maxSlope.value_or(lightField.metadata.disparityMax.value_or(4.0));
   if (!(lowest < highest) || search.steps < 3 || search.radius < 0)

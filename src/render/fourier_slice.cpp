@@ -49,7 +49,8 @@ int wrap(long index, int size) { return int(((index % size) + size) % size); }
 Result<FourierRefocuser> FourierRefocuser::create(const LightField& lightField, const FourierSliceOptions& options) {
   if (lightField.empty()) return makeError(ErrorCode::Usage, "Fourier slice: empty light field");
   if (!(options.oversampling >= 1 && options.oversampling <= 8) || options.kernelWidth < 2 || options.kernelWidth > 16)
-    return makeError(ErrorCode::Usage, "Fourier slice: oversampling must lie in [1, 8] and the kernel width in [2, 16]");
+    return makeError(ErrorCode::Usage,
+                     "Fourier slice: oversampling must lie in [1, 8] and the kernel width in [2, 16]");
   FourierRefocuser result;
   const LightFieldShape& shape = lightField.shape();
   result.shape_ = shape;
@@ -58,7 +59,8 @@ Result<FourierRefocuser> FourierRefocuser::create(const LightField& lightField, 
   result.paddedV_ = std::max(shape.nv, int(std::ceil(options.oversampling * shape.nv)));
   // Beatty et al. 2005: the Kaiser-Bessel shape for this width and oversampling.
   const double sigma = std::max(1.01, options.oversampling), w = options.kernelWidth;
-  result.kaiserBeta_ = std::numbers::pi * std::sqrt(std::max(0.0, w * w / (sigma * sigma) * (sigma - 0.5) * (sigma - 0.5) - 0.8));
+  result.kaiserBeta_ =
+      std::numbers::pi * std::sqrt(std::max(0.0, w * w / (sigma * sigma) * (sigma - 0.5) * (sigma - 0.5) - 0.8));
   // View u is placed at index u - wholeU (mod padded), so that the views sit around index 0,
   // where the roll-off correction is accurate; halfU is what is left of the true centre.
   const int wholeU = (shape.nu - 1) / 2, wholeV = (shape.nv - 1) / 2;
@@ -97,7 +99,8 @@ Result<FourierRefocuser> FourierRefocuser::create(const LightField& lightField, 
         for (std::size_t i = 0; i < std::size_t(ns) * nt; ++i) real[i] = plane[i] * scale;
         fftwf_execute_dft_r2c(planar, real.get(), complex.get());
         const std::size_t slot = std::size_t(wrap(v - wholeV, Mv)) * Mu + wrap(u - wholeU, Mu);
-        std::memcpy(static_cast<void*>(spectrum.data() + slot * planeFrequencies), complex.get(), planeFrequencies * sizeof(fftwf_complex));
+        std::memcpy(static_cast<void*>(spectrum.data() + slot * planeFrequencies), complex.get(),
+                    planeFrequencies * sizeof(fftwf_complex));
       }
     // Angular FFT, zero-padded, for every spatial frequency at once.
     auto* data = reinterpret_cast<fftwf_complex*>(spectrum.data());
@@ -168,7 +171,8 @@ Image FourierRefocuser::refocus(double slope) const {
           std::complex<double> row = 0;
           const std::size_t rowBase = std::size_t(rowTaps.index[a]) * Mu;
           for (int b = 0; b < colTaps.count; ++b)
-            row += colTaps.weight[b] * std::complex<double>(spectrum[(rowBase + colTaps.index[b]) * planeFrequencies + frequency]);
+            row += colTaps.weight[b] *
+                   std::complex<double>(spectrum[(rowBase + colTaps.index[b]) * planeFrequencies + frequency]);
           sum += rowTaps.weight[a] * row;
         }
         sum *= rowTaps.phase * colTaps.phase * normalise;

@@ -84,7 +84,8 @@ std::vector<std::uint8_t> evenSizedPixels(const Image& frame, int width, int hei
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < 3; ++c)
         grown[(std::size_t(y) * width + x) * 3 + c] =
-            pixels[(std::size_t(std::min(y, frame.height() - 1)) * frame.width() + std::min(x, frame.width() - 1)) * 3 + c];
+            pixels[(std::size_t(std::min(y, frame.height() - 1)) * frame.width() + std::min(x, frame.width() - 1)) * 3 +
+                   c];
   return grown;
 }
 
@@ -126,7 +127,8 @@ Status encodeVideo(const fs::path& temporary, const fs::path& path, const std::v
     codec->global_quality = FF_QP2LAMBDA * 2;
   }
   if (int status = avcodec_open2(codec.get(), encoder, nullptr); status < 0)
-    return failed(ErrorCode::Unsupported, std::string("cannot open the ") + encoder->name + " encoder: " + reason(status));
+    return failed(ErrorCode::Unsupported,
+                  std::string("cannot open the ") + encoder->name + " encoder: " + reason(status));
   if (avcodec_parameters_from_context(stream->codecpar, codec.get()) < 0)
     return failed(ErrorCode::Resource, "cannot set up the video stream");
   stream->time_base = codec->time_base;
@@ -138,9 +140,8 @@ Status encodeVideo(const fs::path& temporary, const fs::path& path, const std::v
 
   std::unique_ptr<AVFrame, FrameDeleter> frame(av_frame_alloc());
   std::unique_ptr<AVPacket, PacketDeleter> packet(av_packet_alloc());
-  std::unique_ptr<SwsContext, ScaleDeleter> scale(sws_getContext(width, height, AV_PIX_FMT_RGB24, width, height,
-                                                                 AV_PIX_FMT_YUV420P, SWS_BICUBIC, nullptr, nullptr,
-                                                                 nullptr));
+  std::unique_ptr<SwsContext, ScaleDeleter> scale(sws_getContext(
+      width, height, AV_PIX_FMT_RGB24, width, height, AV_PIX_FMT_YUV420P, SWS_BICUBIC, nullptr, nullptr, nullptr));
   if (!frame || !packet || !scale) return failed(ErrorCode::Resource, "cannot set up the encoder");
   const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
   sws_setColorspaceDetails(scale.get(), bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);  // full-range RGB in, limited out
@@ -163,17 +164,20 @@ Status encodeVideo(const fs::path& temporary, const fs::path& path, const std::v
     return failed(ErrorCode::Io, "cannot finish the video: " + reason(status));
   if (int status = av_write_trailer(format.get()); status < 0)
     return failed(ErrorCode::Io, "cannot write: " + reason(status));
-  if (int status = avio_closep(&format->pb); status < 0) return failed(ErrorCode::Io, "cannot write: " + reason(status));
+  if (int status = avio_closep(&format->pb); status < 0)
+    return failed(ErrorCode::Io, "cannot write: " + reason(status));
   return {};
 }
 
 }  // namespace
 
 Status writeMp4Video(const fs::path& path, const std::vector<Image>& frames, int framesPerSecond) {
-  if (io::lowerExtension(path) != ".mp4") return makeError(ErrorCode::Usage, path.string() + ": MP4 videos are written as .mp4");
+  if (io::lowerExtension(path) != ".mp4")
+    return makeError(ErrorCode::Usage, path.string() + ": MP4 videos are written as .mp4");
   LFCAM_TRY(checkAnimationFrames(path, frames, framesPerSecond));
   silenceFfmpeg();
-  return writeFileAtomically(path, [&](const fs::path& temporary) { return encodeVideo(temporary, path, frames, framesPerSecond); });
+  return writeFileAtomically(
+      path, [&](const fs::path& temporary) { return encodeVideo(temporary, path, frames, framesPerSecond); });
 }
 
 Result<VideoSummary> readVideoSummary(const fs::path& path) {
@@ -214,7 +218,8 @@ Result<VideoSummary> readVideoSummary(const fs::path& path) {
     if (status < 0) return io::fileError(ErrorCode::Format, path, "damaged video: " + reason(status));
   }
   avcodec_send_packet(codec.get(), nullptr);  // drain the decoder
-  if (int status = receive(); status < 0) return io::fileError(ErrorCode::Format, path, "damaged video: " + reason(status));
+  if (int status = receive(); status < 0)
+    return io::fileError(ErrorCode::Format, path, "damaged video: " + reason(status));
   return summary;
 }
 

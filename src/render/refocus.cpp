@@ -22,7 +22,7 @@ namespace {
 // shift = -(view position from the centre) * slope (Equation 6: s' - u' d). The bilinear taps are
 // columns x + floor(shift) and x + floor(shift) + 1 with weights 1 - frac and frac.
 struct AxisShift {
-  int whole = 0;       // floor(shift)
+  int whole = 0;        // floor(shift)
   double fraction = 0;  // shift - floor(shift), in [0, 1)
 };
 
@@ -66,8 +66,7 @@ Image refocusReference(const LightField& lightField, double slope) {
               const int column = x + sx.whole + i;
               if (!inside(column, shape.ns)) continue;
               double w = wy * (i ? sx.fraction : 1 - sx.fraction);
-              if (lightField.hasWeight())
-                w *= lightField.weightPlane(u, v)[std::size_t(row) * shape.ns + column];
+              if (lightField.hasWeight()) w *= lightField.weightPlane(u, v)[std::size_t(row) * shape.ns + column];
               weightSum += w;
               for (int c = 0; c < shape.channels; ++c) sum[c] += w * lightField.at(u, v, column, row, c);
             }
@@ -138,7 +137,9 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
   // Accumulators: one (rows x ns) plane per channel, then (weighted) one for the weight sum.
   const int planes = channels + (weighted ? 1 : 0);
   std::vector<float> accumulator(std::size_t(planes) * rows * ns, 0.0f);
-  auto accumulatorRow = [&](int plane, int y) { return accumulator.data() + (std::size_t(plane) * rows + (y - y0)) * ns; };
+  auto accumulatorRow = [&](int plane, int y) {
+    return accumulator.data() + (std::size_t(plane) * rows + (y - y0)) * ns;
+  };
   // Without a weight plane each tap weighs its coefficients alone: the weight sum accumulates a
   // row of ones. With one, the channels accumulate w * L, products formed a row at a time.
   std::vector<float> ones(weighted && !lightFieldWeighted ? ns : 0, 1.0f);
@@ -163,8 +164,9 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
         return lightField.plane(plan.terms[t].u, plan.terms[t].v, c) + std::size_t(row) * ns;
       };
       for (int c = 0; c < channels; ++c) {
-        const float* nextPass = c + 1 < channels ? firstRow(term, c + 1)
-                                : term + 1 < plan.terms.size() ? firstRow(term + 1, 0) : nullptr;
+        const float* nextPass = c + 1 < channels               ? firstRow(term, c + 1)
+                                : term + 1 < plan.terms.size() ? firstRow(term + 1, 0)
+                                                               : nullptr;
         accumulateBilinearRows(accumulatorRow(c, y0), lightField.plane(u, v, c), ns, nt, y0, y1, sx.whole, ax0, ax1,
                                sy.whole, top, bottom, nextPass);
       }

@@ -16,9 +16,9 @@
 namespace lfcam {
 
 struct ShiftAndAddTerm {
-  int u = 0, v = 0;                // view indices
-  double shiftX = 0, shiftY = 0;   // the view is sampled at (x + shiftX, y + shiftY), pixels
-  float weight = 1;                // the aperture's weight of this term; terms of weight 0 are skipped
+  int u = 0, v = 0;               // view indices
+  double shiftX = 0, shiftY = 0;  // the view is sampled at (x + shiftX, y + shiftY), pixels
+  float weight = 1;               // the aperture's weight of this term; terms of weight 0 are skipped
 };
 
 Image shiftAndAdd(const LightField& lightField, std::vector<ShiftAndAddTerm> terms);

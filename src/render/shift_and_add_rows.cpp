@@ -7,8 +7,8 @@
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "render/shift_and_add_rows.cpp"
-#include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/cache_control.h>
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 HWY_BEFORE_NAMESPACE();
@@ -19,8 +19,8 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 // Columns x with both horizontal taps inside the view are the vector loop; at most one column on
 // either side has a single tap, and the last partial vector is done one lane at a time.
-void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, const float* row1, int whole,
-                           float c00, float c01, float c10, float c11, int ns, const float* nextRow) {
+void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, const float* row1, int whole, float c00,
+                           float c01, float c10, float c11, int ns, const float* nextRow) {
   const hn::ScalableTag<float> d;
   const int lanes = int(hn::Lanes(d));
   const int interiorBegin = std::max(0, -whole), interiorEnd = std::min(ns, ns - 1 - whole);
@@ -87,9 +87,7 @@ void AccumulateBilinearRows(float* HWY_RESTRICT accumulator, const float* plane,
     if (taps.c0 == 0.0f) continue;
     // The row the next row reads; on the last, the first row of the next pass, so that the pass
     // does not start on a cold stream.
-    const float* next = y + 1 == y1                 ? nextPass
-                        : taps.row1 + 1 < nt ? plane + std::size_t(taps.row1 + 1) * ns
-                                             : nullptr;
+    const float* next = y + 1 == y1 ? nextPass : taps.row1 + 1 < nt ? plane + std::size_t(taps.row1 + 1) * ns : nullptr;
     AccumulateBilinearRow(accumulator + std::size_t(y - y0) * ns, plane + std::size_t(taps.row0) * ns,
                           plane + std::size_t(taps.row1) * ns, wholeX, taps.c0 * ax0, taps.c0 * ax1, taps.c1 * ax0,
                           taps.c1 * ax1, ns, next);
@@ -104,8 +102,7 @@ void MultiplyRows(float* HWY_RESTRICT out, const float* HWY_RESTRICT a, const fl
   for (; i < count; ++i) out[i] = a[i] * b[i];
 }
 
-void NormaliseRow(float* HWY_RESTRICT out, const float* HWY_RESTRICT sum, const float* HWY_RESTRICT weight,
-                  int count) {
+void NormaliseRow(float* HWY_RESTRICT out, const float* HWY_RESTRICT sum, const float* HWY_RESTRICT weight, int count) {
   const hn::ScalableTag<float> d;
   const int lanes = int(hn::Lanes(d));
   const auto zero = hn::Zero(d);
@@ -136,8 +133,8 @@ void accumulateBilinearRow(float* accumulator, const float* row0, const float* r
 
 void accumulateBilinearRows(float* accumulator, const float* plane, int ns, int nt, int y0, int y1, int wholeX,
                             float ax0, float ax1, int wholeY, float top, float bottom, const float* nextPass) {
-  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRows)(accumulator, plane, ns, nt, y0, y1, wholeX, ax0, ax1, wholeY, top, bottom,
-                                               nextPass);
+  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRows)
+  (accumulator, plane, ns, nt, y0, y1, wholeX, ax0, ax1, wholeY, top, bottom, nextPass);
 }
 
 void multiplyRows(float* out, const float* a, const float* b, int count) {

@@ -24,12 +24,9 @@ double Aperture::weight(double u, double v, int nu, int nv) const {
   const double du = u - centreU, dv = v - centreV;
   const double tolerance = 1e-9;  // views exactly on the edge are inside
   switch (shape) {
-    case Shape::Full:
-      return 1;
-    case Shape::Circle:
-      return du * du + dv * dv <= radius * radius + tolerance ? 1 : 0;
-    case Shape::Square:
-      return std::abs(du) <= radius + tolerance && std::abs(dv) <= radius + tolerance ? 1 : 0;
+    case Shape::Full: return 1;
+    case Shape::Circle: return du * du + dv * dv <= radius * radius + tolerance ? 1 : 0;
+    case Shape::Square: return std::abs(du) <= radius + tolerance && std::abs(dv) <= radius + tolerance ? 1 : 0;
     case Shape::Mask: {
       if (!mask || mask->empty() || nu <= 0 || nv <= 0) return 0;
       const double x = (du / nu + 0.5) * mask->width(), y = (dv / nv + 0.5) * mask->height();
@@ -77,8 +74,7 @@ struct ApertureSample {
 
 // supersampling^2 samples per view, at the centres of a regular grid over each view's square
 // (supersampling 1: the views themselves); samples of weight 0 are dropped.
-std::vector<ApertureSample> apertureSamples(const LightField& lightField, const Aperture& aperture,
-                                            int supersampling) {
+std::vector<ApertureSample> apertureSamples(const LightField& lightField, const Aperture& aperture, int supersampling) {
   std::vector<ApertureSample> samples;
   const int k = std::max(1, supersampling);
   for (int v = 0; v < lightField.nv(); ++v)
@@ -145,8 +141,8 @@ void generalRows(const LightField& lightField, const RayMap& map, const std::vec
             for (int c = 0; c < tt.count; ++c)
               for (int d = 0; d < ts.count; ++d) {
                 const int u = tu.index[b], v = tv.index[a], s = ts.index[d], t = tt.index[c];
-                Real w = Real(sample.weight * tv.coefficient[a] * tu.coefficient[b] * tt.coefficient[c] *
-                              ts.coefficient[d]);
+                Real w =
+                    Real(sample.weight * tv.coefficient[a] * tu.coefficient[b] * tt.coefficient[c] * ts.coefficient[d]);
                 if (lightField.hasWeight()) w *= lightField.weightPlane(u, v)[std::size_t(t) * shape.ns + s];
                 if (w == 0) continue;
                 weightSum += w;

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "lfcam/memory_budget.hpp"
 #include "core/json_reader.hpp"
+#include "lfcam/memory_budget.hpp"
 #include "lfcam/simulated_grid.hpp"
 
 namespace lfcam {
@@ -49,8 +49,7 @@ std::array<double, 2> CameraModel::microlensImageCentrePx(int i, int j) const {
 
 double CameraModel::microlensImageDiameterPx() const {
   if (!microlenses) return 0;
-  return mainLens.apertureDiameterMm() * microlenses->separationMm() / mainLens.imageDistanceMm() /
-         sensor.pixelPitchMm;
+  return mainLens.apertureDiameterMm() * microlenses->separationMm() / mainLens.imageDistanceMm() / sensor.pixelPitchMm;
 }
 
 CameraModel CameraModel::paperPrototype(int width, int height) {
@@ -66,19 +65,24 @@ Status CameraModel::validate(const std::string& where) const {
     return makeError(ErrorCode::Usage, where + ": " + key + ": " + message);
   };
   const MainLens& l = mainLens;
-  if (!(l.focalLengthMm > 0) || !std::isfinite(l.focalLengthMm)) return bad("camera.main_lens.focal_length_mm", "must be positive");
+  if (!(l.focalLengthMm > 0) || !std::isfinite(l.focalLengthMm))
+    return bad("camera.main_lens.focal_length_mm", "must be positive");
   if (!(l.fNumber > 0) || !std::isfinite(l.fNumber)) return bad("camera.main_lens.f_number", "must be positive");
   if (!(l.focusDistanceMm > l.focalLengthMm))
-    return bad("camera.main_lens.focus_distance_mm", "must be beyond the focal length (" + std::to_string(l.focalLengthMm) + " mm)");
+    return bad("camera.main_lens.focus_distance_mm",
+               "must be beyond the focal length (" + std::to_string(l.focalLengthMm) + " mm)");
   const Sensor& s = sensor;
-  if (s.width < 1 || s.height < 1 || double(s.width) * s.height > 1e9) return bad("camera.sensor.width", "the sensor must have 1 to 1e9 pixels");
+  if (s.width < 1 || s.height < 1 || double(s.width) * s.height > 1e9)
+    return bad("camera.sensor.width", "the sensor must have 1 to 1e9 pixels");
   // The simulation holds about four float images of the sensor at once (irradiance, raw, codes).
-  LFCAM_TRY(checkMemory(where, checkedProduct({std::uint64_t(s.width), std::uint64_t(s.height), 4 * sizeof(float)}),
-                        "a simulated sensor of " + std::to_string(s.width) + " x " + std::to_string(s.height) + " pixels"));
+  LFCAM_TRY(
+      checkMemory(where, checkedProduct({std::uint64_t(s.width), std::uint64_t(s.height), 4 * sizeof(float)}),
+                  "a simulated sensor of " + std::to_string(s.width) + " x " + std::to_string(s.height) + " pixels"));
   if (!(s.pixelPitchMm > 0)) return bad("camera.sensor.pixel_pitch_mm", "must be positive");
   if (s.bitDepth < 1 || s.bitDepth > 16) return bad("camera.sensor.bit_depth", "must be in [1, 16]");
   if (s.whiteLevel > (1 << s.bitDepth) - 1) return bad("camera.sensor.white_level", "exceeds the bit depth");
-  if (s.blackLevel < 0 || s.blackLevel >= s.whiteLevel) return bad("camera.sensor.black_level", "must be below the white level");
+  if (s.blackLevel < 0 || s.blackLevel >= s.whiteLevel)
+    return bad("camera.sensor.black_level", "must be below the white level");
   if (!(s.fullWellElectrons > 0)) return bad("camera.sensor.full_well", "must be positive");
   if (microlenses) {
     const MicrolensArray& m = *microlenses;
@@ -107,7 +111,8 @@ Result<CameraModel> cameraFromJson(const nlohmann::json& json, const CameraModel
     LFCAM_TRY(o.number("f_number", l.fNumber, 0, 1e4, true));
     std::optional<double> imageSide;
     LFCAM_TRY(o.optionalNumber("image_f_number", imageSide, 0, 1e4, true));
-    if (imageSide && o.has("f_number")) return o.fail("camera.main_lens.image_f_number", "give f_number or image_f_number, not both");
+    if (imageSide && o.has("f_number"))
+      return o.fail("camera.main_lens.image_f_number", "give f_number or image_f_number, not both");
     if (!(l.focusDistanceMm > l.focalLengthMm))
       return o.fail("camera.main_lens.focus_distance_mm", "must be beyond the focal length");
     if (imageSide) l.setImageSideFNumber(*imageSide);
@@ -123,15 +128,19 @@ Result<CameraModel> cameraFromJson(const nlohmann::json& json, const CameraModel
       camera.microlenses.reset();
     } else {
       JsonObject o(value, where, "camera.microlenses");
-      if (!value.is_object()) return o.fail("camera.microlenses", "expected an object, or false for a conventional camera");
+      if (!value.is_object())
+        return o.fail("camera.microlenses", "expected an object, or false for a conventional camera");
       MicrolensArray m = camera.microlenses.value_or(MicrolensArray{});
       LFCAM_TRY(o.number("pitch_mm", m.pitchMm, 0, 1e3, true));
       LFCAM_TRY(o.number("focal_length_mm", m.focalLengthMm, 0, 1e4, true));
       std::string packing = packingName(m.packing);
       LFCAM_TRY(o.string("packing", packing));
-      if (packing == "square") m.packing = Packing::Square;
-      else if (packing == "hexagonal" || packing == "hex") m.packing = Packing::Hexagonal;
-      else return o.fail("camera.microlenses.packing", "expected \"square\" or \"hexagonal\", got \"" + packing + "\"");
+      if (packing == "square")
+        m.packing = Packing::Square;
+      else if (packing == "hexagonal" || packing == "hex")
+        m.packing = Packing::Hexagonal;
+      else
+        return o.fail("camera.microlenses.packing", "expected \"square\" or \"hexagonal\", got \"" + packing + "\"");
       LFCAM_TRY(o.number("rotation_deg", m.rotationDeg, -360, 360));
       LFCAM_TRY(o.numbers("offset_mm", m.offsetMm, -1e4, 1e4));
       LFCAM_TRY(o.optionalNumber("to_sensor_mm", m.toSensorMm, 0, 1e4, true));
@@ -153,12 +162,18 @@ Result<CameraModel> cameraFromJson(const nlohmann::json& json, const CameraModel
     LFCAM_TRY(o.number("pixel_pitch_mm", s.pixelPitchMm, 0, 1e3, true));
     std::string cfa = colorFilterName(s.colorFilter);
     LFCAM_TRY(o.string("color_filter", cfa));
-    if (cfa == "RGGB") s.colorFilter = ColorFilter::RGGB;
-    else if (cfa == "BGGR") s.colorFilter = ColorFilter::BGGR;
-    else if (cfa == "GRBG") s.colorFilter = ColorFilter::GRBG;
-    else if (cfa == "GBRG") s.colorFilter = ColorFilter::GBRG;
-    else if (cfa == "mono") s.colorFilter = ColorFilter::Mono;
-    else return o.fail("camera.sensor.color_filter", "expected RGGB, BGGR, GRBG, GBRG or mono, got \"" + cfa + "\"");
+    if (cfa == "RGGB")
+      s.colorFilter = ColorFilter::RGGB;
+    else if (cfa == "BGGR")
+      s.colorFilter = ColorFilter::BGGR;
+    else if (cfa == "GRBG")
+      s.colorFilter = ColorFilter::GRBG;
+    else if (cfa == "GBRG")
+      s.colorFilter = ColorFilter::GBRG;
+    else if (cfa == "mono")
+      s.colorFilter = ColorFilter::Mono;
+    else
+      return o.fail("camera.sensor.color_filter", "expected RGGB, BGGR, GRBG, GBRG or mono, got \"" + cfa + "\"");
     LFCAM_TRY(o.integer("bit_depth", s.bitDepth, 1, 16));
     const bool whiteGiven = o.has("white_level");
     LFCAM_TRY(o.integer("black_level", s.blackLevel, 0, 65535));
@@ -195,23 +210,24 @@ nlohmann::json cameraToJson(const CameraModel& camera) {
                       {"focus_distance_mm", l.focusDistanceMm},
                       {"image_distance_mm", l.imageDistanceMm()},
                       {"image_f_number", l.imageSideFNumber()}};
-  out["sensor"] = {{"width", s.width},
-                   {"height", s.height},
-                   {"pixel_pitch_mm", s.pixelPitchMm},
-                   {"distance_from_lens_mm", l.imageDistanceMm() + (camera.microlenses ? camera.microlenses->separationMm() : 0.0)},
-                   {"color_filter", colorFilterName(s.colorFilter)},
-                   {"bit_depth", s.bitDepth},
-                   {"black_level", s.blackLevel},
-                   {"white_level", s.whiteLevel},
-                   {"raw_encoding", "16-bit PNG/TIFF codes equal to the digital numbers (not rescaled)"},
-                   {"exposure", s.exposure},
-                   {"electrons_per_irradiance", s.electronsPerIrradiance},
-                   {"full_well", s.fullWellElectrons},
-                   {"gain_dn_per_electron", s.gain()},
-                   {"read_noise", s.readNoiseElectrons},
-                   {"noise", s.noise},
-                   {"hot_pixels", s.hotPixelFraction},
-                   {"seed", s.seed}};
+  out["sensor"] = {
+      {"width", s.width},
+      {"height", s.height},
+      {"pixel_pitch_mm", s.pixelPitchMm},
+      {"distance_from_lens_mm", l.imageDistanceMm() + (camera.microlenses ? camera.microlenses->separationMm() : 0.0)},
+      {"color_filter", colorFilterName(s.colorFilter)},
+      {"bit_depth", s.bitDepth},
+      {"black_level", s.blackLevel},
+      {"white_level", s.whiteLevel},
+      {"raw_encoding", "16-bit PNG/TIFF codes equal to the digital numbers (not rescaled)"},
+      {"exposure", s.exposure},
+      {"electrons_per_irradiance", s.electronsPerIrradiance},
+      {"full_well", s.fullWellElectrons},
+      {"gain_dn_per_electron", s.gain()},
+      {"read_noise", s.readNoiseElectrons},
+      {"noise", s.noise},
+      {"hot_pixels", s.hotPixelFraction},
+      {"seed", s.seed}};
   if (!camera.microlenses) {
     out["microlenses"] = nullptr;
     out["mode"] = "conventional";
@@ -238,21 +254,20 @@ nlohmann::json cameraToJson(const CameraModel& camera) {
   const double scale = 1.0 + m.separationMm() / l.imageDistanceMm();
   const double toPx = scale / s.pixelPitchMm;
   const std::array<double, 2> offsetPx{-m.offsetMm[0] * toPx, -m.offsetMm[1] * toPx};  // turned with the raw
-  out["lattice_px"] = {
-      {"pitch_px", pitchPx},
-      {"row_pitch_px", rowPx},
-      {"rotation_deg", m.rotationDeg},
-      {"packing", packingName(m.packing)},
-      {"offset_px", {offsetPx[0], offsetPx[1]}},
-      {"centre_px", {0.5 * s.width + offsetPx[0], 0.5 * s.height + offsetPx[1]}},
-      {"origin_px", {grid.origin[0], grid.origin[1]}},
-      {"column_step_px", {pitchPx * c, pitchPx * sn}},
-      {"row_step_px", {-rowPx * sn, rowPx * c}},
-      {"odd_row_shift", m.packing == Packing::Hexagonal ? 0.5 : 0.0},
-      {"hex_parity", grid.hexParity},
-      {"pixels_per_microlens", pitchPx},
-      {"image_diameter_px", camera.microlensImageDiameterPx()},
-      {"pixel_coordinates", "pixel (x, y) covers [x, x+1) x [y, y+1); centres at half-integers"}};
+  out["lattice_px"] = {{"pitch_px", pitchPx},
+                       {"row_pitch_px", rowPx},
+                       {"rotation_deg", m.rotationDeg},
+                       {"packing", packingName(m.packing)},
+                       {"offset_px", {offsetPx[0], offsetPx[1]}},
+                       {"centre_px", {0.5 * s.width + offsetPx[0], 0.5 * s.height + offsetPx[1]}},
+                       {"origin_px", {grid.origin[0], grid.origin[1]}},
+                       {"column_step_px", {pitchPx * c, pitchPx * sn}},
+                       {"row_step_px", {-rowPx * sn, rowPx * c}},
+                       {"odd_row_shift", m.packing == Packing::Hexagonal ? 0.5 : 0.0},
+                       {"hex_parity", grid.hexParity},
+                       {"pixels_per_microlens", pitchPx},
+                       {"image_diameter_px", camera.microlensImageDiameterPx()},
+                       {"pixel_coordinates", "pixel (x, y) covers [x, x+1) x [y, y+1); centres at half-integers"}};
   return out;
 }
 

@@ -1,10 +1,10 @@
 // Ground truth (ideal light field, depth) and the output folder of `lfcam simulate`.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <numeric>
 #include <random>
 #include <vector>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -63,7 +63,8 @@ Result<LightField> idealLightFieldBoxFiltered(const Scene& scene, const CameraMo
   const MicrolensArray& array = *camera.microlenses;
   const bool hex = array.packing == Packing::Hexagonal;
   const double shrink = std::sqrt(array.fillFactor);
-  const double halfA = 0.5 * array.pitchMm * shrink, halfB = (hex ? array.pitchMm / std::sqrt(3.0) : 0.5 * array.pitchMm) * shrink;
+  const double halfA = 0.5 * array.pitchMm * shrink,
+               halfB = (hex ? array.pitchMm / std::sqrt(3.0) : 0.5 * array.pitchMm) * shrink;
   const double cosR = std::cos(array.rotationDeg * M_PI / 180), sinR = std::sin(array.rotationDeg * M_PI / 180);
   struct BoxPoint {
     double lensX, lensY, cellX, cellY;
@@ -138,7 +139,8 @@ Result<Image> idealDepth(const Scene& scene, const CameraModel& camera) {
     for (std::size_t j = begin; j < end; ++j)
       for (int i = 0; i < columns; ++i) {
         const auto centre = camera.microlensCentreMm(i, int(j));
-        depth.at(columns - 1 - i, rows - 1 - int(j), 0) = float(prepared.traceThroughLens(0, 0, centre[0], centre[1]).depth);
+        depth.at(columns - 1 - i, rows - 1 - int(j), 0) =
+            float(prepared.traceThroughLens(0, 0, centre[0], centre[1]).depth);
       }
   });
   return depth;
@@ -179,7 +181,8 @@ Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, 
   };
   return writeFolderAtomically(folder, [&](const std::filesystem::path& temporary) -> Status {
     const SensorCapture capture = simulateCapture(scene, camera, options, report(0, shares));
-    LFCAM_TRY(writeRaw(temporary / ("raw" + outputs.rawExtension), capture.raw, "raw sensor image of scene \"" + scene.name + "\""));
+    LFCAM_TRY(writeRaw(temporary / ("raw" + outputs.rawExtension), capture.raw,
+                       "raw sensor image of scene \"" + scene.name + "\""));
     if (outputs.white) {
       LFCAM_ASSIGN_OR_RETURN(auto white, builtinScene("white", camera));
       const SensorCapture whiteCapture = simulateCapture(white, camera, options, report(shares, shares));
@@ -196,8 +199,9 @@ Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, 
           {"views", grid.views},
           {"lens_step_mm", grid.stepMm},
           {"spatial_step_mm", camera.microlenses->pitchMm},
-          {"orientation", "raw and white as a camera stores them (the sensor turned 180 degrees, the scene upright); "
-                          "(s, t) of ideal.lf.h5 and depth.pfm is microlens (i, j) = (s, t) of lattice_px"},
+          {"orientation",
+           "raw and white as a camera stores them (the sensor turned 180 degrees, the scene upright); "
+           "(s, t) of ideal.lf.h5 and depth.pfm is microlens (i, j) = (s, t) of lattice_px"},
           {"depth", "depth.pfm: mm along z to the surface seen by the central ray through each microlens; inf: none"}};
     }
     LFCAM_TRY(writeText(temporary / "camera.json", json.dump(2) + "\n"));

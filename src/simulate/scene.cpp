@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "lfcam/image_io.hpp"
 #include "core/json_reader.hpp"
+#include "lfcam/image_io.hpp"
 
 namespace lfcam {
 
@@ -53,8 +53,7 @@ double smoothNoise(std::uint64_t seed, double x, double y) {
 Rgb Texture::evaluate(double x, double y, double width, double height) const {
   // (x, y): from the plane's top-left corner, mm; x right, y down.
   switch (kind) {
-    case TextureKind::Constant:
-      return light;
+    case TextureKind::Constant: return light;
     case TextureKind::Image: {
       const Image& im = *image;
       const double fx = x / width * im.width() - 0.5, fy = y / height * im.height() - 0.5;
@@ -106,10 +105,12 @@ Rgb Texture::evaluate(double x, double y, double width, double height) const {
       const double inGlyph = x - double(glyph) * 4 * cell;  // glyph may be saturated: no integer product
       if (inGlyph >= 3 * cell) return light;
       // Hash keys in unsigned arithmetic: it wraps where signed would overflow.
-      if (hashUnit(seed, line, (long long)(std::uint64_t(glyph) * 7 + 3)) < 0.18) return light;  // a space between words
+      if (hashUnit(seed, line, (long long)(std::uint64_t(glyph) * 7 + 3)) < 0.18)
+        return light;  // a space between words
       const int gx = int(std::clamp<long long>(cellIndex(inGlyph / cell), 0, 2));
       const int gy = int(std::clamp<long long>(cellIndex(inLine / cell), 0, 4));
-      return hashUnit(seed ^ 0x51ed, (long long)(std::uint64_t(line) * 1000003 + std::uint64_t(glyph)), gy * 3 + gx) < 0.55
+      return hashUnit(seed ^ 0x51ed, (long long)(std::uint64_t(line) * 1000003 + std::uint64_t(glyph)), gy * 3 + gx) <
+                     0.55
                  ? dark
                  : light;
     }
@@ -173,14 +174,17 @@ Result<Scene> builtinScene(const std::string& name, const CameraModel& camera) {
     // noise backdrop far behind, a "person" in the focal plane, one nearer, one farther.
     const double far = 2.0 * d, nearZ = 0.8 * d, farZ = 1.3 * d;
     const double hb = halfField(camera, far);
-    scene.planes.push_back(card("backdrop", 0, 0, far, 2.4 * hb, 2.4 * hb,
-                                procedural(TextureKind::Noise, hb / 6, {0.10f, 0.25f, 0.12f}, {0.55f, 0.75f, 0.45f}, 7)));
+    scene.planes.push_back(
+        card("backdrop", 0, 0, far, 2.4 * hb, 2.4 * hb,
+             procedural(TextureKind::Noise, hb / 6, {0.10f, 0.25f, 0.12f}, {0.55f, 0.75f, 0.45f}, 7)));
     const double hf = halfField(camera, farZ);
-    scene.planes.push_back(card("far person", 0.45 * hf, -0.1 * hf, farZ, 0.7 * hf, 1.6 * hf,
-                                procedural(TextureKind::Checkerboard, hf / 6, {0.1f, 0.1f, 0.35f}, {0.8f, 0.8f, 0.95f})));
+    scene.planes.push_back(
+        card("far person", 0.45 * hf, -0.1 * hf, farZ, 0.7 * hf, 1.6 * hf,
+             procedural(TextureKind::Checkerboard, hf / 6, {0.1f, 0.1f, 0.35f}, {0.8f, 0.8f, 0.95f})));
     const double hd = halfField(camera, d);
-    scene.planes.push_back(card("focused person", -0.05 * hd, 0.05 * hd, d, 0.6 * hd, 1.5 * hd,
-                                procedural(TextureKind::Text, hd / 10, {0.05f, 0.05f, 0.05f}, {0.95f, 0.85f, 0.7f}, 3)));
+    scene.planes.push_back(
+        card("focused person", -0.05 * hd, 0.05 * hd, d, 0.6 * hd, 1.5 * hd,
+             procedural(TextureKind::Text, hd / 10, {0.05f, 0.05f, 0.05f}, {0.95f, 0.85f, 0.7f}, 3)));
     const double hn = halfField(camera, nearZ);
     Texture star = procedural(TextureKind::SiemensStar, 1, {0.4f, 0.05f, 0.05f}, {0.95f, 0.9f, 0.8f});
     star.spokes = 16;
@@ -206,7 +210,8 @@ Result<Scene> builtinScene(const std::string& name, const CameraModel& camera) {
     light.positionMm = {0, 0, d};
     // Its image is half a microlens across (two pixels in a conventional camera): below the light
     // field's spatial resolution, yet large enough for rays traced from the sensor to find it.
-    const double imageDiameter = camera.microlenses ? 0.5 * camera.microlenses->pitchMm : 2 * camera.sensor.pixelPitchMm;
+    const double imageDiameter =
+        camera.microlenses ? 0.5 * camera.microlenses->pitchMm : 2 * camera.sensor.pixelPitchMm;
     light.radiusMm = 0.5 * imageDiameter * d / camera.mainLens.imageDistanceMm();
     light.radiance = {1, 1, 1};
     scene.lights.push_back(light);
@@ -229,15 +234,23 @@ Result<Texture> parseTexture(const nlohmann::json& json, const std::string& wher
   Texture t;
   std::string type = "constant";
   LFCAM_TRY(o.string("type", type));
-  static const std::pair<const char*, TextureKind> kinds[] = {
-      {"constant", TextureKind::Constant}, {"image", TextureKind::Image}, {"checkerboard", TextureKind::Checkerboard},
-      {"chart", TextureKind::Chart},       {"siemens", TextureKind::SiemensStar}, {"text", TextureKind::Text},
-      {"noise", TextureKind::Noise},       {"edge", TextureKind::Edge}};
+  static const std::pair<const char*, TextureKind> kinds[] = {{"constant", TextureKind::Constant},
+                                                              {"image", TextureKind::Image},
+                                                              {"checkerboard", TextureKind::Checkerboard},
+                                                              {"chart", TextureKind::Chart},
+                                                              {"siemens", TextureKind::SiemensStar},
+                                                              {"text", TextureKind::Text},
+                                                              {"noise", TextureKind::Noise},
+                                                              {"edge", TextureKind::Edge}};
   bool found = false;
   for (const auto& [n, k] : kinds)
-    if (type == n) { t.kind = k; found = true; }
+    if (type == n) {
+      t.kind = k;
+      found = true;
+    }
   if (!found)
-    return o.fail(o.keyPath("type"), "expected constant, image, checkerboard, chart, siemens, text, noise or edge, got \"" + type + "\"");
+    return o.fail(o.keyPath("type"),
+                  "expected constant, image, checkerboard, chart, siemens, text, noise or edge, got \"" + type + "\"");
   if (t.kind == TextureKind::Constant) t.light = {1, 1, 1};
   LFCAM_TRY(o.colour("dark", t.dark));
   LFCAM_TRY(o.colour("light", t.light));
@@ -354,7 +367,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& where, cons
       LFCAM_TRY(o.string("name", light.name));
       if (!o.has("position_mm")) return o.fail(o.keyPath("position_mm"), "missing: [x, y, z] of the light");
       LFCAM_TRY(o.numbers("position_mm", light.positionMm, -1e9, 1e9));
-      if (!(light.positionMm[2] > 0)) return o.fail(o.keyPath("position_mm"), "z must be positive (in front of the lens)");
+      if (!(light.positionMm[2] > 0))
+        return o.fail(o.keyPath("position_mm"), "z must be positive (in front of the lens)");
       LFCAM_TRY(o.number("radius_mm", light.radiusMm, 0, 1e9, true));
       LFCAM_TRY(o.colour("radiance", light.radiance));
       LFCAM_TRY(o.noUnknownKeys());

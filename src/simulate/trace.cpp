@@ -70,8 +70,8 @@ Hit PreparedScene::trace(const Vec3& origin, const Vec3& direction) const {
     best.depth = bestLight->positionMm[2];
   } else if (bestPlane) {
     const Plane& plane = *bestPlane->plane;
-    best.radiance = plane.texture.evaluate(bestX + bestPlane->halfWidth, bestY + bestPlane->halfHeight,
-                                           plane.widthMm, plane.heightMm);
+    best.radiance = plane.texture.evaluate(bestX + bestPlane->halfWidth, bestY + bestPlane->halfHeight, plane.widthMm,
+                                           plane.heightMm);
     best.depth = origin.z + direction.z * best.t;
   } else {
     best.radiance = background;
@@ -132,10 +132,18 @@ float channelValue(const Rgb& radiance, int channel) {
 // Shirley-Chiu concentric map of the unit square onto the unit disc: keeps strata compact.
 void concentricDisc(double a, double b, double& x, double& y) {
   const double sx = 2 * a - 1, sy = 2 * b - 1;
-  if (sx == 0 && sy == 0) { x = y = 0; return; }
+  if (sx == 0 && sy == 0) {
+    x = y = 0;
+    return;
+  }
   double r, phi;
-  if (std::abs(sx) > std::abs(sy)) { r = sx; phi = M_PI / 4 * (sy / sx); }
-  else { r = sy; phi = M_PI / 2 - M_PI / 4 * (sx / sy); }
+  if (std::abs(sx) > std::abs(sy)) {
+    r = sx;
+    phi = M_PI / 4 * (sy / sx);
+  } else {
+    r = sy;
+    phi = M_PI / 2 - M_PI / 4 * (sx / sy);
+  }
   x = r * std::cos(phi);
   y = r * std::sin(phi);
 }
@@ -148,12 +156,12 @@ struct TraceOptics {
   double beta = 0, fm = 0, pitch = 0, rowPitch = 0, cosR = 1, sinR = 0, offX = 0, offY = 0;
   bool hex = false;
   int columns = 0, rows = 0;
-  double imageScale = 1;    // microlens centre -> image centre on the sensor
-  double activeHalfA = 0;   // half extents of the sampled rectangle of one microlens (local frame)
+  double imageScale = 1;   // microlens centre -> image centre on the sensor
+  double activeHalfA = 0;  // half extents of the sampled rectangle of one microlens (local frame)
   double activeHalfB = 0;
   double activeHalfSide = 0;  // hexagon: half of the flat-to-flat width (scaled by fill factor)
-  double cellArea = 0;      // of the sampled cell (rectangle or hexagon), mm^2
-  double reach = 0;         // how far from its image centre a microlens can deliver light
+  double cellArea = 0;        // of the sampled cell (rectangle or hexagon), mm^2
+  double reach = 0;           // how far from its image centre a microlens can deliver light
   int searchI = 1, searchJ = 1;
 
   // A point of the hexagonal cell (flats at a = +-activeHalfSide) from a point (ca, cb) of the unit
@@ -279,7 +287,8 @@ double pixelIrradiance(const TraceOptics& o, const PreparedScene& scene, int px,
         const int l = permutation[k];
         const double ca = ((l % n) + rng.uniform()) * inv, cb = ((l / n) + rng.uniform()) * inv;
         double a, b;
-        if (o.hex) o.hexagonPoint(ca, cb, a, b);
+        if (o.hex)
+          o.hexagonPoint(ca, cb, a, b);
         else {
           a = (ca * 2 - 1) * o.activeHalfA;
           b = (cb * 2 - 1) * o.activeHalfB;
@@ -308,7 +317,8 @@ SensorCapture simulateCapture(const Scene& scene, const CameraModel& camera, con
                               const ProgressCallback& progress) {
   const PreparedScene prepared(scene, camera);
   const TraceOptics optics = prepareOptics(camera);
-  const int n = std::clamp(int(std::ceil(std::sqrt(double(std::max(1, options.samplesPerPixel))) - 1e-9)), 1, kMaxStrata);
+  const int n =
+      std::clamp(int(std::ceil(std::sqrt(double(std::max(1, options.samplesPerPixel))) - 1e-9)), 1, kMaxStrata);
   const int width = camera.sensor.width, height = camera.sensor.height;
   SensorCapture capture;
   capture.irradiance = Image(width, height, 1);
@@ -360,7 +370,8 @@ double poisson(Pcg32& rng, double mean) {
     const double k = std::floor((2 * a / us + b) * u + mean + 0.43);
     if (us >= 0.07 && v <= vr) return k;
     if (k < 0 || (us < 0.013 && v > us)) continue;
-    if (std::log(v) + std::log(inverseAlpha) - std::log(a / (us * us) + b) <= -mean + k * std::log(mean) - std::lgamma(k + 1))
+    if (std::log(v) + std::log(inverseAlpha) - std::log(a / (us * us) + b) <=
+        -mean + k * std::log(mean) - std::lgamma(k + 1))
       return k;
   }
 }
@@ -411,7 +422,8 @@ Image applySensor(const Image& irradiance, const Sensor& sensor) {
         if (sensor.noise && sensor.readNoiseElectrons > 0) electrons += sensor.readNoiseElectrons * gaussian(rng);
         double code = std::round(sensor.blackLevel + electrons * gain);
         if (sensor.hotPixelFraction > 0 &&
-            double(mix64(sensor.seed ^ mix64(0x686f74ull + (std::uint64_t(y) << 32) + std::uint64_t(x))) >> 11) * 0x1.0p-53 <
+            double(mix64(sensor.seed ^ mix64(0x686f74ull + (std::uint64_t(y) << 32) + std::uint64_t(x))) >> 11) *
+                    0x1.0p-53 <
                 sensor.hotPixelFraction)
           code = maxCode;
         out[x] = float(std::clamp(code, 0.0, maxCode));

@@ -64,8 +64,8 @@ double valueNoise(double x, double y, double period, std::uint64_t key) {
 
 struct PreparedPlane {
   TexturedPlane plane;
-  std::uint64_t key = 0;                // texture seed of this plane
-  double centreX = 0, centreY = 0;      // of the extent (rings, ellipse)
+  std::uint64_t key = 0;            // texture seed of this plane
+  double centreX = 0, centreY = 0;  // of the extent (rings, ellipse)
   double halfWidth = 0, halfHeight = 0;
   double stripeCos = 1, stripeSin = 0;  // stripe direction, from the seed
   bool background = false;              // empty extent: covers everything
@@ -87,8 +87,7 @@ struct PreparedPlane {
         const auto cell = std::int64_t(std::floor(x / half)) + std::int64_t(std::floor(y / half));
         return (cell & 1) ? 0.9 : 0.1;
       }
-      case PlaneTexture::Noise:
-        return valueNoise(x, y, period, key);
+      case PlaneTexture::Noise: return valueNoise(x, y, period, key);
       case PlaneTexture::Stripes:
         return 0.5 + 0.5 * std::sin(2 * std::numbers::pi * (x * stripeCos + y * stripeSin) / period);
       case PlaneTexture::Rings:
@@ -109,18 +108,36 @@ LayeredPlanesScene defaultLayeredPlanesScene(int views, int width, std::uint64_t
   // Disparities -1.0 .. +1.6 px per view step: the nearest card moves 12.8 px between the
   // outermost views, enough to see occlusion change, small enough for shift-and-add to focus.
   // A cloudy blue background, far.
-  scene.planes.push_back({.disparity = -1.0, .texture = PlaneTexture::Noise, .period = 24,
-                          .colour = {0.55f, 0.7f, 1.0f}});
+  scene.planes.push_back(
+      {.disparity = -1.0, .texture = PlaneTexture::Noise, .period = 24, .colour = {0.55f, 0.7f, 1.0f}});
   // A warm checkerboard card in the plane of focus (slope 0).
-  scene.planes.push_back({.disparity = 0.0, .texture = PlaneTexture::Checkerboard, .period = 16,
-                          .colour = {1.0f, 0.85f, 0.6f}, .x0 = 32, .y0 = 36, .x1 = 150, .y1 = 140});
+  scene.planes.push_back({.disparity = 0.0,
+                          .texture = PlaneTexture::Checkerboard,
+                          .period = 16,
+                          .colour = {1.0f, 0.85f, 0.6f},
+                          .x0 = 32,
+                          .y0 = 36,
+                          .x1 = 150,
+                          .y1 = 140});
   // A green striped ellipse in front of it, overlapping its lower right corner.
-  scene.planes.push_back({.disparity = 0.8, .texture = PlaneTexture::Stripes, .period = 10,
-                          .colour = {0.5f, 1.0f, 0.55f}, .x0 = 112, .y0 = 96, .x1 = 224, .y1 = 200,
+  scene.planes.push_back({.disparity = 0.8,
+                          .texture = PlaneTexture::Stripes,
+                          .period = 10,
+                          .colour = {0.5f, 1.0f, 0.55f},
+                          .x0 = 112,
+                          .y0 = 96,
+                          .x1 = 224,
+                          .y1 = 200,
                           .elliptical = true});
   // A red card with rings, nearest, overlapping the ellipse's lower left.
-  scene.planes.push_back({.disparity = 1.6, .texture = PlaneTexture::Rings, .period = 12,
-                          .colour = {1.0f, 0.45f, 0.4f}, .x0 = 60, .y0 = 160, .x1 = 152, .y1 = 232});
+  scene.planes.push_back({.disparity = 1.6,
+                          .texture = PlaneTexture::Rings,
+                          .period = 12,
+                          .colour = {1.0f, 0.45f, 0.4f},
+                          .x0 = 60,
+                          .y0 = 160,
+                          .x1 = 152,
+                          .y1 = 232});
 
   // Scale the layout to the size asked for.
   const double scaleX = width / double(scene.ns), scaleY = height / double(scene.nt);
@@ -137,8 +154,8 @@ LayeredPlanesScene defaultLayeredPlanesScene(int views, int width, std::uint64_t
   // microlenses with a 25 mm aperture (image-side f/4, matching f/4 microlenses of 125 um),
   // its aperture divided into nu views; focal length 90 mm puts slope 0 at 0.9 m.
   const double apertureMm = 25;
-  scene.optics = Optics{.lensStepMm = apertureMm / scene.nu, .spatialStepMm = 0.125, .lensToMicrolensMm = 100,
-                        .focalLengthMm = 90.0};
+  scene.optics = Optics{
+      .lensStepMm = apertureMm / scene.nu, .spatialStepMm = 0.125, .lensToMicrolensMm = 100, .focalLengthMm = 90.0};
   return scene;
 }
 
@@ -146,8 +163,7 @@ LayeredPlanesLightField renderLayeredPlanes(const LayeredPlanesScene& scene, con
   const int nu = std::max(scene.nu, 0), nv = std::max(scene.nv, 0);
   const int ns = std::max(scene.ns, 0), nt = std::max(scene.nt, 0);
   const int samples = std::max(scene.supersampling, 1);
-  LayeredPlanesLightField result{LightField({.nu = nu, .nv = nv, .ns = ns, .nt = nt, .channels = 3}),
-                                 Image(ns, nt, 1)};
+  LayeredPlanesLightField result{LightField({.nu = nu, .nv = nv, .ns = ns, .nt = nt, .channels = 3}), Image(ns, nt, 1)};
 
   // Nearest first (largest disparity), so the first plane that covers a point is the one seen.
   std::vector<PreparedPlane> planes;
@@ -163,8 +179,9 @@ LayeredPlanesLightField renderLayeredPlanes(const LayeredPlanesScene& scene, con
     prepared.stripeCos = std::cos(angle), prepared.stripeSin = std::sin(angle);
     planes.push_back(prepared);
   }
-  std::stable_sort(planes.begin(), planes.end(),
-                   [](const PreparedPlane& a, const PreparedPlane& b) { return a.plane.disparity > b.plane.disparity; });
+  std::stable_sort(planes.begin(), planes.end(), [](const PreparedPlane& a, const PreparedPlane& b) {
+    return a.plane.disparity > b.plane.disparity;
+  });
 
   // The plane seen at centre-view point (x, y) from view position (u, v) (view steps from the
   // centre): plane of disparity d shows its point (x + u d, y + v d) (layered_planes.hpp).
@@ -218,17 +235,16 @@ LayeredPlanesLightField renderLayeredPlanes(const LayeredPlanesScene& scene, con
   for (int t = 0; t < nt; ++t)
     for (int s = 0; s < ns; ++s) {
       const PreparedPlane* plane = seen(s + 0.5, t + 0.5, 0, 0);
-      result.disparity.at(s, t, 0) =
-          plane ? float(plane->plane.disparity) : std::numeric_limits<float>::quiet_NaN();
+      result.disparity.at(s, t, 0) = plane ? float(plane->plane.disparity) : std::numeric_limits<float>::quiet_NaN();
     }
 
   LightFieldMetadata& metadata = lightField.metadata;
   // Optics left at zero mean "unknown": slopeFromAlpha would divide by zero.
   if (scene.optics.lensStepMm > 0 && scene.optics.spatialStepMm > 0) metadata.optics = scene.optics;
   if (!scene.planes.empty()) {
-    auto [lowest, highest] = std::minmax_element(
-        scene.planes.begin(), scene.planes.end(),
-        [](const TexturedPlane& a, const TexturedPlane& b) { return a.disparity < b.disparity; });
+    auto [lowest, highest] =
+        std::minmax_element(scene.planes.begin(), scene.planes.end(),
+                            [](const TexturedPlane& a, const TexturedPlane& b) { return a.disparity < b.disparity; });
     metadata.disparityMin = lowest->disparity;
     metadata.disparityMax = highest->disparity;
   }

@@ -52,8 +52,8 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
     index[i] = char(std::min<std::ptrdiff_t>(nearest - slopes.begin(), std::ptrdiff_t(slopes.size()) - 1));
   }
 
-  nlohmann::json data = {{"title", options.title}, {"width", width}, {"height", height},
-                         {"nu", lightField.nu()}, {"nv", lightField.nv()}, {"index", base64Encode(index)}};
+  nlohmann::json data = {{"title", options.title}, {"width", width},        {"height", height},
+                         {"nu", lightField.nu()},  {"nv", lightField.nv()}, {"index", base64Encode(index)}};
   LFCAM_ASSIGN_OR_RETURN(auto allInFocusUrl, dataUrl(composite.photo, options.jpegQuality));
   data["allInFocus"] = allInFocusUrl;
 
@@ -86,8 +86,10 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   std::string escaped;
   escaped.reserve(json.size());
   for (char c : json) {
-    if (c == '<') escaped += "\\u003c";
-    else escaped += c;
+    if (c == '<')
+      escaped += "\\u003c";
+    else
+      escaped += c;
   }
   std::string html(page->bytes);
   const auto at = html.find(placeholder);

@@ -7,7 +7,7 @@
 namespace lfcam::viewer {
 
 struct Asset {
-  std::string_view name;         // file name under src/viewer/assets/, e.g. "viewer.js"
+  std::string_view name;  // file name under src/viewer/assets/, e.g. "viewer.js"
   std::string_view contentType;
   std::string_view bytes;
 };

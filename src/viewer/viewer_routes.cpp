@@ -41,7 +41,8 @@ Result<double> numberIn(const std::string& name, const std::string& text, double
 // Each name at most once, and only the names a route knows.
 Status checkNames(const std::multimap<std::string, std::string>& params, const std::set<std::string>& known) {
   for (auto it = params.begin(); it != params.end(); it = params.upper_bound(it->first)) {
-    if (!known.count(it->first)) return makeError(ErrorCode::Usage, "unknown parameter '" + it->first.substr(0, 40) + "'");
+    if (!known.count(it->first))
+      return makeError(ErrorCode::Usage, "unknown parameter '" + it->first.substr(0, 40) + "'");
     if (params.count(it->first) > 1) return makeError(ErrorCode::Usage, "parameter " + it->first + " given twice");
   }
   return {};
@@ -60,10 +61,14 @@ Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>
   const LightField& lf = session.lightField();
   ViewerView view;
   if (auto* layer = param(params, "layer")) {
-    if (*layer == "photo") view.layer = ViewerLayer::Photo;
-    else if (*layer == "allinfocus") view.layer = ViewerLayer::AllInFocus;
-    else if (*layer == "depth") view.layer = ViewerLayer::Depth;
-    else return makeError(ErrorCode::Usage, "parameter layer: expected photo, allinfocus or depth");
+    if (*layer == "photo")
+      view.layer = ViewerLayer::Photo;
+    else if (*layer == "allinfocus")
+      view.layer = ViewerLayer::AllInFocus;
+    else if (*layer == "depth")
+      view.layer = ViewerLayer::Depth;
+    else
+      return makeError(ErrorCode::Usage, "parameter layer: expected photo, allinfocus or depth");
   }
   // Slopes beyond the image's width shift every view out of the picture: nothing to see there.
   const double slopeLimit = std::max(8.0, double(std::max(lf.ns(), lf.nt())));
@@ -74,8 +79,10 @@ Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>
   if (auto* focus = param(params, "focus")) {
     const auto comma = focus->find(',');
     if (comma == std::string::npos) return makeError(ErrorCode::Usage, "parameter focus: expected X,Y");
-    LFCAM_ASSIGN_OR_RETURN(const double x, numberIn("focus", focus->substr(0, comma), 0, std::nextafter(double(lf.ns()), 0.0)));
-    LFCAM_ASSIGN_OR_RETURN(const double y, numberIn("focus", focus->substr(comma + 1), 0, std::nextafter(double(lf.nt()), 0.0)));
+    LFCAM_ASSIGN_OR_RETURN(const double x,
+                           numberIn("focus", focus->substr(0, comma), 0, std::nextafter(double(lf.ns()), 0.0)));
+    LFCAM_ASSIGN_OR_RETURN(const double y,
+                           numberIn("focus", focus->substr(comma + 1), 0, std::nextafter(double(lf.nt()), 0.0)));
     view.focusAt = std::pair{x, y};
   }
   if (auto* f = param(params, "f")) {

@@ -131,11 +131,16 @@ std::size_t ViewerSession::cacheBytes() const {
 
 std::string ViewerSession::infoJson() const {
   const LightField& lf = state_->lightField;
-  nlohmann::json info = {{"width", lf.ns()},         {"height", lf.nt()},
-                         {"nu", lf.nu()},            {"nv", lf.nv()},
-                         {"channels", lf.channels()}, {"slopeMin", state_->slopeMin},
-                         {"slopeMax", state_->slopeMax}, {"lensRadius", state_->lensRadius},
-                         {"refocusMs", 1000 * state_->refocusSeconds}, {"source", lf.metadata.source}};
+  nlohmann::json info = {{"width", lf.ns()},
+                         {"height", lf.nt()},
+                         {"nu", lf.nu()},
+                         {"nv", lf.nv()},
+                         {"channels", lf.channels()},
+                         {"slopeMin", state_->slopeMin},
+                         {"slopeMax", state_->slopeMax},
+                         {"lensRadius", state_->lensRadius},
+                         {"refocusMs", 1000 * state_->refocusSeconds},
+                         {"source", lf.metadata.source}};
   // The whole lens's f-number, image side: F over the aperture's diameter (nu du).
   if (const auto& optics = lf.metadata.optics; optics && optics->lensStepMm > 0)
     info["lensFNumber"] = optics->lensToMicrolensMm / (std::max(lf.nu(), lf.nv()) * optics->lensStepMm);
@@ -147,8 +152,8 @@ std::string ViewerSession::statusJson() const {
   auto describe = [](const LazyLayer& layer) {
     double progress = layer.state == LazyLayer::State::Ready ? 1.0 : 0.0;
     if (layer.state == LazyLayer::State::Running)
-      progress = std::min(0.95, std::chrono::duration<double>(Clock::now() - layer.started).count() /
-                                    layer.expectedSeconds);
+      progress =
+          std::min(0.95, std::chrono::duration<double>(Clock::now() - layer.started).count() / layer.expectedSeconds);
     nlohmann::json j = {{"state", stateName(layer.state)}, {"progress", progress}};
     if (layer.state == LazyLayer::State::Failed) j["error"] = layer.error;
     return j;
@@ -177,9 +182,7 @@ Result<const Image*> lazyLayer(std::mutex& mutex, LazyLayer& layer, const std::f
       case LazyLayer::State::Ready: return &layer.image;
       case LazyLayer::State::Failed: return makeError(ErrorCode::Format, layer.error);
       case LazyLayer::State::Running: return makeError(ErrorCode::Resource, "running");
-      case LazyLayer::State::Idle:
-        layer.state = LazyLayer::State::Running;
-        layer.started = Clock::now();
+      case LazyLayer::State::Idle: layer.state = LazyLayer::State::Running; layer.started = Clock::now();
     }
   }
   Result<Image> image = compute();
@@ -196,8 +199,8 @@ Result<const Image*> lazyLayer(std::mutex& mutex, LazyLayer& layer, const std::f
 
 std::string cacheKey(const ViewerView& view) {
   char key[160];
-  std::snprintf(key, sizeof key, "%d|%.4f|%.3f|%.3f|%.3f|%d", int(view.layer), view.slope, view.fNumber, view.u,
-                view.v, view.quality);
+  std::snprintf(key, sizeof key, "%d|%.4f|%.3f|%.3f|%.3f|%d", int(view.layer), view.slope, view.fNumber, view.u, view.v,
+                view.quality);
   return key;
 }
 

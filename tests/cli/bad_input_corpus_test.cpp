@@ -73,7 +73,7 @@ std::map<std::string, std::string> snapshot(const fs::path& folder) {
   std::map<std::string, std::string> entries;
   for (const auto& entry : fs::recursive_directory_iterator(folder)) {
     const auto status = entry.symlink_status();
-    std::string what = fs::is_symlink(status) ? "link " + fs::read_symlink(entry.path()).string()
+    std::string what = fs::is_symlink(status)     ? "link " + fs::read_symlink(entry.path()).string()
                        : fs::is_directory(status) ? std::string("folder")
                                                   : "file " + readBytes(entry.path());
     entries[fs::relative(entry.path(), folder).string()] = std::move(what);
@@ -227,9 +227,9 @@ fs::path pfmWith(const fs::path& path, const std::string& header, std::size_t fl
 
 // A scene whose only plane shows `image` (relative to the scene file).
 fs::path sceneShowing(const fs::path& folder, const std::string& image) {
-  return withBytes(folder, "scene.json",
-                   R"({"planes": [{"centre_mm": [0, 0, 500], "texture": {"type": "image", "file": ")" + image +
-                       R"("}}]})");
+  return withBytes(
+      folder, "scene.json",
+      R"({"planes": [{"centre_mm": [0, 0, 500], "texture": {"type": "image", "file": ")" + image + R"("}}]})");
 }
 
 fs::path scene(const fs::path& folder, const std::string& json) { return withBytes(folder, "scene.json", json); }
@@ -238,8 +238,10 @@ fs::path scene(const fs::path& folder, const std::string& json) { return withByt
 
 TEST_F(BadInputCorpus, Hdf5) {
   runCases({
-      {"h5 truncated to half", [](auto f) { return withBytes(f, "a.lf.h5", truncated(base("lf.lf.h5"), 0.5)); }, "a.lf.h5"},
-      {"h5 truncated to 100 bytes", [](auto f) { return withBytes(f, "a.lf.h5", readBytes(base("lf.lf.h5")).substr(0, 100)); }, "a.lf.h5"},
+      {"h5 truncated to half", [](auto f) { return withBytes(f, "a.lf.h5", truncated(base("lf.lf.h5"), 0.5)); },
+       "a.lf.h5"},
+      {"h5 truncated to 100 bytes",
+       [](auto f) { return withBytes(f, "a.lf.h5", readBytes(base("lf.lf.h5")).substr(0, 100)); }, "a.lf.h5"},
       {"h5 empty file", [](auto f) { return withBytes(f, "a.lf.h5", ""); }, "a.lf.h5"},
       {"h5 wrong magic",
        [](auto f) {
@@ -249,23 +251,44 @@ TEST_F(BadInputCorpus, Hdf5) {
        },
        "a.lf.h5"},
       {"h5 absurd dimensions, nothing written",
-       [](auto f) { return writeH5(f / "a.lf.h5", {.dims = {64, 64, 3, 4096, 4096}, .write = false}); }, "a.lf.h5"},
+       [](auto f) {
+         return writeH5(f / "a.lf.h5", {.dims = {64, 64, 3, 4096, 4096}, .write = false});
+       },
+       "a.lf.h5"},
       {"h5 dimensions beyond the memory limit",
-       [](auto f) { return writeH5(f / "a.lf.h5", {.dims = {3, 3, 1, 64, 64}}); }, "a.lf.h5", Case::LightField,
+       [](auto f) {
+         return writeH5(f / "a.lf.h5", {.dims = {3, 3, 1, 64, 64}});
+       },
+       "a.lf.h5",
+       Case::LightField,
        {"--memory-limit", "64K"}},
-      {"h5 too large for LFCAM_MEMORY_LIMIT", [](auto f) { return copied(base("lf.lf.h5"), f, "a.lf.h5"); },
-       "a.lf.h5", Case::LightField, {}, "2K"},
+      {"h5 too large for LFCAM_MEMORY_LIMIT",
+       [](auto f) { return copied(base("lf.lf.h5"), f, "a.lf.h5"); },
+       "a.lf.h5",
+       Case::LightField,
+       {},
+       "2K"},
       {"h5 zero-sized dimension",
-       [](auto f) { return writeH5(f / "a.lf.h5", {.dims = {3, 3, 1, 0, 4}, .write = false}); }, "a.lf.h5"},
-      {"h5 wrong rank", [](auto f) { return writeH5(f / "a.lf.h5", {.dims = {3, 3, 16}}); }, "a.lf.h5"},
-      {"h5 integer samples",
-       [](auto f) { return writeH5(f / "a.lf.h5", {.type = H5T_NATIVE_INT, .write = false}); }, "a.lf.h5"},
+       [](auto f) {
+         return writeH5(f / "a.lf.h5", {.dims = {3, 3, 1, 0, 4}, .write = false});
+       },
+       "a.lf.h5"},
+      {"h5 wrong rank",
+       [](auto f) {
+         return writeH5(f / "a.lf.h5", {.dims = {3, 3, 16}});
+       },
+       "a.lf.h5"},
+      {"h5 integer samples", [](auto f) { return writeH5(f / "a.lf.h5", {.type = H5T_NATIVE_INT, .write = false}); },
+       "a.lf.h5"},
       {"h5 another format tag",
        [](auto f) {
          return writeH5(f / "a.lf.h5", {.strings = {{"lfcam_format", "something-else"}, {"axes", "v,u,c,t,s"}}});
        },
        "a.lf.h5"},
-      {"h5 newer version", [](auto f) { return writeH5(f / "a.lf.h5", {.numbers = {{"lfcam_version", 99}}}); },
+      {"h5 newer version",
+       [](auto f) {
+         return writeH5(f / "a.lf.h5", {.numbers = {{"lfcam_version", 99}}});
+       },
        "a.lf.h5"},
       {"h5 other axes",
        [](auto f) {
@@ -273,9 +296,14 @@ TEST_F(BadInputCorpus, Hdf5) {
        },
        "a.lf.h5"},
       {"h5 weight of other dimensions",
-       [](auto f) { return writeH5(f / "a.lf.h5", {.weightDims = {3, 3, 5, 4}}); }, "a.lf.h5"},
+       [](auto f) {
+         return writeH5(f / "a.lf.h5", {.weightDims = {3, 3, 5, 4}});
+       },
+       "a.lf.h5"},
       {"h5 incomplete optics",
-       [](auto f) { return writeH5(f / "a.lf.h5", {.numbers = {{"lfcam_version", 1}, {"lens_step_mm", 0.5}}}); },
+       [](auto f) {
+         return writeH5(f / "a.lf.h5", {.numbers = {{"lfcam_version", 1}, {"lens_step_mm", 0.5}}});
+       },
        "a.lf.h5"},
       {"h5 NaN samples",
        [](auto f) { return writeH5(f / "a.lf.h5", {.value = std::numeric_limits<float>::quiet_NaN()}); }, "a.lf.h5"},
@@ -283,8 +311,7 @@ TEST_F(BadInputCorpus, Hdf5) {
        [](auto f) { return writeH5(f / "a.lf.h5", {.value = std::numeric_limits<float>::infinity()}); }, "a.lf.h5"},
       {"h5 negative infinity, with a weight",
        [](auto f) {
-         return writeH5(f / "a.lf.h5",
-                        {.value = -std::numeric_limits<float>::infinity(), .weightDims = {3, 3, 4, 4}});
+         return writeH5(f / "a.lf.h5", {.value = -std::numeric_limits<float>::infinity(), .weightDims = {3, 3, 4, 4}});
        },
        "a.lf.h5"},
       {"a folder named like an h5 file",
@@ -310,8 +337,7 @@ TEST_F(BadInputCorpus, LensletImages) {
       {"png claims 100000 x 100000 pixels",
        [](auto f) { return withBytes(f, "l.png", pngClaiming(base("lenslet.png"), 100000, 100000)); }, "l.png"},
       {"png claims 2^31-1 x 2^31-1 pixels",
-       [](auto f) { return withBytes(f, "l.png", pngClaiming(base("lenslet.png"), 0x7fffffff, 0x7fffffff)); },
-       "l.png"},
+       [](auto f) { return withBytes(f, "l.png", pngClaiming(base("lenslet.png"), 0x7fffffff, 0x7fffffff)); }, "l.png"},
       {"png of zero width", [](auto f) { return withBytes(f, "l.png", pngClaiming(base("lenslet.png"), 0, 48)); },
        "l.png"},
       {"png with a bad header CRC",
@@ -327,7 +353,9 @@ TEST_F(BadInputCorpus, LensletImages) {
          EXPECT_TRUE(writeImage(f / "l.png", Image(12, 12, 3)).ok());  // no description: the option decides
          return f / "l.png";
        },
-       "l.png", Case::LightField, {"--lenslet-views", "5"}},
+       "l.png",
+       Case::LightField,
+       {"--lenslet-views", "5"}},
       {"tiff truncated", [](auto f) { return withBytes(f, "l.tif", truncated(base("lenslet.tif"), 0.5)); }, "l.tif"},
       {"tiff wrong magic",
        [](auto f) {
@@ -338,11 +366,16 @@ TEST_F(BadInputCorpus, LensletImages) {
        },
        "l.tif"},
       {"jpeg truncated", [](auto f) { return withBytes(f, "l.jpg", truncated(base("lenslet.jpg"), 0.3)); }, "l.jpg"},
-      {"float tiff with NaN", [](auto f) { return floatLenslet(f / "l.tif", std::nanf("")); }, "l.tif",
-       Case::LightField, {"--lenslet-views", "3"}},
+      {"float tiff with NaN",
+       [](auto f) { return floatLenslet(f / "l.tif", std::nanf("")); },
+       "l.tif",
+       Case::LightField,
+       {"--lenslet-views", "3"}},
       {"exr with infinity",
-       [](auto f) { return floatLenslet(f / "l.exr", std::numeric_limits<float>::infinity()); }, "l.exr",
-       Case::LightField, {"--lenslet-views", "3"}},
+       [](auto f) { return floatLenslet(f / "l.exr", std::numeric_limits<float>::infinity()); },
+       "l.exr",
+       Case::LightField,
+       {"--lenslet-views", "3"}},
       {"a folder named like an image",
        [](auto f) {
          fs::create_directories(f / "l.png");
@@ -487,21 +520,22 @@ TEST_F(BadInputCorpus, SceneFiles) {
       {"planes is a string", [](auto f) { return scene(f, R"({"planes": "many"})"); }, "scene.json", Case::Scene},
       {"centre of two numbers", [](auto f) { return scene(f, R"({"planes": [{"centre_mm": [0, 500]}]})"); },
        "scene.json", Case::Scene},
-      {"centre given as text",
-       [](auto f) { return scene(f, R"({"planes": [{"centre_mm": ["0", "0", "500"]}]})"); }, "scene.json",
+      {"centre given as text", [](auto f) { return scene(f, R"({"planes": [{"centre_mm": ["0", "0", "500"]}]})"); },
+       "scene.json", Case::Scene},
+      {"unknown texture",
+       [](auto f) { return scene(f, R"({"planes": [{"centre_mm": [0, 0, 500], "texture": {"type": "plaid"}}]})"); },
+       "scene.json", Case::Scene},
+      {"overflowing number",
+       [](auto f) { return scene(f, R"({"camera": {"main_lens": {"focal_length_mm": 1e999}}})"); }, "scene.json",
        Case::Scene},
-      {"unknown texture", [](auto f) {
-         return scene(f, R"({"planes": [{"centre_mm": [0, 0, 500], "texture": {"type": "plaid"}}]})"); },
+      {"absurd sensor",
+       [](auto f) { return scene(f, R"({"camera": {"sensor": {"width": 1000000000000, "height": 3}}})"); },
        "scene.json", Case::Scene},
-      {"overflowing number", [](auto f) {
-         return scene(f, R"({"camera": {"main_lens": {"focal_length_mm": 1e999}}})"); },
-       "scene.json", Case::Scene},
-      {"absurd sensor", [](auto f) {
-         return scene(f, R"({"camera": {"sensor": {"width": 1000000000000, "height": 3}}})"); },
-       "scene.json", Case::Scene},
-      {"sensor beyond the memory limit", [](auto f) {
-         return scene(f, R"({"camera": {"sensor": {"width": 30000, "height": 30000}}})"); },
-       "scene.json", Case::Scene, {"--memory-limit", "1G"}},
+      {"sensor beyond the memory limit",
+       [](auto f) { return scene(f, R"({"camera": {"sensor": {"width": 30000, "height": 30000}}})"); },
+       "scene.json",
+       Case::Scene,
+       {"--memory-limit", "1G"}},
       {"negative f-number", [](auto f) { return scene(f, R"({"camera": {"main_lens": {"f_number": -2}}})"); },
        "scene.json", Case::Scene},
       {"nested ten thousand deep", [](auto f) { return scene(f, std::string(10000, '[') + std::string(10000, ']')); },
@@ -573,19 +607,25 @@ TEST_F(BadInputCorpus, RawDecoding) {
          fs::copy_file(base("sim48/white.png"), f / "other.png");
          return simulatedRaw(f);
        },
-       "other.png", Case::Decode, {"--white", "{folder}/other.png"}},
+       "other.png",
+       Case::Decode,
+       {"--white", "{folder}/other.png"}},
       {"white image truncated",
        [](auto f) {
          withBytes(f, "white.png", truncated(base("sim/white.png"), 0.5));
          return simulatedRaw(f);
        },
-       "white.png", Case::Decode, {"--white", "{folder}/white.png"}},
+       "white.png",
+       Case::Decode,
+       {"--white", "{folder}/white.png"}},
       {"white image is a folder",
        [](auto f) {
          fs::create_directories(f / "white.png");
          return simulatedRaw(f);
        },
-       "white.png", Case::Decode, {"--white", "{folder}/white.png"}},
+       "white.png",
+       Case::Decode,
+       {"--white", "{folder}/white.png"}},
       {"raw truncated",
        [](auto f) {
          simulatedRaw(f);
@@ -604,7 +644,9 @@ TEST_F(BadInputCorpus, RawDecoding) {
          withBytes(f, "grid.json", R"({"format": 3, "pitch_x_px": "wide"})");
          return simulatedRaw(f);
        },
-       "grid.json", Case::Decode, {"--grid", "{folder}/grid.json"}},
+       "grid.json",
+       Case::Decode,
+       {"--grid", "{folder}/grid.json"}},
       {"grid.json with an absurd lattice",
        [](auto f) {
          withBytes(f, "grid.json",
@@ -613,7 +655,9 @@ TEST_F(BadInputCorpus, RawDecoding) {
                    R"( "rows": 2000000000, "hex_parity": 0})");
          return simulatedRaw(f);
        },
-       "grid.json", Case::Decode, {"--grid", "{folder}/grid.json"}},
+       "grid.json",
+       Case::Decode,
+       {"--grid", "{folder}/grid.json"}},
       {"lytro container truncated",
        [](auto f) { return withBytes(f, "raw.lfp", std::string("\x89LFP\r\n\x1a\n\0\0\0\1\0\0\0\0\x89LFM", 20)); },
        "raw.lfp", Case::Decode},
@@ -622,12 +666,22 @@ TEST_F(BadInputCorpus, RawDecoding) {
 
 TEST_F(BadInputCorpus, MemoryLimitSettings) {
   runCases({
-      {"memory limit of zero", [](auto f) { return copied(base("lf.lf.h5"), f, "a.lf.h5"); }, "--memory-limit",
-       Case::LightField, {"--memory-limit", "0"}},
-      {"memory limit that is not a size", [](auto f) { return copied(base("lf.lf.h5"), f, "a.lf.h5"); },
-       "--memory-limit", Case::LightField, {"--memory-limit", "lots"}},
-      {"LFCAM_MEMORY_LIMIT that is not a size", [](auto f) { return copied(base("lf.lf.h5"), f, "a.lf.h5"); },
-       "LFCAM_MEMORY_LIMIT", Case::LightField, {}, "12 parsecs"},
+      {"memory limit of zero",
+       [](auto f) { return copied(base("lf.lf.h5"), f, "a.lf.h5"); },
+       "--memory-limit",
+       Case::LightField,
+       {"--memory-limit", "0"}},
+      {"memory limit that is not a size",
+       [](auto f) { return copied(base("lf.lf.h5"), f, "a.lf.h5"); },
+       "--memory-limit",
+       Case::LightField,
+       {"--memory-limit", "lots"}},
+      {"LFCAM_MEMORY_LIMIT that is not a size",
+       [](auto f) { return copied(base("lf.lf.h5"), f, "a.lf.h5"); },
+       "LFCAM_MEMORY_LIMIT",
+       Case::LightField,
+       {},
+       "12 parsecs"},
   });
 }
 

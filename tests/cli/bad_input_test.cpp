@@ -26,7 +26,6 @@ fs::path goodHciFolder(const test::TempDir& dir) {
   return folder;
 }
 
-
 std::vector<BadInput> badInputs() {
   return {
       {"missing file", [](const test::TempDir& d) { return d / "nothing-here.lf.h5"; }, "nothing-here.lf.h5"},
@@ -41,8 +40,7 @@ std::vector<BadInput> badInputs() {
        [](const test::TempDir& d) {
          fs::path folder = goodHciFolder(d);
          fs::copy_file(folder / "input_Cam000.png", d / "keep.png");
-         auto other = runLfcam({"synth", "--views", "1", "--size", "20", "-o", (d / "other.png").string()},
-                               d.path());
+         auto other = runLfcam({"synth", "--views", "1", "--size", "20", "-o", (d / "other.png").string()}, d.path());
          EXPECT_EQ(other.exitStatus, 0) << other.err;
          fs::copy_file(d / "other.png", folder / "input_Cam005.png", fs::copy_options::overwrite_existing);
          return folder;
@@ -116,9 +114,9 @@ TEST(BadInput, UnwritableOutputLeavesNothing) {
   auto made = runLfcam({"synth", "--views", "3", "--size", "16", "-o", (dir / "lf.lf.h5").string()}, dir.path());
   ASSERT_EQ(made.exitStatus, 0) << made.err;
   // Into a folder that does not exist.
-  auto result = runLfcam({"refocus", (dir / "lf.lf.h5").string(), "--slope", "0", "-o",
-                          (dir / "no-such-folder" / "out.png").string()},
-                         dir.path());
+  auto result = runLfcam(
+      {"refocus", (dir / "lf.lf.h5").string(), "--slope", "0", "-o", (dir / "no-such-folder" / "out.png").string()},
+      dir.path());
   EXPECT_EQ(result.exitStatus, 1) << result.err;
   EXPECT_EQ(result.errLines(), 1) << result.err;
   EXPECT_NE(result.err.find("no-such-folder"), std::string::npos) << result.err;

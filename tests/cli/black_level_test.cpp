@@ -34,8 +34,8 @@ class BlackLevel : public ::testing::Test {
   // folder without camera.json, and one grid for every decode so that only the levels differ.
   void SetUp() override {
     const std::string sim = (dir / "sim").string();
-    auto simulate = runLfcam({"simulate", "chart", "--size", "120", "--samples", "1", "--noise", "off", "-o", sim},
-                             dir.path());
+    auto simulate =
+        runLfcam({"simulate", "chart", "--size", "120", "--samples", "1", "--noise", "off", "-o", sim}, dir.path());
     ASSERT_EQ(simulate.exitStatus, 0) << simulate.err;
     fs::create_directories(dir / "bare");
     for (const char* name : {"raw.png", "white.png"}) fs::copy_file(dir / "sim" / name, dir / "bare" / name);
@@ -73,19 +73,21 @@ TEST_F(BlackLevel, GivenOrTaggedDecodesAsTheCamerasOwnLevel) {
     writeTiffWithLevels(dir / "bare" / (std::string(name) + "_12bit.tif"), *codes, {.black = {64}, .white = 4095});
   }
   const std::vector<std::string> rggb{"--bayer", "RGGB"};
-  const LightField reference = decode((dir / "sim" / "raw.png").string(), (dir / "sim" / "white.png").string(), {},
-                                      "reference");
+  const LightField reference =
+      decode((dir / "sim" / "raw.png").string(), (dir / "sim" / "white.png").string(), {}, "reference");
   const LightField tagged12 = decode(bare("raw_12bit.tif"), bare("white_12bit.tif"), rggb, "tagged12");
   const LightField tagged = decode(bare("raw.tif"), bare("white.tif"), rggb, "tagged");
   const LightField none = decode(bare("raw.png"), bare("white.png"), rggb, "none");
-  const LightField given = decode(bare("raw.png"), bare("white.png"), {"--bayer", "RGGB", "--black-level", "64"}, "given");
+  const LightField given =
+      decode(bare("raw.png"), bare("white.png"), {"--bayer", "RGGB", "--black-level", "64"}, "given");
   ASSERT_FALSE(reference.empty() || tagged12.empty() || tagged.empty() || none.empty() || given.empty());
 
   const double tagsAsCamera = psnr(tagged12, reference), withoutLevel = psnr(none, tagged),
                withLevel = psnr(given, tagged);
-  std::printf("[ black   ] TIFF BlackLevel 64 + WhiteLevel 4095 tags against camera.json: PSNR %.2f dB; PNG raw "
-              "against the TIFF tagged BlackLevel 64: %.2f dB without a black level, %.2f dB with --black-level 64\n",
-              tagsAsCamera, withoutLevel, withLevel);
+  std::printf(
+      "[ black   ] TIFF BlackLevel 64 + WhiteLevel 4095 tags against camera.json: PSNR %.2f dB; PNG raw "
+      "against the TIFF tagged BlackLevel 64: %.2f dB without a black level, %.2f dB with --black-level 64\n",
+      tagsAsCamera, withoutLevel, withLevel);
   EXPECT_EQ(tagsAsCamera, INFINITY);
   EXPECT_EQ(withLevel, INFINITY);
   EXPECT_LT(withoutLevel, 40);
@@ -97,7 +99,8 @@ TEST_F(BlackLevel, ADarkFrameWinsOverIt) {
   for (float& v : dark.pixels()) v = 64.0f / 65535.0f;
   ASSERT_TRUE(writeImage(dir / "dark.png", dark, {.sampleType = SampleType::UInt16}));
   const std::string darkPath = (dir / "dark.png").string();
-  const LightField darkOnly = decode(bare("raw.png"), bare("white.png"), {"--bayer", "RGGB", "--dark", darkPath}, "dark");
+  const LightField darkOnly =
+      decode(bare("raw.png"), bare("white.png"), {"--bayer", "RGGB", "--dark", darkPath}, "dark");
   const LightField both = decode(bare("raw.png"), bare("white.png"),
                                  {"--bayer", "RGGB", "--dark", darkPath, "--black-level", "1000"}, "both");
   ASSERT_FALSE(darkOnly.empty() || both.empty());
@@ -123,18 +126,19 @@ TEST_F(BlackLevel, OutOfRangeIsAOneLineUsageErrorWritingNothing) {
     EXPECT_EQ(result.exitStatus, 2) << testing::PrintToString(args) << ": " << result.err;
     EXPECT_EQ(result.errLines(), 1) << testing::PrintToString(args) << ": " << result.err;
   }
-  const auto above = runLfcam({"decode", raw, "--white", white, "--grid", grid(), "--black-level", "5000", "-o", out},
-                              dir.path());
+  const auto above =
+      runLfcam({"decode", raw, "--white", white, "--grid", grid(), "--black-level", "5000", "-o", out}, dir.path());
   EXPECT_NE(above.err.find(raw + ": black level 5000 DN"), std::string::npos) << above.err;
-  for (const std::string& file : {out, photo, newGrid, (dir / "views").string()}) EXPECT_FALSE(fs::exists(file)) << file;
+  for (const std::string& file : {out, photo, newGrid, (dir / "views").string()})
+    EXPECT_FALSE(fs::exists(file)) << file;
 
   // A file whose own tags put black above white is failed work, exit 1.
   auto codes = readImage(raw);
   ASSERT_TRUE(codes);
   for (float& v : codes->pixels()) v = std::round(v * 65535.0f);
   writeTiffWithLevels(dir / "wrong.tif", *codes, {.black = {5000}, .white = 4095});
-  const auto wrong = runLfcam({"decode", (dir / "wrong.tif").string(), "--white", white, "--grid", grid(), "-o", out},
-                              dir.path());
+  const auto wrong =
+      runLfcam({"decode", (dir / "wrong.tif").string(), "--white", white, "--grid", grid(), "-o", out}, dir.path());
   EXPECT_EQ(wrong.exitStatus, 1) << wrong.err;
   EXPECT_EQ(wrong.errLines(), 1) << wrong.err;
   EXPECT_FALSE(fs::exists(out));

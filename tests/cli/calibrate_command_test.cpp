@@ -24,7 +24,8 @@ TEST(CalibrateCommand, WritesTheGridOfASimulatedWhiteImage) {
   Image white = simulateCapture(*scene, camera, {.samplesPerPixel = 4}).irradiance;
   for (float& v : white.pixels()) v *= 10;  // into [0, 1] for a 16-bit file
   ASSERT_TRUE(writeImage(dir / "white.tif", white).ok());
-  const auto result = runLfcam({"calibrate", (dir / "white.tif").string(), "-o", (dir / "grid.json").string()}, dir.path());
+  const auto result =
+      runLfcam({"calibrate", (dir / "white.tif").string(), "-o", (dir / "grid.json").string()}, dir.path());
   ASSERT_EQ(result.exitStatus, 0) << result.err;
   EXPECT_NE(result.out.find("hexagonal grid"), std::string::npos) << result.out;
   auto grid = readGrid(dir / "grid.json");
@@ -43,8 +44,8 @@ TEST(CalibrateCommand, ErrorsAreOneLine) {
   EXPECT_NE(missing.err.find("none.png"), std::string::npos);
   Image flat(64, 64, 1);
   ASSERT_TRUE(writeImage(dir / "flat.png", flat).ok());
-  auto badBayer = runLfcam({"calibrate", (dir / "flat.png").string(), "--bayer", "XYZ", "-o", (dir / "g.json").string()},
-                           dir.path());
+  auto badBayer = runLfcam(
+      {"calibrate", (dir / "flat.png").string(), "--bayer", "XYZ", "-o", (dir / "g.json").string()}, dir.path());
   EXPECT_EQ(badBayer.exitStatus, 2);
   EXPECT_EQ(badBayer.errLines(), 1) << badBayer.err;
   auto noLattice = runLfcam({"calibrate", (dir / "flat.png").string(), "-o", (dir / "g.json").string()}, dir.path());

@@ -67,9 +67,8 @@ inline CommandResult runLfcam(const std::vector<std::string>& args, const std::f
 // `size` x `size` pixels, in `dir`.
 inline std::filesystem::path makeSynthLightField(const TempDir& dir, int views = 5, int size = 48) {
   const std::filesystem::path path = dir / "small.lf.h5";
-  const auto result =
-      runLfcam({"synth", "--views", std::to_string(views), "--size", std::to_string(size), "-o", path.string()},
-               dir.path());
+  const auto result = runLfcam(
+      {"synth", "--views", std::to_string(views), "--size", std::to_string(size), "-o", path.string()}, dir.path());
   EXPECT_EQ(result.exitStatus, 0) << result.err;
   return path;
 }

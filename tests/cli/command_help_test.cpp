@@ -10,16 +10,18 @@
 namespace lfcam::test {
 namespace {
 
-const std::vector<std::string> kCommands{
-    "info",  "convert",  "views",   "refocus", "stack", "observer", "bench",       "animate",    "synth",     "demo",
-    "simulate", "depth", "score", "edof",    "extract", "view",  "export-html", "experiment", "decode", "calibrate"};
+const std::vector<std::string> kCommands{"info",     "convert",     "views",      "refocus", "stack",
+                                         "observer", "bench",       "animate",    "synth",   "demo",
+                                         "simulate", "depth",       "score",      "edof",    "extract",
+                                         "view",     "export-html", "experiment", "decode",  "calibrate"};
 
 TEST(CommandHelp, AloneListsEveryCommandOnOneLineEach) {
   TempDir dir;
   const auto result = runLfcam({}, dir.path());
   EXPECT_EQ(result.exitStatus, 2) << "no command is a usage error, as in git";
   EXPECT_EQ(result.err, "");
-  for (const auto& command : kCommands) EXPECT_NE(result.out.find("\n  " + command + " "), std::string::npos) << command;
+  for (const auto& command : kCommands)
+    EXPECT_NE(result.out.find("\n  " + command + " "), std::string::npos) << command;
 }
 
 TEST(CommandHelp, UnknownCommandNamesTheNearest) {
@@ -38,7 +40,8 @@ std::vector<std::string> exampleOf(const std::string& command, const TempDir& di
   const std::string marker = "Example (from the repository's root):\n  ";
   const auto at = help.out.find(marker);
   if (at == std::string::npos) return {};
-  std::istringstream line(help.out.substr(at + marker.size(), help.out.find('\n', at + marker.size()) - at - marker.size()));
+  std::istringstream line(
+      help.out.substr(at + marker.size(), help.out.find('\n', at + marker.size()) - at - marker.size()));
   std::vector<std::string> words;
   for (std::string word; line >> word;) words.push_back(word);
   return words;
@@ -69,12 +72,11 @@ TEST_P(CommandExample, HelpEndsWithAnExampleThatRuns) {
   EXPECT_EQ(result.exitStatus, 0) << GetParam() << ": " << result.err;
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryCommand, CommandExample, ::testing::ValuesIn(kCommands),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           for (char& c : name) c = c == '-' ? '_' : c;
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(EveryCommand, CommandExample, ::testing::ValuesIn(kCommands), [](const auto& info) {
+  std::string name = info.param;
+  for (char& c : name) c = c == '-' ? '_' : c;
+  return name;
+});
 
 }  // namespace
 }  // namespace lfcam::test

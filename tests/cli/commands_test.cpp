@@ -13,7 +13,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::runLfcam;
 
-
 TEST(Cli, HelpForEverySubcommand) {
   test::TempDir dir;
   for (const char* sub : {"info", "convert", "views", "refocus", "stack", "observer", "animate", "bench", "depth",
@@ -31,7 +30,7 @@ TEST(Cli, UsageErrorsExitTwoWithOneLine) {
   const std::vector<std::vector<std::string>> cases = {
       {"frobnicate"},
       {"info", input.string(), "--no-such-flag"},
-      {"refocus", input.string(), "-o", (dir / "a.png").string()},                              // no depth
+      {"refocus", input.string(), "-o", (dir / "a.png").string()},  // no depth
       {"refocus", input.string(), "--slope", "1", "--alpha", "1.1", "-o", (dir / "a.png").string()},
       {"refocus", input.string(), "--slope", "abc", "-o", (dir / "a.png").string()},
       {"synth", "--views", "0", "-o", (dir / "b.lf.h5").string()},
@@ -75,10 +74,8 @@ TEST(Cli, ConvertThroughEveryFormatKeepsTheShape) {
   test::TempDir dir;
   const fs::path input = test::makeSynthLightField(dir);
   const std::vector<std::vector<std::string>> targets = {
-      {(dir / "hci").string()},
-      {(dir / "rowcol").string(), "--layout", "rowcol"},
-      {(dir / "lenslet.png").string()},
-      {(dir / "lenslet16.tif").string()},
+      {(dir / "hci").string()},         {(dir / "rowcol").string(), "--layout", "rowcol"},
+      {(dir / "lenslet.png").string()}, {(dir / "lenslet16.tif").string()},
       {(dir / "again.lf.h5").string()},
   };
   for (const auto& target : targets) {
@@ -94,17 +91,15 @@ TEST(Cli, ConvertThroughEveryFormatKeepsTheShape) {
   }
   EXPECT_EQ(nlohmann::json::parse(runLfcam({"info", (dir / "hci").string(), "--json"}, dir.path()).out)["format"],
             "hci-folder");
-  EXPECT_EQ(
-      nlohmann::json::parse(runLfcam({"info", (dir / "rowcol").string(), "--json"}, dir.path()).out)["format"],
-      "rowcol-folder");
+  EXPECT_EQ(nlohmann::json::parse(runLfcam({"info", (dir / "rowcol").string(), "--json"}, dir.path()).out)["format"],
+            "rowcol-folder");
 }
 
 TEST(Cli, ViewsWritesEveryViewAndAContactSheet) {
   test::TempDir dir;
   const fs::path input = test::makeSynthLightField(dir);
-  const auto result =
-      runLfcam({"views", input.string(), "-o", (dir / "views").string(), "--mosaic", (dir / "sheet.png").string()},
-               dir.path());
+  const auto result = runLfcam(
+      {"views", input.string(), "-o", (dir / "views").string(), "--mosaic", (dir / "sheet.png").string()}, dir.path());
   ASSERT_EQ(result.exitStatus, 0) << result.err;
   int pngs = 0;
   for (const auto& entry : fs::directory_iterator(dir / "views")) pngs += entry.path().extension() == ".png";

@@ -32,9 +32,9 @@ TEST(DecodeCommand, DecodesASimulatorCapture) {
   EXPECT_NEAR(lf->metadata.optics->lensStepMm, ideal->metadata.optics->lensStepMm, 1e-9);
 
   // Any command takes the raw directly with its white image.
-  auto refocus = runLfcam({"refocus", sim + "/raw.png", "--white", sim + "/white.png", "--slope", "0", "-o",
-                           (dir / "photo.png").string()},
-                          dir.path());
+  auto refocus = runLfcam(
+      {"refocus", sim + "/raw.png", "--white", sim + "/white.png", "--slope", "0", "-o", (dir / "photo.png").string()},
+      dir.path());
   EXPECT_EQ(refocus.exitStatus, 0) << refocus.err;
   EXPECT_TRUE(std::filesystem::exists(dir / "photo.png"));
   // ... with the decoder's method options, as `lfcam decode` takes them.
@@ -52,12 +52,17 @@ TEST(DecodeCommand, DecodesASimulatorCapture) {
 TEST(DecodeCommand, NamesAWhiteImageOfAnotherSize) {
   TempDir dir;
   const std::string sim = (dir / "sim").string(), other = (dir / "other").string();
-  ASSERT_EQ(runLfcam({"simulate", "white", "--size", "64", "--samples", "1", "--no-white", "-o", sim}, dir.path()).exitStatus, 0);
-  ASSERT_EQ(runLfcam({"simulate", "white", "--size", "48", "--samples", "1", "--no-white", "-o", other}, dir.path()).exitStatus, 0);
-  auto decode = runLfcam({"decode", sim + "/raw.png", "--white", other + "/raw.png", "-o", (dir / "out.lf.h5").string()},
-                         dir.path());
+  ASSERT_EQ(
+      runLfcam({"simulate", "white", "--size", "64", "--samples", "1", "--no-white", "-o", sim}, dir.path()).exitStatus,
+      0);
+  ASSERT_EQ(runLfcam({"simulate", "white", "--size", "48", "--samples", "1", "--no-white", "-o", other}, dir.path())
+                .exitStatus,
+            0);
+  auto decode = runLfcam(
+      {"decode", sim + "/raw.png", "--white", other + "/raw.png", "-o", (dir / "out.lf.h5").string()}, dir.path());
   EXPECT_EQ(decode.exitStatus, 2);
-  EXPECT_NE(decode.err.find("lfcam: " + other + "/raw.png: white image of 48x48 pixels does not match"), std::string::npos)
+  EXPECT_NE(decode.err.find("lfcam: " + other + "/raw.png: white image of 48x48 pixels does not match"),
+            std::string::npos)
       << decode.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.lf.h5"));
 }
@@ -65,7 +70,9 @@ TEST(DecodeCommand, NamesAWhiteImageOfAnotherSize) {
 TEST(DecodeCommand, NeedsAGridOrAWhiteImage) {
   TempDir dir;
   const std::string sim = (dir / "sim").string();
-  ASSERT_EQ(runLfcam({"simulate", "white", "--size", "64", "--samples", "1", "--no-white", "-o", sim}, dir.path()).exitStatus, 0);
+  ASSERT_EQ(
+      runLfcam({"simulate", "white", "--size", "64", "--samples", "1", "--no-white", "-o", sim}, dir.path()).exitStatus,
+      0);
   auto decode = runLfcam({"decode", sim + "/raw.png", "-o", (dir / "out.lf.h5").string()}, dir.path());
   EXPECT_EQ(decode.exitStatus, 2);
   EXPECT_NE(decode.err.find("lfcam: " + sim + "/raw.png: decoding needs --grid or a --white image"), std::string::npos)

@@ -9,10 +9,10 @@
 #include <cstdio>
 
 #include "cli_support.hpp"
+#include "lenslet_means.hpp"
 #include "lfcam/calibrate.hpp"
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/raw_io.hpp"
-#include "lenslet_means.hpp"
 #include "test_support.hpp"
 
 namespace lfcam::test {
@@ -42,7 +42,8 @@ double bestCorrelation(const Image& a, const Image& b, bool turned) {
         for (int x = 1; x + 1 < a.width(); ++x) {
           int bx = x + dx, by = y + dy;
           if (turned) bx = b.width() - 1 - bx, by = b.height() - 1 - by;
-          if (bx >= 1 && by >= 1 && bx + 1 < b.width() && by + 1 < b.height()) correlation.add(a.at(x, y, 0), b.at(bx, by, 0));
+          if (bx >= 1 && by >= 1 && bx + 1 < b.width() && by + 1 < b.height())
+            correlation.add(a.at(x, y, 0), b.at(bx, by, 0));
         }
       if (correlation.count() >= 100) best = std::max(best, correlation.value());
     }
@@ -55,8 +56,8 @@ TEST(DecodeOrientation, LytroContainerOfASimulatorCaptureDecodesUpright) {
   // A card in the plane of focus, its smooth noise several microlenses wide: what 17 x 17 samples hold.
   writeBytes(dir / "card.json", R"({"planes": [{"centre_mm": [0, 0, 457.2], "size_mm": [40, 40],
                                     "texture": {"type": "noise", "period_mm": 1.2, "seed": 3}}]})");
-  auto simulate = runLfcam({"simulate", (dir / "card.json").string(), "--size", "240", "--pixels-per-lens", "13.37", "--samples", "4",
-                            "--noise", "off", "--container", "lfr", "-o", sim},
+  auto simulate = runLfcam({"simulate", (dir / "card.json").string(), "--size", "240", "--pixels-per-lens", "13.37",
+                            "--samples", "4", "--noise", "off", "--container", "lfr", "-o", sim},
                            dir.path());
   ASSERT_EQ(simulate.exitStatus, 0) << simulate.err;
   const std::string out = (dir / "out.lf.h5").string();
@@ -75,9 +76,10 @@ TEST(DecodeOrientation, LytroContainerOfASimulatorCaptureDecodesUpright) {
   ASSERT_TRUE(grid.ok()) << grid.error().message;
   const Image means = lensletMeans(*raw, *white, *grid).means;
   const double rawAsTheyLie = bestCorrelation(means, b, false), rawTurned = bestCorrelation(means, b, true);
-  std::printf("[ decode  ] raw.lfr of a simulator capture against the ideal centre view, correlation as they lie / "
-              "turned by 180 degrees: decoded centre view %.3f / %.3f, the frame's lenslet means %.3f / %.3f\n",
-              asTheyLie, turned, rawAsTheyLie, rawTurned);
+  std::printf(
+      "[ decode  ] raw.lfr of a simulator capture against the ideal centre view, correlation as they lie / "
+      "turned by 180 degrees: decoded centre view %.3f / %.3f, the frame's lenslet means %.3f / %.3f\n",
+      asTheyLie, turned, rawAsTheyLie, rawTurned);
   EXPECT_GT(asTheyLie, 0.9);
   EXPECT_GT(asTheyLie, turned + 0.2);
   EXPECT_GT(rawAsTheyLie, 0.9);

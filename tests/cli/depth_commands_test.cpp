@@ -12,14 +12,13 @@ namespace {
 namespace fs = std::filesystem;
 using test::runLfcam;
 
-
 TEST(CliDepth, WritesDisparityConfidencePictureAndDistance) {
   test::TempDir dir;
   const fs::path input = test::makeSynthLightField(dir);
-  const auto result = runLfcam({"depth", input.string(), "-o", (dir / "d.pfm").string(), "--confidence",
-                                (dir / "c.pfm").string(), "--png", (dir / "d.png").string(), "--distance",
-                                (dir / "z.exr").string()},
-                               dir.path());
+  const auto result =
+      runLfcam({"depth", input.string(), "-o", (dir / "d.pfm").string(), "--confidence", (dir / "c.pfm").string(),
+                "--png", (dir / "d.png").string(), "--distance", (dir / "z.exr").string()},
+               dir.path());
   ASSERT_EQ(result.exitStatus, 0) << result.err;
   EXPECT_TRUE(result.err.empty()) << result.err;
   for (const char* name : {"d.pfm", "c.pfm", "d.png", "z.exr"}) {
@@ -41,8 +40,8 @@ TEST(CliEdof, WithAndWithoutADepthMap) {
   const fs::path input = test::makeSynthLightField(dir);
   ASSERT_EQ(runLfcam({"depth", input.string(), "-o", (dir / "d.pfm").string()}, dir.path()).exitStatus, 0);
   for (const bool withDepth : {false, true}) {
-    std::vector<std::string> args{"edof", input.string(), "-o", (dir / "all.png").string(), "--slices-png",
-                                  (dir / "slices.png").string()};
+    std::vector<std::string> args{
+        "edof", input.string(), "-o", (dir / "all.png").string(), "--slices-png", (dir / "slices.png").string()};
     if (withDepth) args.insert(args.end(), {"--depth", (dir / "d.pfm").string()});
     const auto result = runLfcam(args, dir.path());
     ASSERT_EQ(result.exitStatus, 0) << result.err;
@@ -62,13 +61,13 @@ TEST(CliDepth, EverySettingFromAnOptionsFileOrAFlagThatWins) {
   const std::string output = (dir / "d.pfm").string();
   // The file's range is empty (2 above the metadata's 1.6): refused, unless a flag gives another min.
   writeText(dir / "empty-range.json", R"({"min": 2, "median-radius": 0, "occlusion-band": 0})");
-  const auto refused = runLfcam({"depth", input.string(), "-o", output, "--options", (dir / "empty-range.json").string()},
-                                dir.path());
+  const auto refused =
+      runLfcam({"depth", input.string(), "-o", output, "--options", (dir / "empty-range.json").string()}, dir.path());
   EXPECT_EQ(refused.exitStatus, 2) << refused.err;
   EXPECT_NE(refused.err.find("is empty"), std::string::npos) << refused.err;
-  const auto flagWins = runLfcam(
-      {"depth", input.string(), "-o", output, "--options", (dir / "empty-range.json").string(), "--min", "-1"},
-      dir.path());
+  const auto flagWins =
+      runLfcam({"depth", input.string(), "-o", output, "--options", (dir / "empty-range.json").string(), "--min", "-1"},
+               dir.path());
   EXPECT_EQ(flagWins.exitStatus, 0) << flagWins.err;
   // Every setting of the table is a flag, shown with its stage in --help.
   const auto help = runLfcam({"depth", "--help"}, dir.path());
@@ -81,13 +80,13 @@ TEST(CliDepth, EverySettingFromAnOptionsFileOrAFlagThatWins) {
 TEST(CliDepth, ErrorsSayWhatIsWrongInOneLine) {
   test::TempDir dir;
   const fs::path input = test::makeSynthLightField(dir);
-  writeText(dir / "typo.json", R"({"smoothnes": 0.5})");       // an unknown key
-  writeText(dir / "bad.json", R"({"median-radius": 2.5})");    // not an integer
+  writeText(dir / "typo.json", R"({"smoothnes": 0.5})");     // an unknown key
+  writeText(dir / "bad.json", R"({"median-radius": 2.5})");  // not an integer
   struct Case {
     std::vector<std::string> args;
     int status;
   } cases[] = {
-      {{"depth", input.string()}, 2},                                                             // no output
+      {{"depth", input.string()}, 2},                                                              // no output
       {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--min", "1", "--max", "1"}, 2},  // empty range
       {{"depth", (dir / "missing.lf.h5").string(), "-o", (dir / "d.pfm").string()}, 1},
       {{"edof", input.string(), "-o", (dir / "e.png").string(), "--depth", (dir / "missing.pfm").string()}, 1},

@@ -18,7 +18,8 @@ nlohmann::json runQuick(const std::string& name, const test::TempDir& dir) {
   const fs::path out = dir / name;
   const auto result = runLfcam({"experiment", name, "-o", out.string(), "--quick"}, dir.path());
   EXPECT_EQ(result.exitStatus, 0) << result.err;
-  for (const char* file : {"report.md", "report.html", "results.json"}) EXPECT_TRUE(fs::exists(out / file)) << name << ": " << file;
+  for (const char* file : {"report.md", "report.html", "results.json"})
+    EXPECT_TRUE(fs::exists(out / file)) << name << ": " << file;
   bool csv = false, plot = false;
   if (fs::exists(out))
     for (const auto& entry : fs::directory_iterator(out)) {
@@ -54,7 +55,8 @@ TEST(CliExperiment, SnrGrowsWithApertureAndTheLightFieldWins) {
   EXPECT_GT(snr.front(), 2 * snr.back());
   EXPECT_GT(r["snr_ratio"].get<double>(), 2);
   // Views added at whole-pixel shifts, no interpolation: the photon-noise law.
-  EXPECT_NEAR(r["snr_ratio"].get<double>(), r["predicted_snr_ratio"].get<double>(), 0.15 * r["predicted_snr_ratio"].get<double>());
+  EXPECT_NEAR(r["snr_ratio"].get<double>(), r["predicted_snr_ratio"].get<double>(),
+              0.15 * r["predicted_snr_ratio"].get<double>());
   EXPECT_NEAR(r["predicted_snr_ratio"].get<double>(), 5.5, 1.0);  // sqrt((22 / 4)^2), less the aperture's corners
   // The quadrature method's interpolation averages noise: well above the law.
   EXPECT_GT(r["snr_ratio_quadrature"].get<double>(), 1.5 * r["snr_ratio"].get<double>());

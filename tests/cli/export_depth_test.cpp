@@ -100,8 +100,8 @@ TEST(CliExportDepth, DecodedCaptureViewsKeepWhatTheLightFieldHolds) {
   ASSERT_EQ(decode.exitStatus, 0) << decode.err;
   auto truth = readLightField(decoded);
   ASSERT_TRUE(truth) << truth.error().message;
-  const std::vector<std::vector<std::string>> depths = {{"--bit-depth", "8"}, {"--bit-depth", "16"},
-                                                        {"--format", "exr", "--bit-depth", "float"}};
+  const std::vector<std::vector<std::string>> depths = {
+      {"--bit-depth", "8"}, {"--bit-depth", "16"}, {"--format", "exr", "--bit-depth", "float"}};
   std::vector<double> figures, inRangeFigures;
   for (const auto& flags : depths) {
     const fs::path folder = dir / ("views" + std::to_string(figures.size()));
@@ -131,10 +131,11 @@ TEST(CliExportDepth, DecodedCaptureViewsKeepWhatTheLightFieldHolds) {
     };
     figures.push_back(decibels(sum, count));
     inRangeFigures.push_back(decibels(inRangeSum, inRange));
-    std::printf("[ export  ] decoded capture (radiance %.2f to %.2f), views %s: PSNR %.2f dB against the decoded "
-                "light field; %.2f dB over the %.1f%% of samples inside [0, 1]\n",
-                lowest, highest, testing::PrintToString(flags).c_str(), figures.back(), inRangeFigures.back(),
-                100.0 * double(inRange) / double(count));
+    std::printf(
+        "[ export  ] decoded capture (radiance %.2f to %.2f), views %s: PSNR %.2f dB against the decoded "
+        "light field; %.2f dB over the %.1f%% of samples inside [0, 1]\n",
+        lowest, highest, testing::PrintToString(flags).c_str(), figures.back(), inRangeFigures.back(),
+        100.0 * double(inRange) / double(count));
   }
   EXPECT_LT(inRangeFigures[0], 60);
   EXPECT_GT(inRangeFigures[1], 90);
@@ -150,21 +151,28 @@ TEST(CliExportDepth, EveryImageCommandWritesTheDepthAsked) {
     SampleType type;
   };
   const std::vector<Case> cases = {
-      {{"refocus", input, "--slope", "0.5", "-o", (dir / "r.png").string(), "--bit-depth", "16"}, dir / "r.png",
+      {{"refocus", input, "--slope", "0.5", "-o", (dir / "r.png").string(), "--bit-depth", "16"},
+       dir / "r.png",
        SampleType::UInt16},
-      {{"refocus", input, "--slope", "0.5", "-o", (dir / "r.tif").string(), "--bit-depth", "float"}, dir / "r.tif",
+      {{"refocus", input, "--slope", "0.5", "-o", (dir / "r.tif").string(), "--bit-depth", "float"},
+       dir / "r.tif",
        SampleType::Float32},
       {{"observer", input, "--u", "1", "--v", "0", "-o", (dir / "o.png").string(), "--bit-depth", "16"},
-       dir / "o.png", SampleType::UInt16},
+       dir / "o.png",
+       SampleType::UInt16},
       {{"edof", input, "-o", (dir / "e.tif").string(), "--bit-depth", "8"}, dir / "e.tif", SampleType::UInt8},
       {{"stack", input, "--slopes", "-1:1:2", "--format", "tif", "--bit-depth", "float", "-o", (dir / "s").string()},
-       dir / "s" / "slice_001.tif", SampleType::Float32},
+       dir / "s" / "slice_001.tif",
+       SampleType::Float32},
       {{"animate", input, "--orbit", "--frames", "2", "--stills", "--bit-depth", "16", "-o", (dir / "a").string()},
-       dir / "a" / "frame_001.png", SampleType::UInt16},
+       dir / "a" / "frame_001.png",
+       SampleType::UInt16},
       {{"views", input, "--mosaic", (dir / "m.exr").string(), "-o", (dir / "v").string(), "--format", "exr"},
-       dir / "m.exr", SampleType::Float32},
+       dir / "m.exr",
+       SampleType::Float32},
       {{"convert", input, "--layout", "rowcol", "--format", "tif", "--bit-depth", "8", "-o", (dir / "c").string()},
-       dir / "c" / "view_01_01.tif", SampleType::UInt8},
+       dir / "c" / "view_01_01.tif",
+       SampleType::UInt8},
   };
   for (const Case& c : cases) {
     const auto result = runLfcam(c.args, dir.path());

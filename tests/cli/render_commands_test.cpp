@@ -18,9 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::runLfcam;
 
-
-
-
 TEST(CliRender, RefocusWithApertureMethodAndFocusAt) {
   test::TempDir dir;
   const std::string input = test::makeSynthLightField(dir, 5, 40).string();
@@ -80,17 +77,18 @@ TEST(CliRender, ObserverAtAViewIsThatView) {
   const std::string input = test::makeSynthLightField(dir, 5, 40).string();
   auto lightField = readLightField(input);
   ASSERT_TRUE(lightField);
-  const auto result = runLfcam({"observer", input, "--u", "-2", "--v", "1", "-o", (dir / "o.exr").string()}, dir.path());
+  const auto result =
+      runLfcam({"observer", input, "--u", "-2", "--v", "1", "-o", (dir / "o.exr").string()}, dir.path());
   ASSERT_EQ(result.exitStatus, 0) << result.err;
   auto photo = readImage(dir / "o.exr");
   ASSERT_TRUE(photo);
   const Image view = lightField->subApertureImage(0, 3);
   for (std::size_t i = 0; i < view.pixels().size(); ++i) ASSERT_NEAR(photo->pixels()[i], view.pixels()[i], 1e-6);
-  EXPECT_EQ(runLfcam({"observer", input, "--u", "9", "--v", "0", "--clamp", "--beta", "1.2", "-o",
-                      (dir / "c.png").string()},
-                     dir.path())
-                .exitStatus,
-            0);
+  EXPECT_EQ(
+      runLfcam({"observer", input, "--u", "9", "--v", "0", "--clamp", "--beta", "1.2", "-o", (dir / "c.png").string()},
+               dir.path())
+          .exitStatus,
+      0);
 }
 
 TEST(CliRender, FourierMethodAndBenchJson) {
@@ -110,8 +108,8 @@ TEST(CliRender, FourierMethodAndBenchJson) {
     for (const char* key : {"seconds_per_photo", "floor_seconds", "ratio_to_floor"})
       EXPECT_GT(double(entry[key]), 0.0) << entry.dump();
   }
-  EXPECT_EQ(methods, (std::vector<std::string>{"fast", "fast-aperture", "quadrature", "observer", "fourier",
-                                              "fast-1-thread"}));
+  EXPECT_EQ(methods,
+            (std::vector<std::string>{"fast", "fast-aperture", "quadrature", "observer", "fourier", "fast-1-thread"}));
 }
 
 // Frames in a GIF: one graphic control extension (21 F9 04) precedes each.
@@ -125,12 +123,14 @@ int gifFrames(const std::string& bytes) {
 TEST(CliRender, AnimateWritesLoopingGifs) {
   test::TempDir dir;
   const std::string input = test::makeSynthLightField(dir, 5, 40).string();
-  const auto pull = runLfcam({"animate", input, "--focus-pull", "--frames", "6", "-o", (dir / "p.gif").string()}, dir.path());
+  const auto pull =
+      runLfcam({"animate", input, "--focus-pull", "--frames", "6", "-o", (dir / "p.gif").string()}, dir.path());
   ASSERT_EQ(pull.exitStatus, 0) << pull.err;
   const std::string pullBytes = test::readBytes(dir / "p.gif");
   EXPECT_EQ(pullBytes.rfind("GIF89a", 0), 0u);
   EXPECT_EQ(gifFrames(pullBytes), 6);
-  const auto orbit = runLfcam({"animate", input, "--orbit", "--frames", "5", "-o", (dir / "o.gif").string()}, dir.path());
+  const auto orbit =
+      runLfcam({"animate", input, "--orbit", "--frames", "5", "-o", (dir / "o.gif").string()}, dir.path());
   ASSERT_EQ(orbit.exitStatus, 0) << orbit.err;
   EXPECT_EQ(gifFrames(test::readBytes(dir / "o.gif")), 5);
 }
@@ -138,7 +138,8 @@ TEST(CliRender, AnimateWritesLoopingGifs) {
 TEST(CliRender, AnimateWritesMp4WhenAsked) {
   test::TempDir dir;
   const std::string input = test::makeSynthLightField(dir, 5, 40).string();
-  const auto orbit = runLfcam({"animate", input, "--orbit", "--frames", "5", "-o", (dir / "o.mp4").string()}, dir.path());
+  const auto orbit =
+      runLfcam({"animate", input, "--orbit", "--frames", "5", "-o", (dir / "o.mp4").string()}, dir.path());
   ASSERT_EQ(orbit.exitStatus, 0) << orbit.err;
   auto video = readVideoSummary(dir / "o.mp4");
   ASSERT_TRUE(video) << video.error().message;
@@ -182,8 +183,8 @@ TEST(CliRender, UsageErrorsExitTwoWithOneLine) {
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(dir / "s"));
   // A missing mask is failed work, not usage.
-  const auto missing =
-      runLfcam({"refocus", input, "--slope", "0", "--aperture-mask", (dir / "none.png").string(), "-o", out}, dir.path());
+  const auto missing = runLfcam(
+      {"refocus", input, "--slope", "0", "--aperture-mask", (dir / "none.png").string(), "-o", out}, dir.path());
   EXPECT_EQ(missing.exitStatus, 1) << missing.err;
   EXPECT_EQ(missing.errLines(), 1);
 }

@@ -45,8 +45,8 @@ TEST(CliScore, PrintsTheBenchmarkScoresAsTextAndJson) {
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) planes.at(x, y, 0) = x < 24 ? 1.0f : 0.0f;
   ASSERT_TRUE(writeImage(dir / "planes.png", planes));
-  const auto masked = runLfcam({"score", estimate, truth, "--mask", (dir / "planes.png").string(), "--json"},
-                                 dir.path());
+  const auto masked =
+      runLfcam({"score", estimate, truth, "--mask", (dir / "planes.png").string(), "--json"}, dir.path());
   ASSERT_EQ(masked.exitStatus, 0) << masked.err;
   EXPECT_NEAR(nlohmann::json::parse(masked.out)["bumpiness"].get<double>(), 0.0, 1e-6);
 }
@@ -62,11 +62,11 @@ TEST(CliScore, ErrorsNameTheFileInOneLine) {
     int status;
     std::string names;
   } cases[] = {
-      {{"score", at("small.pfm"), at("truth.pfm")}, 2, "truth.pfm"},                         // another size
-      {{"score", at("missing.pfm"), at("truth.pfm")}, 1, "missing.pfm"},                     // unreadable
-      {{"score", at("colour.png"), at("truth.pfm")}, 2, "colour.png"},                       // not one channel
+      {{"score", at("small.pfm"), at("truth.pfm")}, 2, "truth.pfm"},                             // another size
+      {{"score", at("missing.pfm"), at("truth.pfm")}, 1, "missing.pfm"},                         // unreadable
+      {{"score", at("colour.png"), at("truth.pfm")}, 2, "colour.png"},                           // not one channel
       {{"score", at("truth.pfm"), at("truth.pfm"), "--mask", at("small.pfm")}, 2, "small.pfm"},  // mask's size
-      {{"score", at("truth.pfm")}, 2, "truth"},                                              // no ground truth
+      {{"score", at("truth.pfm")}, 2, "truth"},                                                  // no ground truth
   };
   for (const Case& c : cases) {
     const auto result = runLfcam(c.args, dir.path());

@@ -61,15 +61,17 @@ TEST(DecodeHciLenslet, ViewsComeBackAsTheRawHoldsThem) {
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       const double dx = x + 0.5 - grid.origin[0], dy = y + 0.5 - grid.origin[1];
-      const int i = int(std::lround((cs * dx + sn * dy) / grid.pitchX)), j = int(std::lround((-sn * dx + cs * dy) / grid.pitchY));
+      const int i = int(std::lround((cs * dx + sn * dy) / grid.pitchX)),
+                j = int(std::lround((-sn * dx + cs * dy) / grid.pitchY));
       if (i < 0 || j < 0 || i >= crop || j >= crop) continue;
       const auto centre = grid.centre(i, j);
       const double u = middle + x + 0.5 - centre[0], v = middle + y + 0.5 - centre[1];
       if (u < 0 || v < 0 || u > n - 1 || v > n - 1) continue;
       const int u0 = std::min(int(u), n - 2), v0 = std::min(int(v), n - 2);
       const double fu = u - u0, fv = v - v0;
-      raw.mosaic.at(x, y, 0) = float((1 - fv) * ((1 - fu) * truth.at(u0, v0, i, j, 0) + fu * truth.at(u0 + 1, v0, i, j, 0)) +
-                                     fv * ((1 - fu) * truth.at(u0, v0 + 1, i, j, 0) + fu * truth.at(u0 + 1, v0 + 1, i, j, 0)));
+      raw.mosaic.at(x, y, 0) =
+          float((1 - fv) * ((1 - fu) * truth.at(u0, v0, i, j, 0) + fu * truth.at(u0 + 1, v0, i, j, 0)) +
+                fv * ((1 - fu) * truth.at(u0, v0 + 1, i, j, 0) + fu * truth.at(u0 + 1, v0 + 1, i, j, 0)));
     }
 
   DecodeOptions options;
@@ -84,10 +86,11 @@ TEST(DecodeHciLenslet, ViewsComeBackAsTheRawHoldsThem) {
   // An off-centre view: the same view of the truth, or the one on the other side of the lens.
   const double sideSame = viewPsnr(*decoded, side, c, truth, side, c, false);
   const double sideMirrored = viewPsnr(*decoded, side, c, truth, n - 1 - side, c, false);
-  std::printf("[ decode  ] lenslet raw of hci-antinous (11.37 px, 0.4 deg): centre view PSNR %.2f dB against the "
-              "true centre view as the raw holds it, %.2f dB turned by 180 degrees; view u = %d: %.2f dB against "
-              "the same view, %.2f dB against view %d\n",
-              centreAsHeld, centreTurned, side, sideSame, sideMirrored, n - 1 - side);
+  std::printf(
+      "[ decode  ] lenslet raw of hci-antinous (11.37 px, 0.4 deg): centre view PSNR %.2f dB against the "
+      "true centre view as the raw holds it, %.2f dB turned by 180 degrees; view u = %d: %.2f dB against "
+      "the same view, %.2f dB against view %d\n",
+      centreAsHeld, centreTurned, side, sideSame, sideMirrored, n - 1 - side);
   EXPECT_GT(centreAsHeld, 40.0);
   EXPECT_GT(centreAsHeld, centreTurned + 10.0);
   EXPECT_GT(sideSame, 35.0);

@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "lenslet_means.hpp"
 #include "lfcam/calibrate.hpp"
 #include "lfcam/decode.hpp"
 #include "lfcam/raw_io.hpp"
-#include "lenslet_means.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {
@@ -80,12 +80,13 @@ TEST(DecodeLfmGuv, ViewsArePlausible) {
       neighbour += std::abs(value - view.at(s + 1, t, 0));
     }
   const double mean = sum / count, deviation = std::sqrt(std::max(0.0, sumSquares / count - mean * mean));
-  std::printf("[ decode  ] lfm-guv: grid %dx%d pitch %.3f x %.3f px, rotation %.4f deg; centre view mean %.4f, "
-              "std %.4f, mean |dx| %.4f; weight centre %.3f corner %.3f\n",
-              grid.columns, grid.rows, grid.pitchX, grid.pitchY, grid.rotationRad * 180 / M_PI, mean, deviation,
-              neighbour / count, centreWeight, cornerWeight);
+  std::printf(
+      "[ decode  ] lfm-guv: grid %dx%d pitch %.3f x %.3f px, rotation %.4f deg; centre view mean %.4f, "
+      "std %.4f, mean |dx| %.4f; weight centre %.3f corner %.3f\n",
+      grid.columns, grid.rows, grid.pitchX, grid.pitchY, grid.rotationRad * 180 / M_PI, mean, deviation,
+      neighbour / count, centreWeight, cornerWeight);
   EXPECT_GT(mean, 0);
-  EXPECT_GT(deviation / mean, 0.05);             // structure
+  EXPECT_GT(deviation / mean, 0.05);              // structure
   EXPECT_LT(neighbour / count, 2.0 * deviation);  // smoother than noise
 }
 
@@ -107,13 +108,15 @@ TEST(DecodeLfmGuv, CentreViewLiesAsTheLensletsDo) {
   test::Correlation asTheyLie, turned;
   for (int t = 0; t < h; ++t)
     for (int s = 0; s < w; ++s) {
-      if (!lenslets.complete[std::size_t(t) * w + s] || !lenslets.complete[std::size_t(h - 1 - t) * w + w - 1 - s]) continue;
+      if (!lenslets.complete[std::size_t(t) * w + s] || !lenslets.complete[std::size_t(h - 1 - t) * w + w - 1 - s])
+        continue;
       asTheyLie.add(view.at(s, t, 0), lenslets.means.at(s, t, 0));
       turned.add(view.at(w - 1 - s, h - 1 - t, 0), lenslets.means.at(s, t, 0));
     }
-  std::printf("[ decode  ] lfm-guv: centre view against the raw's lenslet means: correlation %.3f as they lie, "
-              "%.3f turned by 180 degrees\n",
-              asTheyLie.value(), turned.value());
+  std::printf(
+      "[ decode  ] lfm-guv: centre view against the raw's lenslet means: correlation %.3f as they lie, "
+      "%.3f turned by 180 degrees\n",
+      asTheyLie.value(), turned.value());
   EXPECT_GT(asTheyLie.value(), 0.85);
   EXPECT_GT(asTheyLie.value(), turned.value() + 0.1);
 }

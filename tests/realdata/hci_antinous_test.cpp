@@ -93,8 +93,8 @@ TEST_F(HciAntinous, RegionIsSharpestAtItsGroundTruthDisparity) {
     }
   ASSERT_GE(regions.size(), 2u);
   // The nearest and the farthest flat region: the hardest pair for a single focus.
-  auto [nearest, farthest] = std::minmax_element(regions.begin(), regions.end(),
-                                                 [](const Region& a, const Region& b) { return a.disparity > b.disparity; });
+  auto [nearest, farthest] = std::minmax_element(
+      regions.begin(), regions.end(), [](const Region& a, const Region& b) { return a.disparity > b.disparity; });
   const double ends[2] = {*lf.metadata.disparityMin, *lf.metadata.disparityMax};
   const Image atEnds[2] = {refocus(lf, ends[0]), refocus(lf, ends[1])};
   for (const Region* region : {&*nearest, &*farthest}) {
@@ -125,7 +125,8 @@ TEST_F(HciAntinous, FocusAtAPixelFindsItsGroundTruthDisparity) {
     for (int x = 24; x < 512 - 24; x += 16) {
       double lo = 1e9, hi = -1e9;
       for (int j = y - 4; j <= y + 4; ++j)
-        for (int i = x - 4; i <= x + 4; ++i) lo = std::min(lo, double(gt.at(i, j, 0))), hi = std::max(hi, double(gt.at(i, j, 0)));
+        for (int i = x - 4; i <= x + 4; ++i)
+          lo = std::min(lo, double(gt.at(i, j, 0))), hi = std::max(hi, double(gt.at(i, j, 0)));
       if (hi - lo < 0.05) points.push_back({x, y, test::laplacianVariance(centre, x - 4, y - 4, x + 5, y + 5)});
     }
   ASSERT_GE(points.size(), 6u);

@@ -35,10 +35,11 @@ TEST(HciAntinousDepth, ScoresAndAllInFocus) {
   ASSERT_TRUE(scores) << scores.error().message;
   long planar = 0;
   for (float p : planarMask(*truth).pixels()) planar += p != 0.0f;
-  std::printf("hci-antinous (held out): BadPix(0.07) %.2f %%, BadPix(0.03) %.2f %%, MSE x100 %.3f, bumpiness %.3f "
-              "on planes (%.1f %% of the image)\n",
-              scores->badPix007, scores->badPix003, scores->mse100, scores->bumpiness,
-              100.0 * double(planar) / double(truth->width() * truth->height()));
+  std::printf(
+      "hci-antinous (held out): BadPix(0.07) %.2f %%, BadPix(0.03) %.2f %%, MSE x100 %.3f, bumpiness %.3f "
+      "on planes (%.1f %% of the image)\n",
+      scores->badPix007, scores->badPix003, scores->mse100, scores->bumpiness,
+      100.0 * double(planar) / double(truth->width() * truth->height()));
   // Measured 6.8 % and 6.0 (the issue's goal of 7 %; 8.7 % and 11.8 with occlusionBand 0), 7.4 %
   // and 6.7 before issue 6's sixth round (defaults: defocus weight 0.75, filter epsilon 3e-5,
   // smoothness 0.7, median radius 5); 10.3 % and 10.3 before the cost volume aggregated each subset of views on its

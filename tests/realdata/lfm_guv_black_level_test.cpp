@@ -50,9 +50,10 @@ TEST(LfmGuvBlackLevel, TheDarkFramesMeanAsBlackLevelDecodesCloseToTheDarkFrame) 
   float peak = 0;
   for (const float value : byDark->samples()) peak = std::max(peak, value);
   const double levelFigure = psnr(*byLevel, *byDark, peak), noneFigure = psnr(*none, *byDark, peak);
-  std::printf("[ black   ] lfm-guv: dark frame mean %.1f DN; against the dark-frame decode: PSNR %.2f dB with that "
-              "black level, %.2f dB with none\n",
-              offset, levelFigure, noneFigure);
+  std::printf(
+      "[ black   ] lfm-guv: dark frame mean %.1f DN; against the dark-frame decode: PSNR %.2f dB with that "
+      "black level, %.2f dB with none\n",
+      offset, levelFigure, noneFigure);
   EXPECT_GT(offset, 1);
   EXPECT_GT(levelFigure, noneFigure + 10);
 }

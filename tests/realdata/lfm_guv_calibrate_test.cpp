@@ -67,14 +67,16 @@ TEST(LfmGuv, CalibratesTheRadiometryImage) {
       ++count;
     }
   const double rms = std::sqrt(sum / count);
-  std::printf("lfm-guv: %s %d x %d, pitch %.4f x %.4f px, rotation %.4f deg, origin (%.3f, %.3f); fit %d found, %d "
-              "used, residual RMS %.4f px, max %.4f px\n",
-              packingName(grid.packing), grid.columns, grid.rows, grid.pitchX, grid.pitchY,
-              grid.rotationRad * 180 / M_PI, grid.origin[0], grid.origin[1], grid.fit.lensletsFound,
-              grid.fit.lensletsUsed, grid.fit.rmsResidualPx, grid.fit.maxResidualPx);
-  std::printf("lfm-guv vs napari-LF: pitch %.4f x %.4f px there; centres differ by %.4f px RMS, mean offset (%.4f, "
-              "%.4f) px\n",
-              kReverse[0][1], kReverse[1][2], rms, sumX / count, sumY / count);
+  std::printf(
+      "lfm-guv: %s %d x %d, pitch %.4f x %.4f px, rotation %.4f deg, origin (%.3f, %.3f); fit %d found, %d "
+      "used, residual RMS %.4f px, max %.4f px\n",
+      packingName(grid.packing), grid.columns, grid.rows, grid.pitchX, grid.pitchY, grid.rotationRad * 180 / M_PI,
+      grid.origin[0], grid.origin[1], grid.fit.lensletsFound, grid.fit.lensletsUsed, grid.fit.rmsResidualPx,
+      grid.fit.maxResidualPx);
+  std::printf(
+      "lfm-guv vs napari-LF: pitch %.4f x %.4f px there; centres differ by %.4f px RMS, mean offset (%.4f, "
+      "%.4f) px\n",
+      kReverse[0][1], kReverse[1][2], rms, sumX / count, sumY / count);
   EXPECT_EQ(grid.packing, Packing::Square);
   EXPECT_NEAR(grid.pitchX, 15.4, 0.05);
   EXPECT_NEAR(grid.pitchY, 15.4, 0.05);

@@ -29,7 +29,8 @@ void addAnimateCommand(CLI::App& app, Job& job) {
     std::string output;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* command = app.add_subcommand("animate", "a looping GIF or an MP4 video: a focus pull or an orbit of the observer");
+  CLI::App* command =
+      app.add_subcommand("animate", "a looping GIF or an MP4 video: a focus pull or an orbit of the observer");
   addInputOptions(*command, options->input);
   auto* pull = command->add_flag("--focus-pull", options->focusPull, "sweep the focus through the scene and back");
   auto* orbit = command->add_flag("--orbit", options->orbit, "move the observer round a circle on the lens");
@@ -38,10 +39,12 @@ void addAnimateCommand(CLI::App& app, Job& job) {
                       "focus pull: FIRST:LAST slopes (default: the light field's disparity range, else -2:2)");
   command->add_option("--radius", options->radius, "orbit: radius in view steps (default: 80% of the lens)")
       ->check(CLI::NonNegativeNumber);
-  command->add_option("--frames", options->frames, "frames (a focus pull goes there and back)")->check(CLI::Range(2, 1000));
+  command->add_option("--frames", options->frames, "frames (a focus pull goes there and back)")
+      ->check(CLI::Range(2, 1000));
   command->add_option("--fps", options->fps, "frames per second")->check(CLI::Range(1, 100));
   command->add_option("-o,--output", options->output, "output .gif or .mp4 (with --stills: a folder)")->required();
-  auto* stills = command->add_flag("--stills", options->stills, "write the frames as images frame_NNN.EXT into the -o folder");
+  auto* stills =
+      command->add_flag("--stills", options->stills, "write the frames as images frame_NNN.EXT into the -o folder");
   command->add_option("--format", options->extension, "--stills: image format of the frames")
       ->check(CLI::IsMember({"png", "tif", "exr", "jpg", "pfm"}))
       ->needs(stills);
@@ -57,14 +60,16 @@ void addAnimateCommand(CLI::App& app, Job& job) {
       };
       std::optional<ImageWriteOptions> stillOptions;
       if (options->stills) {
-        LFCAM_ASSIGN_OR_RETURN(auto checked, imageWriteOptionsFor(std::filesystem::path(options->output) / frameName(0), options->depth));
+        LFCAM_ASSIGN_OR_RETURN(
+            auto checked, imageWriteOptionsFor(std::filesystem::path(options->output) / frameName(0), options->depth));
         stillOptions = checked;
       }
       std::optional<std::pair<double, double>> range;
       if (!options->slopes.empty()) {
         double a = 0, b = 0;
         char end = 0;
-        if (std::sscanf(options->slopes.c_str(), "%lf:%lf%c", &a, &b, &end) != 2 || !std::isfinite(a) || !std::isfinite(b))
+        if (std::sscanf(options->slopes.c_str(), "%lf:%lf%c", &a, &b, &end) != 2 || !std::isfinite(a) ||
+            !std::isfinite(b))
           return makeError(ErrorCode::Usage, "--slopes: expected FIRST:LAST, got '" + options->slopes + "'");
         range = std::pair{a, b};
       }
@@ -83,12 +88,12 @@ void addAnimateCommand(CLI::App& app, Job& job) {
           return {};
         }));
       } else {
-        const double radius =
-            options->radius.value_or(0.8 * 0.5 * (std::min(lightField.nu(), lightField.nv()) - 1));
+        const double radius = options->radius.value_or(0.8 * 0.5 * (std::min(lightField.nu(), lightField.nv()) - 1));
         for (int i = 0; i < options->frames; ++i) {
           const double angle = 2 * std::numbers::pi * i / options->frames;
-          LFCAM_ASSIGN_OR_RETURN(auto photo, observe(lightField, {.u = radius * std::cos(angle), .v = radius * std::sin(angle),
-                                             .clampToLens = true}));
+          LFCAM_ASSIGN_OR_RETURN(
+              auto photo,
+              observe(lightField, {.u = radius * std::cos(angle), .v = radius * std::sin(angle), .clampToLens = true}));
           frames.push_back(std::move(photo));
           bar(double(i + 1) / options->frames);
         }

@@ -3,13 +3,13 @@
 // warm-up, each time just after measuring the machine's memory-copy bandwidth (bytes read plus
 // bytes written per second, over buffers far larger than the caches), and prints the median
 // seconds per photograph, the median floor (the light field's bytes as stored, read once at that
-// bandwidth) and the median ratio of a photo's time to the floor measured just before it. Last, the fast method on one thread and on all, alternately, for
-// the scaling over threads; with
+// bandwidth) and the median ratio of a photo's time to the floor measured just before it. Last, the fast method on one
+// thread and on all, alternately, for the scaling over threads; with
 // --stack N, a focal stack of N slices per method first (fast, quadrature, fourier), timed whole
 // and reported per slice (fourier's 4D FFT included).
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <functional>
@@ -77,8 +77,10 @@ void addBenchCommand(CLI::App& app, Job& job) {
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("bench", "time the renderers against the memory-copy floor");
   addInputOptions(*command, options->input);
-  command->add_option("--repeat", options->repeat, "timed runs per method, after one warm-up")->check(CLI::Range(1, 1000));
-  command->add_flag("--json", options->json, "a JSON list of {method, seconds_per_photo, floor_seconds, ratio_to_floor}");
+  command->add_option("--repeat", options->repeat, "timed runs per method, after one warm-up")
+      ->check(CLI::Range(1, 1000));
+  command->add_flag("--json", options->json,
+                    "a JSON list of {method, seconds_per_photo, floor_seconds, ratio_to_floor}");
   command->add_flag("--no-fourier", options->noFourier,
                     "skip the Fourier slice method (its spectrum needs about 8x the light field's memory)");
   command->add_option("--stack", options->stack, "also time a focal stack of N slices per method (0: none)")
@@ -100,7 +102,11 @@ void addBenchCommand(CLI::App& app, Job& job) {
       const std::vector<Method> methods = {
           {"fast", [&]() -> Result<Image> { return refocus(lightField, slope); }},
           {"fast-aperture",
-           [&]() { return renderSyntheticPhoto(lightField, {.slope = slope, .aperture = Aperture::circle(0.25 * std::max(lightField.nu(), lightField.nv()))}); }},
+           [&]() {
+             return renderSyntheticPhoto(
+                 lightField,
+                 {.slope = slope, .aperture = Aperture::circle(0.25 * std::max(lightField.nu(), lightField.nv()))});
+           }},
           {"quadrature",
            [&]() {
              return renderSyntheticPhoto(lightField, {.slope = slope},
@@ -115,8 +121,8 @@ void addBenchCommand(CLI::App& app, Job& job) {
                            {"floor_seconds", timing.floorSeconds},
                            {"ratio_to_floor", timing.ratio}});
         if (!options->json)
-          std::printf("%-16s %9.2f ms per %-5s  floor %7.2f ms  %6.2fx floor\n", name.c_str(), timing.seconds * 1e3, unit,
-                      timing.floorSeconds * 1e3, timing.ratio);
+          std::printf("%-16s %9.2f ms per %-5s  floor %7.2f ms  %6.2fx floor\n", name.c_str(), timing.seconds * 1e3,
+                      unit, timing.floorSeconds * 1e3, timing.ratio);
         return results.back();
       };
       if (!options->json)

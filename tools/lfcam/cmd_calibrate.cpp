@@ -37,7 +37,9 @@ void addCalibrateCommand(CLI::App& app, Job& job) {
       CalibrationOptions calibration;
       if (!options->bayer.empty()) {
         const auto filter = parseColorFilterName(options->bayer);
-        if (!filter) return makeError(ErrorCode::Usage, "--bayer: " + options->bayer + ": expected RGGB, BGGR, GRBG, GBRG or mono");
+        if (!filter)
+          return makeError(ErrorCode::Usage,
+                           "--bayer: " + options->bayer + ": expected RGGB, BGGR, GRBG, GBRG or mono");
         calibration.colorFilter = *filter;
       }
       if (options->pinhole) calibration.target = CalibrationTarget::Pinhole;
@@ -53,7 +55,8 @@ void addCalibrateCommand(CLI::App& app, Job& job) {
       const LensletGrid& g = grid;
       std::printf("%s grid, %d x %d microlenses; pitch %.4f x %.4f px; rotation %.4f deg; origin (%.3f, %.3f) px%s\n",
                   packingName(g.packing), g.columns, g.rows, g.pitchX, g.pitchY, g.rotationRad * 180.0 / M_PI,
-                  g.origin[0], g.origin[1], g.packing == Packing::Hexagonal ? (g.hexParity ? ", row 0 shifted" : ", row 1 shifted") : "");
+                  g.origin[0], g.origin[1],
+                  g.packing == Packing::Hexagonal ? (g.hexParity ? ", row 0 shifted" : ", row 1 shifted") : "");
       std::printf("fit: %d centres found, %d used; residual RMS %.4f px, max %.4f px\n", g.fit.lensletsFound,
                   g.fit.lensletsUsed, g.fit.rmsResidualPx, g.fit.maxResidualPx);
       return {};

@@ -19,9 +19,13 @@ void addConvertCommand(CLI::App& app, Job& job) {
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("convert", "convert a light field to another format");
   addInputOptions(*command, options->input);
-  command->add_option("-o,--output", options->output, "output: NAME.lf.h5, a folder, or a lenslet image (.png, .tif, .exr)")
+  command
+      ->add_option("-o,--output", options->output,
+                   "output: NAME.lf.h5, a folder, or a lenslet image (.png, .tif, .exr)")
       ->required();
-  command->add_option("--layout", options->layout, "write a view folder in this layout (default: chosen by the output name, HCI for folders)")
+  command
+      ->add_option("--layout", options->layout,
+                   "write a view folder in this layout (default: chosen by the output name, HCI for folders)")
       ->check(CLI::IsMember({"hci", "rowcol"}));
   command->add_option("--format", options->extension, "image format of a folder's views")
       ->check(CLI::IsMember({"png", "tif", "exr"}));
@@ -34,7 +38,8 @@ void addConvertCommand(CLI::App& app, Job& job) {
       LightFieldWriteOptions writeOptions{.sampleType = sampleTypeOfDepth(options->depth),
                                           .viewExtension = "." + options->extension};
       if (options->layout)
-        writeOptions.format = *options->layout == "rowcol" ? LightFieldFormat::RowColumnFolder : LightFieldFormat::HciFolder;
+        writeOptions.format =
+            *options->layout == "rowcol" ? LightFieldFormat::RowColumnFolder : LightFieldFormat::HciFolder;
       ProgressBar bar("writing " + options->output);
       return writeLightField(options->output, lightField, writeOptions, [&](double f) { bar(f); });
     };

@@ -15,11 +15,13 @@ void addDecodeCommand(CLI::App& app, Job& job) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("decode", "decode a raw lenslet image into a light field");
-  command->add_option("RAW", options->input.raw, "raw lenslet image: PNG/TIFF, Lytro .lfp/.lfr, camera raw")->required();
+  command->add_option("RAW", options->input.raw, "raw lenslet image: PNG/TIFF, Lytro .lfp/.lfr, camera raw")
+      ->required();
   command->add_option("--white", options->input.white, "white image of the same camera (devignetting, weights)");
   command->add_option("--dark", options->input.dark, "dark frame, subtracted instead of the black level");
   addBlackLevelOption(*command, options->input.blackLevel);
-  command->add_option("--grid", options->input.grid, "grid.json from lfcam calibrate (default: calibrate the white image)");
+  command->add_option("--grid", options->input.grid,
+                      "grid.json from lfcam calibrate (default: calibrate the white image)");
   command->add_option("--bayer", options->bayer, "colour filter of a PNG/TIFF raw: RGGB, BGGR, GRBG, GBRG or mono");
   addDecodeMethodOptions(*command, options->input.decode);
   command->add_option("--views", options->input.decode.views, "views across (default: the microlens pitch, rounded)")

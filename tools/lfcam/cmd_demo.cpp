@@ -11,8 +11,8 @@
 
 #include "commands.hpp"
 #include "lfcam/all_in_focus.hpp"
-#include "lfcam/calibrate.hpp"
 #include "lfcam/atomic_file.hpp"
+#include "lfcam/calibrate.hpp"
 #include "lfcam/colour_map.hpp"
 #include "lfcam/contact_sheet.hpp"
 #include "lfcam/depth.hpp"
@@ -31,7 +31,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 // Photographs next to each other, `gap` pixels apart on a dark background.
 Image sideBySide(const std::vector<const Image*>& images, int gap) {
   int width = gap * int(images.size() - 1), height = 0;
@@ -41,8 +40,7 @@ Image sideBySide(const std::vector<const Image*>& images, int gap) {
   int x0 = 0;
   for (const Image* image : images) {
     for (int c = 0; c < row.channels(); ++c)
-      for (int y = 0; y < image->height(); ++y)
-        std::copy_n(image->row(y, c), image->width(), row.row(y, c) + x0);
+      for (int y = 0; y < image->height(); ++y) std::copy_n(image->row(y, c), image->width(), row.row(y, c) + x0);
     x0 += image->width() + gap;
   }
   return row;
@@ -98,13 +96,15 @@ Status captureWithTheCamera(const fs::path& out) {
   LFCAM_ASSIGN_OR_RETURN(auto white, readRaw(folder / "white.png"));
   LFCAM_ASSIGN_OR_RETURN(auto grid, calibrateGrid(white, CalibrationOptions{}, (folder / "white.png").string()));
   LFCAM_TRY(writeGrid(folder / "grid.json", grid));
-  LFCAM_ASSIGN_OR_RETURN(auto decoded, decodeRawInput({.raw = (folder / "raw.png").string(), .white = (folder / "white.png").string(),
-                                 .grid = (folder / "grid.json").string()}));
+  LFCAM_ASSIGN_OR_RETURN(auto decoded, decodeRawInput({.raw = (folder / "raw.png").string(),
+                                                       .white = (folder / "white.png").string(),
+                                                       .grid = (folder / "grid.json").string()}));
   LFCAM_TRY(writeLightField(folder / "decoded.lf.h5", decoded));
   for (double slope : kCameraSlopes) LFCAM_TRY(writeImage(out / cameraSlopeName(slope), refocus(decoded, slope)));
-  std::printf("  simulated the plenoptic camera, calibrated its microlens grid (%dx%d, pitch %.3f px, fit rms %.3f px)\n"
-              "  and decoded its raw image -> camera/ (raw.png, white.png, grid.json, decoded.lf.h5)\n",
-              grid.columns, grid.rows, grid.pitchX, grid.fit.rmsResidualPx);
+  std::printf(
+      "  simulated the plenoptic camera, calibrated its microlens grid (%dx%d, pitch %.3f px, fit rms %.3f px)\n"
+      "  and decoded its raw image -> camera/ (raw.png, white.png, grid.json, decoded.lf.h5)\n",
+      grid.columns, grid.rows, grid.pitchX, grid.fit.rmsResidualPx);
   return {};
 }
 
@@ -145,7 +145,8 @@ decoded light field.</p>
 )";
   for (double slope : kCameraSlopes)
     html << "<figure><img src=\"" << cameraSlopeName(slope)
-         << "\" style=\"width:300px\"><figcaption>the decoded light field refocused at slope " << slope << "</figcaption></figure>\n";
+         << "\" style=\"width:300px\"><figcaption>the decoded light field refocused at slope " << slope
+         << "</figcaption></figure>\n";
   html << R"(<h2>All sub-aperture views</h2>
 <div class="sheet"><img src="contact-sheet.png"></div>
 <p>The light field itself: <code>lightfield.lf.h5</code> (HDF5), its views in <code>views/</code>.

@@ -35,9 +35,13 @@ void addDepthCommand(CLI::App& app, Job& job) {
                       "settings from a JSON object of NAME: number, NAME any setting below; the flags win");
   for (const DepthKnob& knob : depthKnobs()) {
     const std::string flag = std::string("--") + knob.name, help = std::string(knob.stage) + ": " + knob.help;
-    std::visit([&](auto member) { command->add_option(flag, options->flags.*member, help)->capture_default_str()
-                                      ->check(CLI::Range(knob.min, knob.max)); },
-               knob.member);
+    std::visit(
+        [&](auto member) {
+          command->add_option(flag, options->flags.*member, help)
+              ->capture_default_str()
+              ->check(CLI::Range(knob.min, knob.max));
+        },
+        knob.member);
   }
   command->callback([options, command, &job] {
     job = [options, command]() -> Status {

@@ -45,8 +45,7 @@ void addEdofCommand(CLI::App& app, Job& job) {
       if (!result) return makeError(result.error().code, options->input.path + ": " + result.error().message);
       LFCAM_TRY(writeImage(options->output, result->photo, writeOptions));
       if (!options->labels.empty())
-        LFCAM_TRY(writeImage(options->labels,
-                             colourMap(result->slope, result->slopes.front(), result->slopes.back())));
+        LFCAM_TRY(writeImage(options->labels, colourMap(result->slope, result->slopes.front(), result->slopes.back())));
       return {};
     };
   });

@@ -17,7 +17,8 @@ void addExperimentCommand(CLI::App& app, Job& job) {
   std::string names;
   for (const auto& n : experimentNames()) names += (names.empty() ? "" : ", ") + n;
   command->add_option("name", options->name, "the experiment: " + names)->required();
-  command->add_option("-o,--output", options->output, "report folder (report.md, report.html, results.json, ...)")->required();
+  command->add_option("-o,--output", options->output, "report folder (report.md, report.html, results.json, ...)")
+      ->required();
   command->add_flag("--quick", options->quick, "reduced size: seconds instead of minutes (for tests)");
   command->callback([options, &job] {
     job = [options]() -> Status {

@@ -43,9 +43,10 @@ void printText(const std::string& path, const LightFieldInfo& info) {
   if (meta.disparityMin && meta.disparityMax)
     std::printf("  disparity range: %g to %g pixels per view step\n", *meta.disparityMin, *meta.disparityMax);
   if (meta.optics)
-    std::printf("  optics: view step %g mm on the lens, sample step %g mm on the microlens plane, lens to "
-                "microlenses %g mm\n",
-                meta.optics->lensStepMm, meta.optics->spatialStepMm, meta.optics->lensToMicrolensMm);
+    std::printf(
+        "  optics: view step %g mm on the lens, sample step %g mm on the microlens plane, lens to "
+        "microlenses %g mm\n",
+        meta.optics->lensStepMm, meta.optics->spatialStepMm, meta.optics->lensToMicrolensMm);
   if (!meta.source.empty()) std::printf("  source: %s\n", meta.source.c_str());
 }
 

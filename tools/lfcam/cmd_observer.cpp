@@ -34,8 +34,9 @@ void addObserverCommand(CLI::App& app, Job& job) {
       if (options->beta != 1) {
         const auto& optics = lightField.metadata.optics;
         if (!optics)
-          return makeError(ErrorCode::Usage,
-                           options->input.path + ": no optics metadata, so the observer cannot move along the axis (--beta)");
+          return makeError(
+              ErrorCode::Usage,
+              options->input.path + ": no optics metadata, so the observer cannot move along the axis (--beta)");
         observer.parallax = optics->lensStepMm / optics->spatialStepMm;
       }
       LFCAM_ASSIGN_OR_RETURN(auto photo, observe(lightField, observer));

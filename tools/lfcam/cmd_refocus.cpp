@@ -25,9 +25,10 @@ void addRefocusCommand(CLI::App& app, Job& job) {
   addInputOptions(*command, options->input);
   auto* slope = command->add_option("--slope", options->slope,
                                     "disparity brought into focus, pixels per view step (HCI convention)");
-  auto* alpha = command->add_option("--alpha", options->alpha,
-                                    "relative depth of the synthetic film plane (needs optics metadata)")
-                    ->check(CLI::PositiveNumber);
+  auto* alpha =
+      command
+          ->add_option("--alpha", options->alpha, "relative depth of the synthetic film plane (needs optics metadata)")
+          ->check(CLI::PositiveNumber);
   auto* focusAt = command->add_option("--focus-at", options->focusAt,
                                       "focus where image point X,Y (pixels) is sharpest; prints the slope chosen");
   slope->excludes(alpha);

@@ -57,8 +57,8 @@ void addScoreCommand(CLI::App& app, Job& job) {
       if (!options->mask.empty()) {
         LFCAM_ASSIGN_OR_RETURN(auto mask, readImage(options->mask));
         if (mask.width() != truth.width() || mask.height() != truth.height())
-          return makeError(ErrorCode::Usage, options->mask + ": the mask is " + sizeOf(mask) +
-                                                 " but the ground truth " + sizeOf(truth));
+          return makeError(ErrorCode::Usage,
+                           options->mask + ": the mask is " + sizeOf(mask) + " but the ground truth " + sizeOf(truth));
         planes = Image(mask.width(), mask.height(), 1);
         for (int y = 0; y < mask.height(); ++y)
           for (int x = 0; x < mask.width(); ++x) planes.at(x, y, 0) = mask.at(x, y, 0);
@@ -67,17 +67,18 @@ void addScoreCommand(CLI::App& app, Job& job) {
       if (!scores) return makeError(scores.error().code, options->truth + ": " + scores.error().message);
       const std::string planesFrom = options->mask.empty() ? "the ground truth's planes" : options->mask;
       if (options->json) {
-        const nlohmann::json json = {{"disparity", options->estimate}, {"truth", options->truth},
+        const nlohmann::json json = {{"disparity", options->estimate},   {"truth", options->truth},
                                      {"badpix_0.01", scores->badPix001}, {"badpix_0.03", scores->badPix003},
                                      {"badpix_0.07", scores->badPix007}, {"mse_x100", scores->mse100},
                                      {"bumpiness", scores->bumpiness},   {"planes", planesFrom},
                                      {"border", options->border},        {"pixels", scores->pixels}};
         std::printf("%s\n", json.dump(2).c_str());
       } else {
-        std::printf("BadPix(0.01)  %7.2f %%\nBadPix(0.03)  %7.2f %%\nBadPix(0.07)  %7.2f %%\nMSE x100      %7.3f\n"
-                    "Bumpiness     %7.3f   (on %s)\npixels        %7ld   (%d-pixel border left out)\n",
-                    scores->badPix001, scores->badPix003, scores->badPix007, scores->mse100, scores->bumpiness,
-                    planesFrom.c_str(), scores->pixels, options->border);
+        std::printf(
+            "BadPix(0.01)  %7.2f %%\nBadPix(0.03)  %7.2f %%\nBadPix(0.07)  %7.2f %%\nMSE x100      %7.3f\n"
+            "Bumpiness     %7.3f   (on %s)\npixels        %7ld   (%d-pixel border left out)\n",
+            scores->badPix001, scores->badPix003, scores->badPix007, scores->mse100, scores->bumpiness,
+            planesFrom.c_str(), scores->pixels, options->border);
       }
       return {};
     };

@@ -24,21 +24,24 @@ void addSimulateCommand(CLI::App& app, Job& job) {
       "simulate", "capture a scene with a simulated plenoptic (or conventional) camera, traced ray by ray");
   command->add_option("scene", options->scene, "scene file (.json) or built-in: people, chart, pinhole, white")
       ->required();
-  command->add_option("-o,--output", options->output,
-                      "output folder: raw.png, white.png, camera.json, depth.pfm, ideal.lf.h5")
+  command
+      ->add_option("-o,--output", options->output,
+                   "output folder: raw.png, white.png, camera.json, depth.pfm, ideal.lf.h5")
       ->required();
   command->add_option("--f-number", options->fNumber, "main-lens f-number (focal length / aperture)")
       ->check(CLI::Range(0.5, 1000.0));
-  command->add_option("--image-f-number", options->imageFNumber,
-                      "set the aperture so that the image-side f-number is this (section 3.2)")
+  command
+      ->add_option("--image-f-number", options->imageFNumber,
+                   "set the aperture so that the image-side f-number is this (section 3.2)")
       ->check(CLI::Range(0.5, 1000.0))
       ->excludes("--f-number");
   command->add_option("--focus-mm", options->focusMm, "focus distance of the main lens, mm")
       ->check(CLI::PositiveNumber);
   command->add_option("--size", options->size, "sensor pixels across and down (the paper: 4000)")
       ->check(CLI::Range(8, 20000));
-  command->add_option("--pixels-per-lens", options->pixelsPerLens,
-                      "microlens pitch in sensor pixels (keeps the microlens f-number)")
+  command
+      ->add_option("--pixels-per-lens", options->pixelsPerLens,
+                   "microlens pitch in sensor pixels (keeps the microlens f-number)")
       ->check(CLI::Range(1.0, 1000.0));
   command->add_flag("--hexagonal", options->hexagonal, "hexagonal microlens packing");
   command->add_option("--samples", options->samples, "ray samples per pixel (rounded up to a square)")
@@ -49,9 +52,10 @@ void addSimulateCommand(CLI::App& app, Job& job) {
   command->add_option("--noise", options->noise, "photon and read noise")->check(CLI::IsMember({"on", "off"}));
   command->add_option("--raw-format", options->rawFormat, "raw and white image format")
       ->check(CLI::IsMember({"png", "tiff"}));
-  command->add_option("--container", options->container,
-                      "also write the raw as a Lytro container: lfp (first generation: raw.lfp) or lfr (Illum: "
-                      "raw.lfr, white.lfr)")
+  command
+      ->add_option("--container", options->container,
+                   "also write the raw as a Lytro container: lfp (first generation: raw.lfp) or lfr (Illum: "
+                   "raw.lfr, white.lfr)")
       ->check(CLI::IsMember({"lfp", "lfr"}));
   command->add_flag("--no-white", options->noWhite, "skip white.png");
   command->add_flag("--no-ground-truth", options->noGroundTruth, "skip depth.pfm and ideal.lf.h5");
@@ -99,7 +103,8 @@ void addSimulateCommand(CLI::App& app, Job& job) {
       ProgressBar bar("simulating " + o.scene);
       LFCAM_TRY(writeSimulation(o.output, scene, camera, simulation, outputs, [&](double f) { bar(f); }));
       if (o.container.empty()) return {};
-      return writeSimulationContainers(o.output, o.container == "lfp" ? LytroStyle::FirstGeneration : LytroStyle::Illum);
+      return writeSimulationContainers(o.output,
+                                       o.container == "lfp" ? LytroStyle::FirstGeneration : LytroStyle::Illum);
     };
   });
 }

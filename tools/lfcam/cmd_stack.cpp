@@ -39,13 +39,15 @@ void addStackCommand(CLI::App& app, Job& job) {
       if (options->slopes.empty() == options->alphas.empty())
         return makeError(ErrorCode::Usage, "stack: give the depths with --slopes or --alphas");
       LFCAM_ASSIGN_OR_RETURN(auto values, parseRange(options->slopes.empty() ? options->alphas : options->slopes,
-                               options->slopes.empty() ? "--alphas" : "--slopes"));
+                                                     options->slopes.empty() ? "--alphas" : "--slopes"));
       const auto sliceName = [&](int index) {
         char name[64];
         std::snprintf(name, sizeof name, "slice_%03d.%s", index, options->extension.c_str());
         return std::string(name);
       };
-      LFCAM_ASSIGN_OR_RETURN(auto writeOptions, imageWriteOptionsFor(std::filesystem::path(options->output) / sliceName(0), options->depth));
+      LFCAM_ASSIGN_OR_RETURN(
+          auto writeOptions,
+          imageWriteOptionsFor(std::filesystem::path(options->output) / sliceName(0), options->depth));
       LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
       LFCAM_ASSIGN_OR_RETURN(auto camera, cameraFrom(options->camera, lightField, options->input.path));
       std::vector<double> slopeValues = values;
@@ -64,14 +66,14 @@ void addStackCommand(CLI::App& app, Job& job) {
       return writeFolderAtomically(options->output, [&](const std::filesystem::path& folder) -> Status {
         nlohmann::json slices = nlohmann::json::array();
         LFCAM_TRY(renderSlopes(lightField, options->camera, camera.first, camera.second, slopeValues,
-                                     [&](int index, double slope, Image&& photo) -> Status {
-                                     const std::string name = sliceName(index);
-                                     nlohmann::json slice{{"file", name}, {"slope", slope}};
-                                     if (optics) slice["alpha"] = optics->alphaFromSlope(slope);
-                                     slices.push_back(slice);
-                                     bar(double(index + 1) / double(slopeValues.size()));
-                                     return writeImage(folder / name, photo, writeOptions);
-                                   }));
+                               [&](int index, double slope, Image&& photo) -> Status {
+                                 const std::string name = sliceName(index);
+                                 nlohmann::json slice{{"file", name}, {"slope", slope}};
+                                 if (optics) slice["alpha"] = optics->alphaFromSlope(slope);
+                                 slices.push_back(slice);
+                                 bar(double(index + 1) / double(slopeValues.size()));
+                                 return writeImage(folder / name, photo, writeOptions);
+                               }));
         std::ofstream out(folder / "stack.json");
         out << nlohmann::json{{"slices", slices}}.dump(2) << "\n";
         if (!out) return makeError(ErrorCode::Io, (folder / "stack.json").string() + ": cannot write");

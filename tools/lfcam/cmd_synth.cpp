@@ -19,8 +19,7 @@ void addSynthCommand(CLI::App& app, Job& job) {
   auto options = std::make_shared<Options>();
   CLI::App* command =
       app.add_subcommand("synth", "make a layered-planes light field with exact ground-truth disparity");
-  command->add_option("-o,--output", options->output, "output light field (.lf.h5, folder, lenslet image)")
-      ->required();
+  command->add_option("-o,--output", options->output, "output light field (.lf.h5, folder, lenslet image)")->required();
   command->add_option("--views", options->views, "views across and down")->check(CLI::Range(1, 64));
   command->add_option("--size", options->size, "pixels across and down each view: W (square) or W H")
       ->expected(1, 2)
@@ -29,8 +28,8 @@ void addSynthCommand(CLI::App& app, Job& job) {
   command->add_option("--disparity", options->disparity, "also write the ground-truth disparity (.pfm)");
   command->callback([options, &job] {
     job = [options]() -> Status {
-      const LayeredPlanesScene scene = defaultLayeredPlanesScene(options->views, options->size.front(), options->seed,
-                                                                          options->size.back());
+      const LayeredPlanesScene scene =
+          defaultLayeredPlanesScene(options->views, options->size.front(), options->seed, options->size.back());
       LayeredPlanesLightField result = [&] {
         ProgressBar bar("making the light field");
         return renderLayeredPlanes(scene, [&](double f) { bar(f); });

@@ -24,16 +24,18 @@ const std::map<std::string, std::string>& examples() {
       {"demo", "lfcam demo -o lfcam-demo"},
       {"simulate", "lfcam simulate people --size 1000 -o people-capture"},
       {"depth", "lfcam depth ../shared/data/hci-antinous -o antinous.pfm --png antinous-depth.png"},
-      {"score", "lfcam score ../shared/data/hci-antinous/gt_disp_lowres.pfm "
-                "../shared/data/hci-antinous/gt_disp_lowres.pfm --json"},
+      {"score",
+       "lfcam score ../shared/data/hci-antinous/gt_disp_lowres.pfm "
+       "../shared/data/hci-antinous/gt_disp_lowres.pfm --json"},
       {"edof", "lfcam edof ../shared/data/lytro-f01-flower -o flower-all-in-focus.png"},
       {"extract", "lfcam extract ../shared/data/lytro-lfp/IMG_0002-dm.lfp -o img0002-dm"},
       {"view", "lfcam view ../shared/data/lytro-f01-flower --port 8080"},
       {"export-html", "lfcam export-html ../shared/data/lytro-f01-flower -o flower.html"},
       {"experiment", "lfcam experiment sharpness-vs-n --quick -o sharpness-report"},
-      {"decode", "lfcam decode ../shared/data/lfm-guv/Lightfield_GUVExperim1.tif "
-                 "--white ../shared/data/lfm-guv/Radiometry_GUVExperim1.tif "
-                 "--dark ../shared/data/lfm-guv/DarkFrame_GUVExperim1.tif -o guv.lf.h5"},
+      {"decode",
+       "lfcam decode ../shared/data/lfm-guv/Lightfield_GUVExperim1.tif "
+       "--white ../shared/data/lfm-guv/Radiometry_GUVExperim1.tif "
+       "--dark ../shared/data/lfm-guv/DarkFrame_GUVExperim1.tif -o guv.lf.h5"},
       {"calibrate", "lfcam calibrate ../shared/data/lfm-guv/Radiometry_GUVExperim1.tif -o guv-grid.json"},
   };
   return table;

@@ -47,9 +47,9 @@ struct InputOptions {
   std::string path;
   std::optional<int> lensletViews;
   ViewNumberOrder viewOrder = ViewNumberOrder::Auto;
-  std::string white, dark, grid;  // a raw lenslet image, decoded on the way when --white is given
+  std::string white, dark, grid;     // a raw lenslet image, decoded on the way when --white is given
   std::optional<double> blackLevel;  // its --black-level, DN
-  DecodeOptions decode;           // its --demosaic and --sampling (the rest is filled in on the way)
+  DecodeOptions decode;              // its --demosaic and --sampling (the rest is filled in on the way)
   LightFieldReadOptions readOptions() const { return {.lensletViews = lensletViews, .viewNumberOrder = viewOrder}; }
 };
 void addInputOptions(CLI::App& command, InputOptions& input);

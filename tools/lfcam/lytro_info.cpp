@@ -13,25 +13,28 @@ Status printLytroInfo(const std::string& path, bool asJson) {
   if (asJson) {
     nlohmann::json sections = nlohmann::json::array();
     for (const LytroItem& item : contents.items) {
-      nlohmann::json s = {{"type", lytroSectionKindName(item.section->kind)}, {"name", item.section->name},
-                          {"offset", item.section->offset}, {"bytes", item.section->payload.size()},
-                          {"kind", lytroItemKindName(item.kind)}, {"role", item.role}};
+      nlohmann::json s = {{"type", lytroSectionKindName(item.section->kind)},
+                          {"name", item.section->name},
+                          {"offset", item.section->offset},
+                          {"bytes", item.section->payload.size()},
+                          {"kind", lytroItemKindName(item.kind)},
+                          {"role", item.role}};
       if (item.width) s["size"] = {item.width, item.height};
       if (item.lambda) s["lambda"] = *item.lambda;
       sections.push_back(s);
     }
-    const nlohmann::json out = {{"path", path}, {"format", "lytro-container"}, {"sections", sections},
-                                {"summary", contents.summary}};
+    const nlohmann::json out = {
+        {"path", path}, {"format", "lytro-container"}, {"sections", sections}, {"summary", contents.summary}};
     std::printf("%s\n", out.dump(2).c_str());
     return {};
   }
   std::printf("%s: Lytro container, %zu sections\n", path.c_str(), container.sections.size());
   if (contents.summary.contains("frame")) {
     const nlohmann::json& f = contents.summary["frame"];
-    std::printf("  frame: %s%s%d x %d, %d-bit, %s, black %g, white %g\n",
-                f.value("camera", "").c_str(), f.contains("camera") ? ", " : "", f["sensor"][0].get<int>(),
-                f["sensor"][1].get<int>(), f["bits_per_pixel"].get<int>(), f["bayer"].get<std::string>().c_str(),
-                f["black_level"].get<double>(), f["white_level"].get<double>());
+    std::printf("  frame: %s%s%d x %d, %d-bit, %s, black %g, white %g\n", f.value("camera", "").c_str(),
+                f.contains("camera") ? ", " : "", f["sensor"][0].get<int>(), f["sensor"][1].get<int>(),
+                f["bits_per_pixel"].get<int>(), f["bayer"].get<std::string>().c_str(), f["black_level"].get<double>(),
+                f["white_level"].get<double>());
     if (f.contains("lenslet"))
       std::printf("  microlenses: %s, pitch %.4f px, rotation %.6f rad, offset (%.3f, %.3f) px\n",
                   f["lenslet"]["packing"].get<std::string>().c_str(), f["lenslet"]["pitch_px"].get<double>(),

@@ -10,9 +10,10 @@
 
 int main(int argc, char** argv) {
   using namespace lfcam;
-  CLI::App app{"lfcam: light-field photography after Ng et al. 2005, \"Light Field Photography with a "
-               "Hand-held Plenoptic Camera\"",
-               "lfcam"};
+  CLI::App app{
+      "lfcam: light-field photography after Ng et al. 2005, \"Light Field Photography with a "
+      "Hand-held Plenoptic Camera\"",
+      "lfcam"};
   app.require_subcommand(0, 1);
   app.set_version_flag("--version", "lfcam 0.1.0");
   int threads = 0;

@@ -18,7 +18,8 @@ namespace {
 // The optics of a simulator capture, from the camera.json that readRaw keeps as metadata.
 std::optional<Optics> opticsFromMetadata(const nlohmann::json& metadata) {
   if (!metadata.is_object()) return std::nullopt;
-  const nlohmann::json lf = metadata.value("light_field", nlohmann::json()), lens = metadata.value("main_lens", nlohmann::json());
+  const nlohmann::json lf = metadata.value("light_field", nlohmann::json()),
+                       lens = metadata.value("main_lens", nlohmann::json());
   auto number = [](const nlohmann::json& o, const char* key) {
     return o.is_object() && o.contains(key) && o[key].is_number() ? o[key].get<double>() : 0.0;
   };
@@ -35,25 +36,29 @@ std::optional<Optics> opticsFromMetadata(const nlohmann::json& metadata) {
 
 void addDecodeMethodOptions(CLI::App& command, DecodeOptions& decode) {
   command.add_option("--demosaic", decode.demosaic, "mhc (default), ha (Hamilton-Adams), lenslet or lightfield")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, DemosaicMethod>{
-          {"mhc", DemosaicMethod::MalvarHeCutler}, {"ha", DemosaicMethod::HamiltonAdams}, {"lenslet", DemosaicMethod::LensletAware},
-          {"lightfield", DemosaicMethod::LightFieldAware}}));
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, DemosaicMethod>{{"mhc", DemosaicMethod::MalvarHeCutler},
+                                                {"ha", DemosaicMethod::HamiltonAdams},
+                                                {"lenslet", DemosaicMethod::LensletAware},
+                                                {"lightfield", DemosaicMethod::LightFieldAware}}));
   command.add_option("--sampling", decode.sampling, "subpixel (default) or integral (the paper's)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, Sampling>{{"subpixel", Sampling::SubPixel}, {"integral", Sampling::IntegralPitch}}));
 }
 
 void addBlackLevelOption(CLI::App& command, std::optional<double>& blackLevel) {
-  command.add_option("--black-level", blackLevel,
-                     "black level (camera offset) in DN of the raw file, e.g. 64 of a 16-bit PNG/TIFF; default: "
-                     "what the file says (camera.json, TIFF BlackLevel tag, camera raw), else 0; not used when a "
-                     "--dark frame is given (it wins)")
+  command
+      .add_option("--black-level", blackLevel,
+                  "black level (camera offset) in DN of the raw file, e.g. 64 of a 16-bit PNG/TIFF; default: "
+                  "what the file says (camera.json, TIFF BlackLevel tag, camera raw), else 0; not used when a "
+                  "--dark frame is given (it wins)")
       ->check(CLI::Validator(
           [](const std::string& text) {
             char* end = nullptr;
             const double value = std::strtod(text.c_str(), &end);
-            return *end == 0 && value >= 0 && std::isfinite(value) ? std::string()
-                                                                   : "expected a number of DN of at least 0, got " + text;
+            return *end == 0 && value >= 0 && std::isfinite(value)
+                       ? std::string()
+                       : "expected a number of DN of at least 0, got " + text;
           },
           "DN"));
 }
@@ -83,13 +88,14 @@ Result<LightField> decodeRawInput(RawDecodeInput input) {
     input.decode.white = &white;
   }
   // Checked here as well as in decodeLightField, so that the message names the file that is wrong.
-  for (const auto& [file, image, what] : {std::tuple{&input.dark, &dark, "dark frame"}, std::tuple{&input.white, &white, "white image"}}) {
+  for (const auto& [file, image, what] :
+       {std::tuple{&input.dark, &dark, "dark frame"}, std::tuple{&input.white, &white, "white image"}}) {
     const Image& mosaic = image->mosaic;
     if (file->empty() || (mosaic.width() == raw.mosaic.width() && mosaic.height() == raw.mosaic.height())) continue;
     return makeError(ErrorCode::Usage, *file + ": " + what + " of " + std::to_string(mosaic.width()) + "x" +
                                            std::to_string(mosaic.height()) + " pixels does not match the raw's " +
-                                           std::to_string(raw.mosaic.width()) + "x" + std::to_string(raw.mosaic.height()) +
-                                           " (" + input.raw + ")");
+                                           std::to_string(raw.mosaic.width()) + "x" +
+                                           std::to_string(raw.mosaic.height()) + " (" + input.raw + ")");
   }
   bar(0.2);
   LensletGrid grid;
@@ -97,7 +103,8 @@ Result<LightField> decodeRawInput(RawDecodeInput input) {
     LFCAM_ASSIGN_OR_RETURN(auto read, readGrid(input.grid));
     grid = read;
   } else {
-    if (input.white.empty()) return makeError(ErrorCode::Usage, input.raw + ": decoding needs --grid or a --white image to calibrate from");
+    if (input.white.empty())
+      return makeError(ErrorCode::Usage, input.raw + ": decoding needs --grid or a --white image to calibrate from");
     LFCAM_ASSIGN_OR_RETURN(auto calibrated, calibrateGrid(white, CalibrationOptions{}, input.white));
     grid = calibrated;
   }

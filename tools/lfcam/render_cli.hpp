@@ -52,21 +52,24 @@ struct CameraOptions {
 };
 
 inline void addCameraOptions(CLI::App& command, CameraOptions& options) {
-  command.add_option("--aperture", options.radius,
-                     "synthetic aperture radius in view steps (0: one view; default: the whole lens)")
+  command
+      .add_option("--aperture", options.radius,
+                  "synthetic aperture radius in view steps (0: one view; default: the whole lens)")
       ->check(CLI::NonNegativeNumber);
   command.add_option("--aperture-shape", options.shape, "circle or square (half side = R)")
       ->check(CLI::IsMember({"circle", "square"}));
   command.add_option("--aperture-center", options.centre, "aperture centre U,V in view steps from the centre view");
   command.add_option("--aperture-mask", options.mask,
                      "image laid over the whole lens whose brightness weights each view (white: full weight)");
-  command.add_option("--method", options.method,
-                     "fast (shift-and-add of the views), quadrature (aperture supersampled, for large "
-                     "refocus distances) or fourier (Fourier slice: one 4D FFT, then fast per photo; full "
-                     "aperture only)")
+  command
+      .add_option("--method", options.method,
+                  "fast (shift-and-add of the views), quadrature (aperture supersampled, for large "
+                  "refocus distances) or fourier (Fourier slice: one 4D FFT, then fast per photo; full "
+                  "aperture only)")
       ->check(CLI::IsMember({"fast", "quadrature", "fourier"}));
-  command.add_option("--supersampling", options.supersampling,
-                     "quadrature: aperture samples per view step (default: about |slope|)")
+  command
+      .add_option("--supersampling", options.supersampling,
+                  "quadrature: aperture samples per view step (default: about |slope|)")
       ->check(CLI::Range(1, 32));
   command.add_option("--beta", options.beta, "relative position of the synthetic lens plane (needs optics)")
       ->check(CLI::PositiveNumber);
@@ -83,13 +86,12 @@ inline Result<std::pair<SyntheticCamera, RenderOptions>> cameraFrom(const Camera
     u = centre.first, v = centre.second;
   }
   if (!options.mask.empty()) {
-    if (options.radius)
-      return makeError(ErrorCode::Usage, "--aperture and --aperture-mask exclude each other");
+    if (options.radius) return makeError(ErrorCode::Usage, "--aperture and --aperture-mask exclude each other");
     LFCAM_ASSIGN_OR_RETURN(auto mask, readImage(options.mask));
     camera.aperture = Aperture::fromMask(std::move(mask), u, v);
   } else if (options.radius) {
-    camera.aperture = options.shape == "square" ? Aperture::square(*options.radius, u, v)
-                                                : Aperture::circle(*options.radius, u, v);
+    camera.aperture =
+        options.shape == "square" ? Aperture::square(*options.radius, u, v) : Aperture::circle(*options.radius, u, v);
   } else if (!options.centre.empty()) {
     return makeError(ErrorCode::Usage, "--aperture-center needs --aperture R or --aperture-mask FILE");
   }
