@@ -68,8 +68,8 @@ Result<ViewGrid> placeHciViews(const fs::path& folder, const fs::path& configFol
     if (parameters.camerasX || parameters.camerasY) {
       if (!parameters.camerasX || !parameters.camerasY)
         return fileError(ErrorCode::Format, configPath, "num_cams_x and num_cams_y must both be positive integers");
-      grid.nu = parameters.camerasX;
-      grid.nv = parameters.camerasY;
+      grid.nu = *parameters.camerasX;
+      grid.nv = *parameters.camerasY;
       gridFromConfig = true;
     }
     grid.metadata.disparityMin = parameters.disparityMin;

@@ -110,7 +110,7 @@ Result<LightFieldInfo> probeLightField(const fs::path& path, const LightFieldRea
     case LightFieldFormat::Hdf5: return io::probeHdf5(path);
     case LightFieldFormat::LensletImage: return io::probeLensletImage(path, options);
     case LightFieldFormat::HciFolder:
-    case LightFieldFormat::RowColumnFolder: return io::probeViewGrid(source.grid);
+    case LightFieldFormat::RowColumnFolder: return io::probeViewGrid(*source.grid);
   }
   return fileError(ErrorCode::Unsupported, path, "unknown light-field format");
 }
@@ -124,7 +124,7 @@ Result<LightField> readLightField(const fs::path& path, const LightFieldReadOpti
       case LightFieldFormat::Hdf5: return io::readHdf5(path, progress);
       case LightFieldFormat::LensletImage: return io::readLensletImage(path, options, progress);
       case LightFieldFormat::HciFolder:
-      case LightFieldFormat::RowColumnFolder: return io::readViewGrid(source.grid, progress);
+      case LightFieldFormat::RowColumnFolder: return io::readViewGrid(*source.grid, progress);
     }
     return fileError(ErrorCode::Unsupported, path, "unknown light-field format");
   }();
