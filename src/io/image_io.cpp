@@ -285,7 +285,7 @@ Result<ImageHeader> readImageHeader(const fs::path& path) {
     return ImageHeader{codes.width, codes.height, codes.channels, codes.type};
   }
   LFCAM_ASSIGN_OR_RETURN(auto input, openInput(path));
-  const OIIO::ImageSpec& spec = (input)->spec();
+  const OIIO::ImageSpec& spec = input->spec();
   return ImageHeader{spec.width, spec.height, spec.nchannels, sampleTypeOf(spec)};
 }
 
@@ -305,7 +305,7 @@ Result<std::string> readImageDescription(const fs::path& path) {
     return codes.description;
   }
   LFCAM_ASSIGN_OR_RETURN(auto input, openInput(path));
-  return std::string((input)->spec().get_string_attribute("ImageDescription"));
+  return std::string(input->spec().get_string_attribute("ImageDescription"));
 }
 
 bool looksLikeImageFile(const fs::path& path) {
