@@ -34,7 +34,8 @@ TEST(HciAntinousDepth, ScoresAndAllInFocus) {
   auto scores = scoreHci(depth->disparity, *truth);
   ASSERT_TRUE(scores) << scores.error().message;
   long planar = 0;
-  for (float p : planarMask(*truth).pixels()) planar += p != 0.0f;
+  const Image planes = planarMask(*truth);  // named: a range-for over a temporary's pixels() reads freed memory
+  for (float p : planes.pixels()) planar += p != 0.0f;
   std::printf(
       "hci-antinous (held out): BadPix(0.07) %.2f %%, BadPix(0.03) %.2f %%, MSE x100 %.3f, bumpiness %.3f "
       "on planes (%.1f %% of the image)\n",
