@@ -96,7 +96,7 @@ TEST(Animation, GifDecodesBackToItsFramesLoopingAtItsRate) {
              next.Bytes[0] == 1 && next.Bytes[1] == 0 && next.Bytes[2] == 0;
   }
   EXPECT_TRUE(loops);
-  const std::uint8_t bright = std::uint8_t(std::lround(linearToSrgb(0.8f) * 255));
+  const std::uint8_t bright = std::uint8_t(std::lround(srgbFromLinear(0.8f) * 255));
   for (int f = 0; f < gif->ImageCount; ++f) {
     const SavedImage& image = gif->SavedImages[f];
     GraphicsControlBlock control;
@@ -112,7 +112,7 @@ TEST(Animation, GifDecodesBackToItsFramesLoopingAtItsRate) {
   }
 }
 
-TEST(Animation, GifOfManyColoursIsQuantisedClosely) {
+TEST(Animation, GifOfManyColorsIsQuantisedClosely) {
   test::TempDir dir;
   Image gradient(64, 64, 3);  // 4096 colours: more than one palette holds
   for (int y = 0; y < 64; ++y)
@@ -129,8 +129,8 @@ TEST(Animation, GifOfManyColoursIsQuantisedClosely) {
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
       const GifColorType colour = image.ImageDesc.ColorMap->Colors[image.RasterBits[y * 64 + x]];
-      sumError += std::abs(colour.Red - std::lround(linearToSrgb(x / 63.0f) * 255)) +
-                  std::abs(colour.Green - std::lround(linearToSrgb(y / 63.0f) * 255));
+      sumError += std::abs(colour.Red - std::lround(srgbFromLinear(x / 63.0f) * 255)) +
+                  std::abs(colour.Green - std::lround(srgbFromLinear(y / 63.0f) * 255));
       EXPECT_EQ(colour.Blue, 0);
     }
   // 256 boxes over a 64 x 64 grid of colours: about 16 codes per box side, so a mean error of 4

@@ -49,7 +49,7 @@ TEST(Decode, FastDemosaicMatchesReference) {
     }
 }
 
-TEST(Decode, DemosaicKeepsFlatColoursAndMeasuredSamples) {
+TEST(Decode, DemosaicKeepsFlatColorsAndMeasuredSamples) {
   // A flat colour field: every method gives it back exactly; measured photosites are kept.
   const float rgb[3] = {0.2f, 0.5f, 0.8f};
   Image mosaic(16, 12, 1);
@@ -428,7 +428,7 @@ TEST(IdealLightFieldBoxFiltered, AgreesWithThePointSampledFieldWhereItMust) {
 // Asserted PSNR floors against the box-filtered ideal (docs/design.md, "Decoding", has the figures:
 // 35.45 dB mono, 29.34 and 29.06 dB with a Bayer mosaic, where demosaicing costs the most; 32.34
 // and 32.32 dB with the light-field-aware demosaic).
-constexpr double kMonoPsnr = 34.0, kColourPsnr = 27.5, kLightFieldAwarePsnr = 31.0;
+constexpr double kMonoPsnr = 34.0, kColorPsnr = 27.5, kLightFieldAwarePsnr = 31.0;
 // A perfect demosaic (the true colour at every photosite): 35.15 and 34.74 dB.
 constexpr double kCeilingPsnr = 33.5;
 
@@ -461,7 +461,7 @@ TEST_P(DecodeSimulated, MatchesTheIdealLightField) {
       "[ decode  ] %s: PSNR %.2f dB sub-pixel against the box-filtered ideal (%.0f%% of the aperture's "
       "samples), %.2f dB against the point-sampled ideal; %.2f dB integral pitch\n",
       c.name, subPixel.psnr, 100 * subPixel.coverage, pointSampled.psnr, paper.psnr);
-  EXPECT_GT(subPixel.psnr, c.filter == ColorFilter::Mono ? kMonoPsnr : kColourPsnr);
+  EXPECT_GT(subPixel.psnr, c.filter == ColorFilter::Mono ? kMonoPsnr : kColorPsnr);
   if (c.filter != ColorFilter::Mono) {
     // The light-field-aware demosaic: the defocused cards' missing colours from the same view of
     // the neighbouring microlenses.

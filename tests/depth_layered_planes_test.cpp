@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "edof/depth_experiment.hpp"
-#include "lfcam/colour_map.hpp"
+#include "lfcam/color_map.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/disparity_scores.hpp"
 #include "lfcam/image_io.hpp"
@@ -122,7 +122,7 @@ TEST(Distance, ThinLensThroughTheRefocusDepth) {
   EXPECT_FALSE(distanceFromDisparity(unknown, 0.0));
 }
 
-TEST(ColourMap, TurboRunsFromBlueToRed) {
+TEST(ColorMap, TurboRunsFromBlueToRed) {
   float low[3], high[3], middle[3];
   turbo(0.1, low), turbo(0.95, high), turbo(0.5, middle);
   EXPECT_GT(low[2], low[0]);     // blue end
@@ -131,7 +131,7 @@ TEST(ColourMap, TurboRunsFromBlueToRed) {
   Image ramp(4, 1, 1);
   for (int x = 0; x < 4; ++x) ramp.at(x, 0, 0) = float(x);
   ramp.at(3, 0, 0) = std::numeric_limits<float>::infinity();
-  const Image picture = colourMap(ramp);
+  const Image picture = colorMap(ramp);
   EXPECT_EQ(picture.channels(), 3);
   EXPECT_EQ(picture.at(3, 0, 0), 0.0f);  // non-finite: black
   float start[3], end[3];

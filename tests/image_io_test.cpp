@@ -33,8 +33,8 @@ void quantiseTo8Bit(Image& image) {
     const bool alpha = hasAlpha && c == image.channels() - 1;
     for (std::size_t i = 0; i < image.planeSize(); ++i) {
       float& value = image.plane(c)[i];
-      value =
-          alpha ? std::round(value * 255.0f) / 255.0f : srgbToLinear(std::round(linearToSrgb(value) * 255.0f) / 255.0f);
+      value = alpha ? std::round(value * 255.0f) / 255.0f
+                    : linearFromSrgb(std::round(srgbFromLinear(value) * 255.0f) / 255.0f);
     }
   }
 }
@@ -61,17 +61,17 @@ void expectErrorNaming(const Result<Image>& result, const fs::path& path) {
 }
 
 TEST(ImageIoSrgb, TransferFunctionIsTheStandardOne) {
-  EXPECT_FLOAT_EQ(srgbToLinear(0.0f), 0.0f);
-  EXPECT_FLOAT_EQ(srgbToLinear(1.0f), 1.0f);
-  EXPECT_NEAR(srgbToLinear(0.5f), 0.214041f, 1e-6);
-  EXPECT_NEAR(linearToSrgb(0.214041f), 0.5f, 1e-6);
-  EXPECT_NEAR(srgbToLinear(0.04045f), 0.04045f / 12.92f, 1e-7);
+  EXPECT_FLOAT_EQ(linearFromSrgb(0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(linearFromSrgb(1.0f), 1.0f);
+  EXPECT_NEAR(linearFromSrgb(0.5f), 0.214041f, 1e-6);
+  EXPECT_NEAR(srgbFromLinear(0.214041f), 0.5f, 1e-6);
+  EXPECT_NEAR(linearFromSrgb(0.04045f), 0.04045f / 12.92f, 1e-7);
 }
 
 TEST(ImageIoPng, EveryEightBitCodeRoundTripsExactly) {
   test::TempDir dir;
   Image image(256, 1, 1);
-  for (int code = 0; code < 256; ++code) image.at(code, 0, 0) = srgbToLinear(code / 255.0f);
+  for (int code = 0; code < 256; ++code) image.at(code, 0, 0) = linearFromSrgb(code / 255.0f);
   ASSERT_TRUE(writeImage(dir / "codes.png", image));
   auto read = readImage(dir / "codes.png");
   ASSERT_TRUE(read) << read.error().message;
@@ -174,7 +174,7 @@ TEST(ImageIoJpeg, LossyButClose) {
   Image image(64, 48, 3);
   for (int c = 0; c < 3; ++c)
     for (int y = 0; y < 48; ++y)
-      for (int x = 0; x < 64; ++x) image.at(x, y, c) = srgbToLinear((x + y + 20.0f * c) / 160.0f);
+      for (int x = 0; x < 64; ++x) image.at(x, y, c) = linearFromSrgb((x + y + 20.0f * c) / 160.0f);
   ASSERT_TRUE(writeImage(dir / "a.jpg", image, {.jpegQuality = 98}));
   auto read = readImage(dir / "a.jpg");
   ASSERT_TRUE(read) << read.error().message;
@@ -398,7 +398,7 @@ TEST(ImageIoPng, EightBitFilesHoldSrgbCodes) {
   test::writeBytes(dir / "grey.png", handMadeGreyPng(2, 1, std::string("\x80\xff", 2)));
   auto read = readImage(dir / "grey.png");
   ASSERT_TRUE(read) << read.error().message;
-  EXPECT_FLOAT_EQ(read->at(0, 0, 0), srgbToLinear(128 / 255.0f));
+  EXPECT_FLOAT_EQ(read->at(0, 0, 0), linearFromSrgb(128 / 255.0f));
   EXPECT_NEAR(read->at(0, 0, 0), 0.2158605f, 1e-6);
   EXPECT_EQ(read->at(1, 0, 0), 1.0f);
 }

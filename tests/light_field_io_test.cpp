@@ -31,7 +31,7 @@ LightField randomLightField(const LightFieldShape& shape, unsigned seed, Quantis
   std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
   for (float& value : lf.samples()) {
     value = uniform(random);
-    if (quantise == Quantise::Srgb8) value = srgbToLinear(std::round(linearToSrgb(value) * 255.0f) / 255.0f);
+    if (quantise == Quantise::Srgb8) value = linearFromSrgb(std::round(srgbFromLinear(value) * 255.0f) / 255.0f);
     if (quantise == Quantise::Linear16) value = float(std::round(value * 65535.0) / 65535.0);
   }
   return lf;

@@ -115,7 +115,7 @@ TEST(RawIo, EightBitPngGivesItsCodes) {
   test::TempDir dir;
   Image dn = randomMosaic(16, 16, 255, 2);
   Image linear = dn.copy();
-  for (float& v : linear.pixels()) v = srgbToLinear(v / 255.0f);
+  for (float& v : linear.pixels()) v = linearFromSrgb(v / 255.0f);
   ASSERT_TRUE(writeImage(dir / "l8.png", linear));
   auto raw = readRaw(dir / "l8.png");
   ASSERT_TRUE(raw) << raw.error().message;

@@ -112,7 +112,7 @@ TEST(SimulateSensor, HotPixelsAndClipping) {
   EXPECT_EQ(raw.at(3, 3, 0), float(sensor.whiteLevel));
 }
 
-TEST(SimulateSensor, ColourFilterPatterns) {
+TEST(SimulateSensor, ColorFilterPatterns) {
   EXPECT_EQ(colorFilterChannel(ColorFilter::RGGB, 0, 0), 0);
   EXPECT_EQ(colorFilterChannel(ColorFilter::RGGB, 1, 1), 2);
   EXPECT_EQ(colorFilterChannel(ColorFilter::BGGR, 0, 0), 2);

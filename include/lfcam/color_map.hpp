@@ -15,6 +15,6 @@ void turbo(double x, float rgb[3]);
 
 // An RGB image of the first channel of `scalar` mapped linearly from [low, high] to Turbo;
 // non-finite values are black. With low >= high the map's own finite range is used.
-Image colourMap(const Image& scalar, double low = 0, double high = 0);
+Image colorMap(const Image& scalar, double low = 0, double high = 0);
 
 }  // namespace lfcam

@@ -50,7 +50,7 @@ Result<ImageHeader> readImageHeader(const std::filesystem::path& path);
 bool looksLikeImageFile(const std::filesystem::path& path);
 
 // sRGB transfer function (IEC 61966-2-1), per value.
-float srgbToLinear(float encoded);
-float linearToSrgb(float linear);
+float linearFromSrgb(float encoded);
+float srgbFromLinear(float linear);
 
 }  // namespace lfcam

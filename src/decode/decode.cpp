@@ -127,7 +127,7 @@ void fillUnlit(Image& value, const Image& weight, ColorFilter filter) {
 }
 
 // Camera RGB -> white-balanced, colour-corrected RGB, per sample.
-void correctColour(LightField& lf, const std::array<double, 3>& gains, const std::array<double, 9>& matrix) {
+void correctColor(LightField& lf, const std::array<double, 3>& gains, const std::array<double, 9>& matrix) {
   float m[9];
   for (int k = 0; k < 9; ++k) m[k] = float(matrix[std::size_t(k)] * gains[std::size_t(k % 3)]);
   const std::size_t pixels = lf.shape().viewPixels();
@@ -248,7 +248,7 @@ Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& 
     const std::array<double, 3> gains =
         !hasWhite && raw.whiteBalance ? *raw.whiteBalance : std::array<double, 3>{1, 1, 1};
     const std::array<double, 9> identity{1, 0, 0, 0, 1, 0, 0, 0, 1};
-    correctColour(lf, gains, raw.colorMatrix.value_or(identity));
+    correctColor(lf, gains, raw.colorMatrix.value_or(identity));
   }
 
   // 6. Hexagonal rows onto a rectangular s grid.

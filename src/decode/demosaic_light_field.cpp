@@ -60,7 +60,7 @@ std::vector<Shift> latticeShifts(const LensletGrid& grid) {
 
 // Mean of the 4 photosites 2 pixels away (the same colour): the 2D prediction of the measured one.
 template <class M>
-inline float sameColourAround(const M& m, int x, int y) {
+inline float sameColorAround(const M& m, int x, int y) {
   return 0.25f * (m(x - 2, y) + m(x + 2, y) + m(x, y - 2) + m(x, y + 2));
 }
 
@@ -167,7 +167,7 @@ inline void predictionErrors(const float* m, const CfaTable& cfa, const Estimate
                              float& e2, float& e4) {
   const std::size_t k = std::size_t(y) * w + x;
   const bool inner = x >= 2 && y >= 2 && x < w - 2 && y < h - 2;
-  const float around = inner ? sameColourAround(Direct{m, w}, x, y) : sameColourAround(Mosaic{m, w, h}, x, y);
+  const float around = inner ? sameColorAround(Direct{m, w}, x, y) : sameColorAround(Mosaic{m, w, h}, x, y);
   float predicted = around;
   const bool has4d = estimate([m](std::size_t i) { return m[i]; }, cfa(x, y), x, y, predicted);
   e2 = has4d ? (m[k] - around) * (m[k] - around) : 0.0f;

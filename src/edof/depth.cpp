@@ -440,7 +440,7 @@ void fillUncertain(const LightField& lightField, const std::vector<float>& curva
   for (std::size_t p = 0; p < n; ++p)
     confidence[p] = float(curvature[p] / meanCurvature / (std::max(residual[p], 0.0f) / meanResidual + 0.5));
   Image guide = lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2);
-  for (float& v : guide.pixels()) v = linearToSrgb(std::max(v, 0.0f));
+  for (float& v : guide.pixels()) v = srgbFromLinear(std::max(v, 0.0f));
   edof::globalSmooth(guide.plane(0), guide.channels(), lightField.ns(), lightField.nt(), confidence.data(), disparity,
                      float(options.fillLambda), float(std::max(options.fillSigma, 1e-6)), /*iterations=*/3);
 }
@@ -477,7 +477,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   LightField grey = edof::luminanceLightField(lightField);
   parallelFor(0, grey.samples().size(), 1 << 16, [&](std::size_t begin, std::size_t end) {
     float* samples = grey.samples().data();
-    for (std::size_t i = begin; i < end; ++i) samples[i] = linearToSrgb(std::max(samples[i], 0.0f));
+    for (std::size_t i = begin; i < end; ++i) samples[i] = srgbFromLinear(std::max(samples[i], 0.0f));
   });
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   Image guide = grey.subApertureImage(referenceU, referenceV);

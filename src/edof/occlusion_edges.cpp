@@ -104,7 +104,7 @@ void reclaimOcclusionEdges(const Image& guide, int band, float* disparity) {
 
 void reclaimOcclusionEdges(const LightField& lightField, int band, float* disparity) {
   Image guide = lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2);
-  for (float& v : guide.pixels()) v = linearToSrgb(std::max(v, 0.0f));
+  for (float& v : guide.pixels()) v = srgbFromLinear(std::max(v, 0.0f));
   reclaimOcclusionEdges(guide, band, disparity);
 }
 

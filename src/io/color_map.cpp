@@ -1,5 +1,5 @@
-// Turbo colour map (colour_map.hpp).
-#include "lfcam/colour_map.hpp"
+// Turbo colour map (color_map.hpp).
+#include "lfcam/color_map.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,10 +19,10 @@ void turbo(double x, float rgb[3]) {
   const double b =
       0.10667330 + 12.64194608 * x - 60.58204836 * x2 + 110.36276771 * x3 - 89.90310912 * x4 + 27.34824973 * x5;
   const double encoded[3] = {r, g, b};
-  for (int c = 0; c < 3; ++c) rgb[c] = srgbToLinear(float(std::clamp(encoded[c], 0.0, 1.0)));
+  for (int c = 0; c < 3; ++c) rgb[c] = linearFromSrgb(float(std::clamp(encoded[c], 0.0, 1.0)));
 }
 
-Image colourMap(const Image& scalar, double low, double high) {
+Image colorMap(const Image& scalar, double low, double high) {
   Image out(scalar.width(), scalar.height(), 3);
   if (scalar.empty()) return out;
   const float* values = scalar.plane(0);

@@ -120,13 +120,13 @@ bool encode(const InterleavedCodes& image, Sink& sink, ErrorSink& errors) {
     png_destroy_write_struct(&png, &info);
     return false;
   }
-  static constexpr int kColourTypes[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
-                                         PNG_COLOR_TYPE_RGB_ALPHA};
+  static constexpr int kColorTypes[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                                        PNG_COLOR_TYPE_RGB_ALPHA};
   const bool sixteen = image.type == SampleType::UInt16;
   png_set_write_fn(png, &sink, writeBytes, flushBytes);
   png_set_compression_level(png, 1);
   png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), sixteen ? 16 : 8,
-               kColourTypes[image.channels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               kColorTypes[image.channels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
   // 8-bit codes are sRGB; 16-bit codes are linear (image_io.hpp).
   if (sixteen)

@@ -10,18 +10,18 @@ namespace lfcam {
 
 namespace {
 
-double srgbToLinearExact(double encoded) {
+double linearFromSrgbExact(double encoded) {
   return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
 
-double linearToSrgbExact(double linear) {
+double srgbFromLinearExact(double linear) {
   return linear <= 0.0031308 ? linear * 12.92 : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
 }
 
 }  // namespace
 
-float srgbToLinear(float encoded) { return float(srgbToLinearExact(encoded)); }
-float linearToSrgb(float linear) { return float(linearToSrgbExact(linear)); }
+float linearFromSrgb(float encoded) { return float(linearFromSrgbExact(encoded)); }
+float srgbFromLinear(float linear) { return float(srgbFromLinearExact(linear)); }
 
 namespace io {
 
@@ -31,9 +31,9 @@ struct Tables {
   std::array<float, 256> linear;      // code -> linear
   std::array<float, 255> thresholds;  // linear value halfway (in code space) between k and k+1
   Tables() {
-    // The same float as srgbToLinear(k / 255.0f), so callers computing it themselves agree.
-    for (int k = 0; k < 256; ++k) linear[k] = srgbToLinear(float(k) / 255.0f);
-    for (int k = 0; k < 255; ++k) thresholds[k] = float(srgbToLinearExact((k + 0.5) / 255.0));
+    // The same float as linearFromSrgb(k / 255.0f), so callers computing it themselves agree.
+    for (int k = 0; k < 256; ++k) linear[k] = linearFromSrgb(float(k) / 255.0f);
+    for (int k = 0; k < 255; ++k) thresholds[k] = float(linearFromSrgbExact((k + 0.5) / 255.0));
   }
 };
 

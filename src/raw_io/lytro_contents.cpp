@@ -8,7 +8,7 @@
 #include <map>
 
 #include "lfcam/atomic_file.hpp"
-#include "lfcam/colour_map.hpp"
+#include "lfcam/color_map.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/lytro_metadata.hpp"
 #include "lfcam/memory_budget.hpp"
@@ -269,7 +269,7 @@ Status extractLytroContainer(const LytroContainer& container, const std::filesys
             map.pixels()[k] = v;
           }
           LFCAM_TRY(writeImage(dir / (item.file + ".pfm"), map));
-          LFCAM_TRY(writeImage(dir / (item.file + ".png"), colourMap(map)));
+          LFCAM_TRY(writeImage(dir / (item.file + ".png"), colorMap(map)));
           files.push_back(item.file + ".pfm");
           files.push_back(item.file + ".png");
           break;

@@ -59,7 +59,7 @@ void applyCameraJson(const std::filesystem::path& path, RawImage& raw) {
 Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOptions& options) {
   LFCAM_ASSIGN_OR_RETURN(auto header, readImageHeader(path));
   LFCAM_ASSIGN_OR_RETURN(auto image, readImage(path));
-  const int colours = image.channels() == 2 || image.channels() == 4 ? image.channels() - 1 : image.channels();
+  const int colors = image.channels() == 2 || image.channels() == 4 ? image.channels() - 1 : image.channels();
   RawImage raw;
   raw.mosaic = Image(image.width(), image.height(), 1);
   // Back to the file's codes: 8-bit files were sRGB-decoded by readImage (exactly invertible),
@@ -68,13 +68,13 @@ Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOp
   float* out = raw.mosaic.plane(0);
   for (std::size_t k = 0; k < raw.mosaic.planeSize(); ++k) {
     double sum = 0;
-    for (int c = 0; c < colours; ++c) {
+    for (int c = 0; c < colors; ++c) {
       const float v = image.plane(c)[k];
-      sum += type == SampleType::UInt8    ? std::round(linearToSrgb(v) * 255.0)
+      sum += type == SampleType::UInt8    ? std::round(srgbFromLinear(v) * 255.0)
              : type == SampleType::UInt16 ? std::round(double(v) * 65535.0)
                                           : double(v);
     }
-    out[k] = float(sum / colours);
+    out[k] = float(sum / colors);
   }
   raw.blackLevel = 0;
   raw.whiteLevel = type == SampleType::UInt8 ? 255.0 : type == SampleType::UInt16 ? 65535.0 : 1.0;

@@ -40,7 +40,7 @@ std::vector<std::uint8_t> srgb8Interleaved(const Image& frame) {
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < 3; ++c) {
         const float linear = frame.at(x, y, frame.channels() == 1 ? 0 : c);
-        const float encoded = linearToSrgb(std::clamp(linear, 0.0f, 1.0f));
+        const float encoded = srgbFromLinear(std::clamp(linear, 0.0f, 1.0f));
         pixels[(std::size_t(y) * width + x) * 3 + c] = std::uint8_t(std::lround(encoded * 255.0f));
       }
   return pixels;
@@ -71,7 +71,7 @@ bool putLoopForever(GifFileType* gif) {
 }
 
 // The frame's own colours when it has at most 256 (exact), else false.
-bool exactPalette(const std::vector<std::uint8_t>& interleaved, GifColorType (&colours)[256],
+bool exactPalette(const std::vector<std::uint8_t>& interleaved, GifColorType (&colors)[256],
                   std::vector<GifByteType>& indices) {
   std::unordered_map<std::uint32_t, GifByteType> index;
   for (std::size_t i = 0; i < indices.size(); ++i) {
@@ -80,7 +80,7 @@ bool exactPalette(const std::vector<std::uint8_t>& interleaved, GifColorType (&c
     auto [at, added] = index.try_emplace(key, GifByteType(index.size()));
     if (added) {
       if (index.size() > 256) return false;
-      colours[at->second] = {rgb[0], rgb[1], rgb[2]};
+      colors[at->second] = {rgb[0], rgb[1], rgb[2]};
     }
     indices[i] = at->second;
   }
@@ -94,17 +94,17 @@ bool putFrame(GifFileType* gif, const Image& frame, int delay) {
   const std::size_t pixels = std::size_t(width) * height;
   const std::vector<std::uint8_t> interleaved = srgb8Interleaved(frame);
   std::vector<GifByteType> indices(pixels);
-  GifColorType colours[256] = {};
-  if (!exactPalette(interleaved, colours, indices)) {
+  GifColorType colors[256] = {};
+  if (!exactPalette(interleaved, colors, indices)) {
     std::vector<GifByteType> red(pixels), green(pixels), blue(pixels);
     for (std::size_t i = 0; i < pixels; ++i)
       red[i] = interleaved[3 * i], green[i] = interleaved[3 * i + 1], blue[i] = interleaved[3 * i + 2];
-    int colourCount = 256;
-    if (GifQuantizeBuffer(unsigned(width), unsigned(height), &colourCount, red.data(), green.data(), blue.data(),
-                          indices.data(), colours) == GIF_ERROR)
+    int colorCount = 256;
+    if (GifQuantizeBuffer(unsigned(width), unsigned(height), &colorCount, red.data(), green.data(), blue.data(),
+                          indices.data(), colors) == GIF_ERROR)
       return false;
   }
-  std::unique_ptr<ColorMapObject, void (*)(ColorMapObject*)> palette(GifMakeMapObject(256, colours), GifFreeMapObject);
+  std::unique_ptr<ColorMapObject, void (*)(ColorMapObject*)> palette(GifMakeMapObject(256, colors), GifFreeMapObject);
   GraphicsControlBlock control{.DisposalMode = DISPOSE_DO_NOT,
                                .UserInputFlag = false,
                                .DelayTime = delay,

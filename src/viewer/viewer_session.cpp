@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lfcam/all_in_focus.hpp"
-#include "lfcam/colour_map.hpp"
+#include "lfcam/color_map.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/image_encode.hpp"
@@ -239,7 +239,7 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
       options.disparityMin = s.slopeMin;
       options.disparityMax = s.slopeMax;
       LFCAM_ASSIGN_OR_RETURN(auto result, estimateDepth(lf, options));
-      return colourMap(result.disparity, result.disparityMin, result.disparityMax);
+      return colorMap(result.disparity, result.disparityMin, result.disparityMax);
     };
     LFCAM_ASSIGN_OR_RETURN(image, lazyLayer(s.mutex, s.depth, compute));
   } else {

@@ -22,7 +22,7 @@ TEST(CliRender, RefocusWithApertureMethodAndFocusAt) {
   test::TempDir dir;
   const std::string input = test::makeSynthLightField(dir, 5, 40).string();
   const std::vector<std::vector<std::string>> cases = {
-      {"--slope", "0.5", "--aperture", "1", "--aperture-center", "0.5,-0.5"},
+      {"--slope", "0.5", "--aperture", "1", "--aperture-centre", "0.5,-0.5"},
       {"--slope", "1.5", "--aperture", "0.5", "--aperture-shape", "square", "--method", "quadrature"},
       {"--alpha", "1.05", "--beta", "1.1"},
       {"--focus-at", "10,12"},

@@ -91,7 +91,7 @@ TEST(LensletPeriodRealData, DecodedMicroscopeCaptureInADarkNoisyFrame) {
   }
 }
 
-TEST(LensletPeriodRealData, LytroFlowerAsAColourLensletImage) {
+TEST(LensletPeriodRealData, LytroFlowerAsAColorLensletImage) {
   LFCAM_REQUIRE_SHARED_DATA("lytro-f01-flower", folder);
   auto lf = readLightField(folder / "views");
   ASSERT_TRUE(lf.ok()) << lf.error().message;

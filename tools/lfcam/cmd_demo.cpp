@@ -13,7 +13,7 @@
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/atomic_file.hpp"
 #include "lfcam/calibrate.hpp"
-#include "lfcam/colour_map.hpp"
+#include "lfcam/color_map.hpp"
 #include "lfcam/contact_sheet.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/image_io.hpp"
@@ -186,11 +186,11 @@ Status runDemo(const fs::path& dir) {
     // The nearest and the farthest focus side by side: the picture of the README.
     LFCAM_TRY(writeImage(out / "near-and-far.png", sideBySide({&photos.front(), &photos.back()}, 8)));
     LFCAM_TRY(writeImage(out / "disparity.pfm", made.disparity));
-    LFCAM_TRY(writeImage(out / "disparity.png", colourMap(made.disparity, slopes.back(), slopes.front())));
+    LFCAM_TRY(writeImage(out / "disparity.png", colorMap(made.disparity, slopes.back(), slopes.front())));
     // Range finding and extended depth of field from the light field alone.
     LFCAM_ASSIGN_OR_RETURN(auto depth, estimateDepth(lf));
     LFCAM_TRY(writeImage(out / "depth-estimate.pfm", depth.disparity));
-    LFCAM_TRY(writeImage(out / "depth-estimate.png", colourMap(depth.disparity, slopes.back(), slopes.front())));
+    LFCAM_TRY(writeImage(out / "depth-estimate.png", colorMap(depth.disparity, slopes.back(), slopes.front())));
     LFCAM_ASSIGN_OR_RETURN(auto sharp, allInFocus(lf, {.disparity = &depth.disparity}));
     LFCAM_TRY(writeImage(out / "all-in-focus.png", sharp.photo));
     std::printf("  estimated depth -> depth-estimate.png, extended depth of field -> all-in-focus.png\n");

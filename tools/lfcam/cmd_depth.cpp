@@ -8,7 +8,7 @@
 #include <variant>
 
 #include "commands.hpp"
-#include "lfcam/colour_map.hpp"
+#include "lfcam/color_map.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/depth_knobs.hpp"
 #include "lfcam/image_io.hpp"
@@ -60,7 +60,7 @@ void addDepthCommand(CLI::App& app, Job& job) {
       LFCAM_TRY(writeImage(options->output, depth->disparity));
       if (!options->confidence.empty()) LFCAM_TRY(writeImage(options->confidence, depth->confidence));
       if (!options->png.empty())
-        LFCAM_TRY(writeImage(options->png, colourMap(depth->disparity, depth->disparityMin, depth->disparityMax)));
+        LFCAM_TRY(writeImage(options->png, colorMap(depth->disparity, depth->disparityMin, depth->disparityMax)));
       if (!options->distance.empty()) {
         LFCAM_ASSIGN_OR_RETURN(auto distance, distanceMap(lightField.metadata, depth->disparity));
         LFCAM_TRY(writeImage(options->distance, distance));

@@ -8,7 +8,7 @@
 #include "commands.hpp"
 #include "image_output.hpp"
 #include "lfcam/all_in_focus.hpp"
-#include "lfcam/colour_map.hpp"
+#include "lfcam/color_map.hpp"
 #include "lfcam/image_io.hpp"
 
 namespace lfcam::cli {
@@ -45,7 +45,7 @@ void addEdofCommand(CLI::App& app, Job& job) {
       if (!result) return makeError(result.error().code, options->input.path + ": " + result.error().message);
       LFCAM_TRY(writeImage(options->output, result->photo, writeOptions));
       if (!options->labels.empty())
-        LFCAM_TRY(writeImage(options->labels, colourMap(result->slope, result->slopes.front(), result->slopes.back())));
+        LFCAM_TRY(writeImage(options->labels, colorMap(result->slope, result->slopes.front(), result->slopes.back())));
       return {};
     };
   });

@@ -58,7 +58,9 @@ inline void addCameraOptions(CLI::App& command, CameraOptions& options) {
       ->check(CLI::NonNegativeNumber);
   command.add_option("--aperture-shape", options.shape, "circle or square (half side = R)")
       ->check(CLI::IsMember({"circle", "square"}));
-  command.add_option("--aperture-center", options.centre, "aperture centre U,V in view steps from the centre view");
+  // --aperture-center: the spelling of earlier versions, still accepted.
+  command.add_option("--aperture-centre,--aperture-center", options.centre,
+                     "aperture centre U,V in view steps from the centre view");
   command.add_option("--aperture-mask", options.mask,
                      "image laid over the whole lens whose brightness weights each view (white: full weight)");
   command
@@ -82,7 +84,7 @@ inline Result<std::pair<SyntheticCamera, RenderOptions>> cameraFrom(const Camera
   SyntheticCamera camera;
   double u = 0, v = 0;
   if (!options.centre.empty()) {
-    LFCAM_ASSIGN_OR_RETURN(auto centre, parsePair(options.centre, "--aperture-center"));
+    LFCAM_ASSIGN_OR_RETURN(auto centre, parsePair(options.centre, "--aperture-centre"));
     u = centre.first, v = centre.second;
   }
   if (!options.mask.empty()) {
@@ -93,7 +95,7 @@ inline Result<std::pair<SyntheticCamera, RenderOptions>> cameraFrom(const Camera
     camera.aperture =
         options.shape == "square" ? Aperture::square(*options.radius, u, v) : Aperture::circle(*options.radius, u, v);
   } else if (!options.centre.empty()) {
-    return makeError(ErrorCode::Usage, "--aperture-center needs --aperture R or --aperture-mask FILE");
+    return makeError(ErrorCode::Usage, "--aperture-centre needs --aperture R or --aperture-mask FILE");
   }
   if (options.beta && *options.beta != 1) {
     const auto& optics = lightField.metadata.optics;
