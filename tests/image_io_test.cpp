@@ -60,6 +60,18 @@ void expectErrorNaming(const Result<Image>& result, const fs::path& path) {
   EXPECT_EQ(result.error().message.find('\n'), std::string::npos) << result.error().message;
 }
 
+// The file `full` cut to half its length, and to its first `headerBytes`: each read is an error
+// naming the cut file, not an image padded with grey.
+void expectCutShortCopiesFail(const fs::path& full, std::size_t headerBytes) {
+  const std::string bytes = test::readBytes(full);
+  const std::string extension = full.extension().string();
+  const fs::path half = full.parent_path() / ("half" + extension), header = full.parent_path() / ("header" + extension);
+  test::writeBytes(half, bytes.substr(0, bytes.size() / 2));
+  expectErrorNaming(readImage(half), half);
+  test::writeBytes(header, bytes.substr(0, headerBytes));
+  expectErrorNaming(readImage(header), header);
+}
+
 TEST(ImageIoSrgb, TransferFunctionIsTheStandardOne) {
   EXPECT_FLOAT_EQ(linearFromSrgb(0.0f), 0.0f);
   EXPECT_FLOAT_EQ(linearFromSrgb(1.0f), 1.0f);
@@ -186,11 +198,7 @@ TEST(ImageIoJpeg, LossyButClose) {
 TEST(ImageIoExr, TruncatedFileIsAnErrorNamingIt) {
   test::TempDir dir;
   ASSERT_TRUE(writeImage(dir / "full.exr", randomImage(64, 64, 3, 12)));
-  const std::string bytes = test::readBytes(dir / "full.exr");
-  test::writeBytes(dir / "half.exr", bytes.substr(0, bytes.size() / 2));
-  expectErrorNaming(readImage(dir / "half.exr"), dir / "half.exr");
-  test::writeBytes(dir / "header.exr", bytes.substr(0, 40));
-  expectErrorNaming(readImage(dir / "header.exr"), dir / "header.exr");
+  expectCutShortCopiesFail(dir / "full.exr", 40);
 }
 
 TEST(ImageIoJpeg, GreyRoundTripsAndDamageIsAnError) {
@@ -205,13 +213,7 @@ TEST(ImageIoJpeg, GreyRoundTripsAndDamageIsAnError) {
   ASSERT_TRUE(read) << read.error().message;
   EXPECT_EQ(read->channels(), 1);
 
-  // A JPEG cut short, and one whose entropy-coded data is garbled: errors naming the file, not
-  // an image padded with grey.
-  const std::string bytes = test::readBytes(dir / "grey.jpg");
-  test::writeBytes(dir / "half.jpg", bytes.substr(0, bytes.size() / 2));
-  expectErrorNaming(readImage(dir / "half.jpg"), dir / "half.jpg");
-  test::writeBytes(dir / "header.jpg", bytes.substr(0, 20));
-  expectErrorNaming(readImage(dir / "header.jpg"), dir / "header.jpg");
+  expectCutShortCopiesFail(dir / "grey.jpg", 20);
 }
 
 TEST(ImageIoDescription, RoundTripsInEveryFormatThatHasOne) {
