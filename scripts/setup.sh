@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   python3              # tests/module_includes: the check of module boundaries
+  python3-dev pybind11-dev python3-numpy python3-pytest  # the Python package (python/) and its tests
   clang-format-14      # tests/format: the check of the one style (.clang-format)
   ccache               # repeat builds (scripts/build.sh, build-san) reuse earlier compiles
   libpng-dev libjpeg-dev libopenexr-dev libgif-dev  # PNG, JPEG, OpenEXR, GIF: their own libraries (docs/design.md, "Start-up")

@@ -20,6 +20,12 @@ void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
                  const std::function<void(std::size_t, std::size_t)>& body, const ProgressCallback& progress,
                  std::size_t slices = 50);
 
+// Cooperative cancellation, for interactive callers (the Python package on Ctrl-C): while it is
+// requested, parallelFor starts no further sub-range, so a long call returns soon. Its result is
+// then meaningless: whoever requested the cancellation discards it, then withdraws the request.
+void requestCancellation(bool requested);
+bool cancellationRequested();
+
 // Limits every later parallelFor to `threads` threads (0: all cores). Lives for the process.
 void setThreadCount(int threads);
 
