@@ -11,6 +11,7 @@ packages=(
   libpng-dev libjpeg-dev libopenexr-dev libgif-dev  # PNG, JPEG, OpenEXR, GIF: their own libraries (docs/design.md, "Start-up")
   libopenimageio-dev   # image files: TIFF
   libhdf5-dev          # the native .lf.h5 light-field file
+  libdeflate-dev       # its chunks, deflated and inflated by lfcam's own threads
   libeigen3-dev        # least-squares fits (lenslet grid)
   nlohmann-json3-dev   # metadata, scene and grid JSON
   libcli11-dev         # the command line
