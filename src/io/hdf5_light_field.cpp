@@ -640,12 +640,13 @@ Result<LightField> readOpened(const fs::path& path, Hdf5Session& session, const 
 // chunk's size) and happens once, in the parent. For other files, libhdf5 runs the filters
 // itself, so the child also reads every sample when they are small enough to read twice without
 // notice; larger ones are read once, after the child has walked their metadata and chunk index.
-Status refuseWhatCrashesLibhdf5(const fs::path& path) {
+// A probe reads no samples, and its child opens the file only.
+Status refuseWhatCrashesLibhdf5(const fs::path& path, bool readsSamples) {
   constexpr std::size_t kReadTwiceBytes = std::size_t(64) << 20;
   const ChildOutcome outcome = survivesInChild(
       [&] {
         auto opened = openLightFieldFile(path);
-        if (!opened) return;  // a clean error: the parent will find and report it itself
+        if (!opened || !readsSamples) return;  // a clean error is the parent's to find and report
         for (StoredSamples* stored : {&opened->samples, opened->weight ? &*opened->weight : nullptr}) {
           if (!stored) continue;
           if (stored->rawFilters) {
@@ -680,14 +681,14 @@ Status refuseWhatCrashesLibhdf5(const fs::path& path) {
 
 Result<LightFieldInfo> probeHdf5(const fs::path& path) {
   Hdf5Session session;
-  LFCAM_TRY(refuseWhatCrashesLibhdf5(path));
+  LFCAM_TRY(refuseWhatCrashesLibhdf5(path, false));
   LFCAM_ASSIGN_OR_RETURN(auto opened, openLightFieldFile(path));
   return opened.info;
 }
 
 Result<LightField> readHdf5(const fs::path& path, const ProgressCallback& progress) {
   Hdf5Session session;
-  LFCAM_TRY(refuseWhatCrashesLibhdf5(path));
+  LFCAM_TRY(refuseWhatCrashesLibhdf5(path, true));
   LFCAM_ASSIGN_OR_RETURN(auto opened, openLightFieldFile(path));
   return readOpened(path, session, opened, progress);
 }
