@@ -12,6 +12,7 @@ packages=(
   libopenimageio-dev   # image files: TIFF
   libhdf5-dev          # the native .lf.h5 light-field file
   libdeflate-dev       # its chunks, deflated and inflated by lfcam's own threads
+  zlib1g-dev libzstd-dev  # bench/native_codec_bench: the codecs it could have used instead
   libeigen3-dev        # least-squares fits (lenslet grid)
   nlohmann-json3-dev   # metadata, scene and grid JSON
   libcli11-dev         # the command line

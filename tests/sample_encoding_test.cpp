@@ -74,14 +74,14 @@ TEST(SampleEncoding, TheMostCompactExactEncodingIsChosen) {
   std::mt19937 random(1);
   std::uniform_int_distribution<int> code(0, 255);
   for (float& value : values) value = linearFromSrgb8(std::uint8_t(code(random)));
-  EXPECT_EQ(exactEncodingOf(values, viewValues, kColourEncodings).kind, SampleEncodingKind::Srgb8);
+  EXPECT_EQ(exactEncodingOf(values, viewValues, kColorEncodings).kind, SampleEncodingKind::Srgb8);
   std::fill(values.begin(), values.end(), float(1000 / 65535.0));
-  EXPECT_EQ(exactEncodingOf(values, viewValues, kColourEncodings).kind, SampleEncodingKind::Linear16);
+  EXPECT_EQ(exactEncodingOf(values, viewValues, kColorEncodings).kind, SampleEncodingKind::Linear16);
   std::fill(values.begin(), values.end(), 0.25f);  // 16383.75 / 65535
   values.back() = 3.5f;
-  EXPECT_EQ(exactEncodingOf(values, viewValues, kColourEncodings).kind, SampleEncodingKind::Float16);
+  EXPECT_EQ(exactEncodingOf(values, viewValues, kColorEncodings).kind, SampleEncodingKind::Float16);
   values.back() = 0.1f;
-  EXPECT_EQ(exactEncodingOf(values, viewValues, kColourEncodings).kind, SampleEncodingKind::Float32);
+  EXPECT_EQ(exactEncodingOf(values, viewValues, kColorEncodings).kind, SampleEncodingKind::Float32);
   const std::vector<float> weights(viewValues * 2, 1.0f);
   EXPECT_EQ(exactEncodingOf(weights, viewValues, kWeightEncodings).kind, SampleEncodingKind::Linear8);
 }

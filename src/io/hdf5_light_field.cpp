@@ -710,7 +710,7 @@ Status writeHdf5(const fs::path& file, const LightField& lightField, const Progr
   LFCAM_TRY(writeMetadata(path, handle.get(), lightField.metadata));
   const auto nv = hsize_t(shape.nv), nu = hsize_t(shape.nu), nt = hsize_t(shape.nt), ns = hsize_t(shape.ns);
   LFCAM_TRY(writeSamples(path, session, handle.get(), "lightfield", {nv, nu, hsize_t(shape.channels), nt, ns},
-                         lightField.samples(), kColourEncodings, viewDone));
+                         lightField.samples(), kColorEncodings, viewDone));
   if (lightField.hasWeight())
     LFCAM_TRY(writeSamples(path, session, handle.get(), "weight", {nv, nu, nt, ns}, lightField.weights(),
                            kWeightEncodings, viewDone));

@@ -105,7 +105,7 @@ void decodeSamples(const SampleEncoding& encoding, const unsigned char* codes, s
   }
 }
 
-const SampleEncoding kColourEncodings[3] = {
+const SampleEncoding kColorEncodings[3] = {
     {SampleEncodingKind::Srgb8}, {SampleEncodingKind::Linear16, 1.0 / 65535.0}, {SampleEncodingKind::Float16}};
 const SampleEncoding kWeightEncodings[3] = {{SampleEncodingKind::Linear8, 1.0 / 255.0},
                                             {SampleEncodingKind::Linear16, 1.0 / 65535.0},

@@ -42,7 +42,7 @@ SampleEncoding exactEncodingOf(std::span<const float> values, std::size_t viewVa
 
 // The candidates, most compact first: colour samples as 8-bit sRGB, 16-bit linear or float16;
 // weights (linear by nature) as 8-bit or 16-bit linear or float16.
-extern const SampleEncoding kColourEncodings[3];
+extern const SampleEncoding kColorEncodings[3];
 extern const SampleEncoding kWeightEncodings[3];
 
 }  // namespace lfcam::io
