@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   python3              # tests/module_includes: the check of module boundaries
+  python3-h5py         # tests/h5py: the native .lf.h5 as Python users read it
   clang-format-14      # tests/format: the check of the one style (.clang-format)
   ccache               # repeat builds (scripts/build.sh, build-san) reuse earlier compiles
   libpng-dev libjpeg-dev libopenexr-dev libgif-dev  # PNG, JPEG, OpenEXR, GIF: their own libraries (docs/design.md, "Start-up")
