@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 namespace lfcam::io {
 
@@ -10,6 +11,9 @@ namespace lfcam::io {
 float linearFromSrgb8(std::uint8_t code);
 // The nearest 8-bit sRGB code to a linear value (clamped to [0, 1]; NaN gives 0).
 std::uint8_t srgb8FromLinear(float linear);
+// The codes whose linearFromSrgb8 are exactly `linear` (same bits), into `codes`; false as soon
+// as a value is none of the 256. One table look-up per value, for millions of samples.
+bool srgb8CodesOf(std::span<const float> linear, std::uint8_t* codes);
 
 // Integer codes of linear files: value = code / max, code = round(clamp(value) * max).
 std::uint8_t unorm8FromLinear(float value);
