@@ -19,21 +19,10 @@
 #include "lfcam/refocus.hpp"
 #include "lfcam/scene.hpp"
 #include "lfcam/simulate.hpp"
+#include "people_camera.hpp"
 
 namespace lfcam {
 namespace {
-
-// The paper's prototype shrunk: 9 sensor pixels under each microlens (9x9 views), 80x80
-// microlenses at f/4 like the main lens's image side, focused at 5 m so that the scene's cards
-// (0.8 to 2 times the focus distance) lie within the sharp refocusing range (disparities of
-// -1 to +0.5 pixel per view; at 457 mm they would span -15 to +8).
-CameraModel smallCamera() {
-  CameraModel camera = CameraModel::paperPrototype(720, 720);
-  camera.microlenses->pitchMm = 9 * camera.sensor.pixelPitchMm;
-  camera.microlenses->focalLengthMm = 4 * camera.microlenses->pitchMm;
-  camera.mainLens.focusDistanceMm = 5000;
-  return camera;
-}
 
 struct Card {
   std::string name;
@@ -71,7 +60,7 @@ double rmsDifference(const Image& a, const Image& b, const std::vector<std::size
 class PeopleAllInFocus : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const CameraModel camera = smallCamera();
+    const CameraModel camera = test::peopleCamera();
     const Scene scene = *builtinScene("people", camera);
     auto ideal = idealLightField(scene, camera);
     ASSERT_TRUE(ideal) << ideal.error().message;

@@ -1,6 +1,6 @@
 // Depth from a light field: the disparity seen through the centre of the aperture, from the two
 // cues a plenoptic camera offers (Adelson and Wang 1992; Ng et al. 2005, section 5.2). Scores
-// against a ground truth: disparity_scores.hpp. Settings by name: depth_knobs.hpp.
+// against a ground truth: disparity_scores.hpp. Settings by name: depth_knobs.hpp. In 3D: point_cloud.hpp.
 //
 // Input: a light field of at least 2 views (light_field.hpp), its colour or luminance.
 // Output: disparity ("slope") in pixels of (s, t) per view step, positive nearer than the plane
