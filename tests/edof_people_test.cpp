@@ -175,8 +175,9 @@ TEST_F(PeopleAllInFocus, EstimatedDepthCompositeIsSharpAndQuiet) {
 
 // Issue 6 asks for the depth scores of every scene that can be run, the simulator's with exact
 // depth included: scored as the HCI benchmark scores (its 15 px border left out: 50 x 50 pixels
-// here), on the noise-free and the noisy light field. Measured: BadPix(0.07) 5.2 % and 4.4 %,
-// MSE x100 0.95 and 0.81 (6.8 % and 5.0 %, 0.96 and 0.85 before issue 6's sixth round's
+// here), on the noise-free and the noisy light field. Measured: BadPix(0.07) 4.8 % and 4.5 %,
+// MSE x100 0.78 and 0.82 with the defaults chosen on the development scenes (issue 18); 5.2 % and
+// 4.4 %, 0.95 and 0.81 with issue 6's (6.8 % and 5.0 %, 0.96 and 0.85 before issue 6's sixth round's
 // defaults; 10.2 % and 7.8 % before DepthOptions::occlusionBand and the fine
 // search's radius 2; 11.0 % and 8.6 % before edof::DepthExperiment::aggregateSubsetsApart; 17.9 %
 // and 16.6 % before edof::DepthExperiment::refineAggregateHalves; 47.2 % and 36.0 % with
@@ -201,7 +202,8 @@ TEST_F(PeopleAllInFocus, DepthScoresAgainstTheExactDisparity) {
 // refineAggregateHalves), against the best per pixel before aggregating. Measured on the noisy
 // light field: BadPix(0.07) 8.6 % against 10.8 % (16.6 % before, with the fine search's radius 8),
 // both with the cost volume's subsets taken per pixel (aggregateSubsetsApart off); now (fine-search
-// radius 2, occlusionBand 3, the sixth round's defaults) 4.1 % against 7.4 %.
+// radius 2, occlusionBand 3, the sixth round's defaults) 4.1 % against 7.4 %; 4.7 % against 6.5 %
+// with the defaults chosen on the development scenes (issue 18).
 TEST_F(PeopleAllInFocus, FineSearchAggregatesSubsetsApart) {
   const AllInFocusOptions range = stackOptions();
   double badPix[2] = {};
@@ -221,7 +223,9 @@ TEST_F(PeopleAllInFocus, FineSearchAggregatesSubsetsApart) {
 // The same in the cost volume (edof::DepthExperiment::aggregateSubsetsApart): each subset's slices
 // aggregated by the first guided filter, then the lowest subset per label. Measured: BadPix(0.07)
 // noise-free 10.2 % against 11.0 %, noisy 7.8 % against 8.6 % (fine-search radius 4, no
-// occlusionBand); now the sum of both 9.6 % against 11.5 %.
+// occlusionBand); the sum of both 9.6 % against 11.5 % with issue 6's defaults, 9.3 % against
+// 9.4 % with the defaults chosen on the development scenes (issue 18: the fine search's smaller
+// window and the lighter fill recover most of what it brought).
 TEST_F(PeopleAllInFocus, CostVolumeAggregatesSubsetsApart) {
   const AllInFocusOptions range = stackOptions();
   double total[2] = {};
@@ -239,7 +243,7 @@ TEST_F(PeopleAllInFocus, CostVolumeAggregatesSubsetsApart) {
       "people, noise-free + noisy: BadPix(0.07) %.2f %% with the cost volume's subsets aggregated apart, "
       "%.2f %% without\n",
       total[1], total[0]);
-  EXPECT_LT(total[1], total[0] - 0.8);
+  EXPECT_LT(total[1], total[0]);
 }
 
 }  // namespace
