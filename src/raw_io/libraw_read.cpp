@@ -5,6 +5,8 @@
 
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 namespace lfcam {
 
 namespace {
@@ -79,11 +81,12 @@ Result<RawImage> readCameraRaw(const std::filesystem::path& path) {
     for (int c = 0; c < 3; ++c) any |= (matrix[r * 3 + c] = color.rgb_cam[r][c]) != 0;
   if (any) raw.colorMatrix = matrix;
   raw.source = "libraw";
-  raw.metadata = {{"make", lr->imgdata.idata.make},
-                  {"model", lr->imgdata.idata.model},
-                  {"raw_size", {size.raw_width, size.raw_height}},
-                  {"margins", {size.left_margin, size.top_margin}},
-                  {"iso", lr->imgdata.other.iso_speed}};
+  raw.metadataJson = nlohmann::json{{"make", lr->imgdata.idata.make},
+                                    {"model", lr->imgdata.idata.model},
+                                    {"raw_size", {size.raw_width, size.raw_height}},
+                                    {"margins", {size.left_margin, size.top_margin}},
+                                    {"iso", lr->imgdata.other.iso_speed}}
+                         .dump();
   return raw;
 }
 
