@@ -66,7 +66,7 @@ TEST(CliDepth, MetresAndPointCloudWhenTheOpticsAreKnown) {
   ASSERT_EQ(runLfcam({"convert", input.string(), "--layout", "rowcol", "-o", (dir / "rowcol").string()}, dir.path())
                 .exitStatus,
             0);
-  for (const std::vector<std::string> flags : {std::vector<std::string>{"--metric"}, {"--ply", "x.ply"}}) {
+  for (const std::vector<std::string>& flags : {std::vector<std::string>{"--metric"}, {"--ply", "x.ply"}}) {
     std::vector<std::string> args{"depth", (dir / "rowcol").string(), "-o", (dir / "n.pfm").string()};
     args.insert(args.end(), flags.begin(), flags.end());
     const auto noOptics = runLfcam(args, dir.path());

@@ -11,10 +11,10 @@
 #include <optional>
 #include <vector>
 
+#include "io/hci_parameters.hpp"
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/disparity_scores.hpp"
-#include "lfcam/hci_parameters.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/point_cloud.hpp"
