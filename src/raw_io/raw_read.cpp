@@ -6,10 +6,10 @@
 #include <numbers>
 
 #include "io/io_support.hpp"
+#include "io/tiff_file.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/raw_io.hpp"
 #include "raw_io/libraw_read.hpp"
-#include "raw_io/tiff_levels.hpp"
 
 namespace lfcam {
 
@@ -78,7 +78,7 @@ Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOp
   }
   raw.blackLevel = 0;
   raw.whiteLevel = type == SampleType::UInt8 ? 255.0 : type == SampleType::UInt16 ? 65535.0 : 1.0;
-  const TiffLevels tags = readTiffLevels(path);
+  const io::TiffLevels tags = io::readTiffLevels(path);
   if (tags.black) raw.blackLevel = *tags.black;
   if (tags.white) raw.whiteLevel = *tags.white;
   raw.source = "image";
