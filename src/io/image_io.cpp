@@ -101,6 +101,7 @@ Status checkAgainstFileLength(const fs::path& path, Kind kind, int width, int he
 Image planarFromCodes(const unsigned char* buffer, int width, int height, int channels, int alphaChannel,
                       SampleType type) {
   const std::size_t pixels = std::size_t(width) * height;
+  const auto& linearOfCode = io::linearOfSrgb8Codes();
   Image image(width, height, channels);
   for (int c = 0; c < channels; ++c) {
     float* plane = image.plane(c);
@@ -108,7 +109,7 @@ Image planarFromCodes(const unsigned char* buffer, int width, int height, int ch
     if (type == SampleType::UInt8) {
       for (std::size_t i = 0; i < pixels; ++i) {
         const std::uint8_t code = buffer[i * channels + c];
-        plane[i] = alpha ? code / 255.0f : io::linearFromSrgb8(code);
+        plane[i] = alpha ? code / 255.0f : linearOfCode[code];
       }
     } else if (type == SampleType::UInt16) {
       const auto* codes = reinterpret_cast<const std::uint16_t*>(buffer);

@@ -27,13 +27,23 @@ namespace io {
 
 namespace {
 
+// Buckets of [0, 1] (a power of two, so that bucket edges are exact floats): sRGB's steepest slope,
+// 12.92 x 255 codes per unit at 0, puts at most one code boundary in each.
+constexpr int kBuckets = 4096;
+
 struct Tables {
-  std::array<float, 256> linear;      // code -> linear
-  std::array<float, 255> thresholds;  // linear value halfway (in code space) between k and k+1
+  std::array<float, 256> linear;                 // code -> linear
+  std::array<float, 255> thresholds;             // linear value halfway (in code space) between k and k+1
+  std::array<std::uint8_t, kBuckets> firstCode;  // the code of each bucket's lower edge
   Tables() {
     // The same float as linearFromSrgb(k / 255.0f), so callers computing it themselves agree.
     for (int k = 0; k < 256; ++k) linear[k] = linearFromSrgb(float(k) / 255.0f);
     for (int k = 0; k < 255; ++k) thresholds[k] = float(linearFromSrgbExact((k + 0.5) / 255.0));
+    for (int b = 0; b < kBuckets; ++b) firstCode[b] = codeByBinarySearch(float(b) / kBuckets);
+  }
+  // The code is the number of thresholds at or below the value: rounding in code space.
+  std::uint8_t codeByBinarySearch(float value) const {
+    return std::uint8_t(std::upper_bound(thresholds.begin(), thresholds.end(), value) - thresholds.begin());
   }
 };
 
@@ -45,12 +55,20 @@ const Tables& tables() {
 }  // namespace
 
 float linearFromSrgb8(std::uint8_t code) { return tables().linear[code]; }
+const std::array<float, 256>& linearOfSrgb8Codes() { return tables().linear; }
 
 std::uint8_t srgb8FromLinear(float linear) {
   if (!(linear > 0.0f)) return 0;  // also NaN
-  const auto& t = tables().thresholds;
-  // The code is the number of thresholds at or below the value: rounding in code space.
-  return std::uint8_t(std::upper_bound(t.begin(), t.end(), linear) - t.begin());
+  if (linear >= 1.0f) return 255;
+  const Tables& t = tables();
+  int code = t.firstCode[int(linear * kBuckets)];
+  while (code < 255 && t.thresholds[code] <= linear) ++code;
+  return std::uint8_t(code);
+}
+
+std::uint8_t srgb8FromLinearReference(float linear) {
+  if (!(linear > 0.0f)) return 0;
+  return tables().codeByBinarySearch(linear);
 }
 
 std::uint8_t unorm8FromLinear(float value) {

@@ -2,14 +2,18 @@
 // per sample.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 namespace lfcam::io {
 
-// Linear value of an 8-bit sRGB code.
+// Linear value of an 8-bit sRGB code; the table of all 256, for loops over many samples.
 float linearFromSrgb8(std::uint8_t code);
-// The nearest 8-bit sRGB code to a linear value (clamped to [0, 1]; NaN gives 0).
+const std::array<float, 256>& linearOfSrgb8Codes();
+// The nearest 8-bit sRGB code to a linear value (clamped to [0, 1]; NaN gives 0): a table lookup
+// by the value's bucket and a step or two, the same code as the reference's binary search.
 std::uint8_t srgb8FromLinear(float linear);
+std::uint8_t srgb8FromLinearReference(float linear);
 
 // Integer codes of linear files: value = code / max, code = round(clamp(value) * max).
 std::uint8_t unorm8FromLinear(float value);
