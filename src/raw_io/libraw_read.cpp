@@ -8,7 +8,8 @@
 namespace lfcam {
 
 Result<RawImage> readCameraRaw(const std::filesystem::path& path) {
-  LFCAM_ASSIGN_OR_RETURN(void* table, lazyModuleEntry("libraw", LFCAM_CAMERA_RAW_CODEC_ENTRY, "reading camera raws"));
+  LFCAM_ASSIGN_OR_RETURN(
+      void* table, lazyModuleEntry("libraw", LFCAM_CAMERA_RAW_CODEC_ENTRY, path.string() + ": reading a camera raw"));
   LFCAM_ASSIGN_OR_RETURN(auto codes, static_cast<const CameraRawCodec*>(table)->read(path));
   RawImage raw;
   raw.mosaic = Image(codes.width, codes.height, 1);

@@ -17,8 +17,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Result<const Mp4Codec*> loadMp4Codec() {
-  LFCAM_ASSIGN_OR_RETURN(void* table, lazyModuleEntry("mp4", LFCAM_MP4_CODEC_ENTRY, "MP4 export"));
+Result<const Mp4Codec*> loadMp4Codec(const std::string& purpose) {
+  LFCAM_ASSIGN_OR_RETURN(void* table, lazyModuleEntry("mp4", LFCAM_MP4_CODEC_ENTRY, purpose));
   return static_cast<const Mp4Codec*>(table);
 }
 
@@ -45,7 +45,7 @@ Status writeMp4Video(const fs::path& path, const std::vector<Image>& frames, int
   if (io::lowerExtension(path) != ".mp4")
     return makeError(ErrorCode::Usage, path.string() + ": MP4 videos are written as .mp4");
   LFCAM_TRY(checkAnimationFrames(path, frames, framesPerSecond));
-  LFCAM_ASSIGN_OR_RETURN(const Mp4Codec* codec, loadMp4Codec());
+  LFCAM_ASSIGN_OR_RETURN(const Mp4Codec* codec, loadMp4Codec(path.string() + ": MP4 export"));
   const int width = frames[0].width() + frames[0].width() % 2, height = frames[0].height() + frames[0].height() % 2;
   const Mp4Frames even{width, height, framesPerSecond, frames.size(),
                        [&](std::size_t i) { return evenSizedPixels(frames[i], width, height); }};
@@ -57,7 +57,7 @@ Status writeMp4Video(const fs::path& path, const std::vector<Image>& frames, int
 
 Result<VideoSummary> readVideoSummary(const fs::path& path) {
   LFCAM_TRY(io::checkReadableFile(path));
-  LFCAM_ASSIGN_OR_RETURN(const Mp4Codec* codec, loadMp4Codec());
+  LFCAM_ASSIGN_OR_RETURN(const Mp4Codec* codec, loadMp4Codec(path.string() + ": reading a video"));
   Result<VideoSummary> summary = codec->summarise(path);
   if (!summary) return aboutFile(summary.error(), path);
   return summary;
