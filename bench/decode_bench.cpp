@@ -11,7 +11,7 @@
 //                           demosaic_ratio the same for the demosaic step alone (the raw's mosaic).
 //   BM_DemosaicReference    the plain per-pixel demosaic against the fast one on a 1024 x 1024
 //                           crop: ratio = reference time / fast time.
-//   BM_SamplingReference    the same for the sampling (decode with referenceKernels on a crop).
+//   BM_SamplingReference    the same for the sampling (decode with the reference kernels on a crop).
 // Goal (issue 4): under 3 s on 2 cores.
 //
 // Run: build-*/bench/decode_bench [--benchmark_filter=...]
@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "decode/decode_internal.hpp"
 #include "lfcam/decode.hpp"
 #include "lfcam/parallel.hpp"
 
@@ -160,7 +161,8 @@ void BM_DemosaicReference(benchmark::State& state) {
     const double fast =
         seconds([&] { benchmark::DoNotOptimize(demosaic(mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler)); });
     const double reference = seconds([&] {
-      benchmark::DoNotOptimize(demosaicReference(mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler));
+      benchmark::DoNotOptimize(
+          decode_detail::demosaicReference(mosaic, ColorFilter::GRBG, DemosaicMethod::MalvarHeCutler));
     });
     state.counters["ratio"] = reference / fast;
   }
@@ -172,9 +174,10 @@ void BM_SamplingReference(benchmark::State& state) {
   options.white = &s.white;
   for (auto _ : state) {
     const double fast = seconds([&] { benchmark::DoNotOptimize(decodeLightField(s.raw, s.grid, options)); });
-    options.referenceKernels = true;
-    const double reference = seconds([&] { benchmark::DoNotOptimize(decodeLightField(s.raw, s.grid, options)); });
-    options.referenceKernels = false;
+    const double reference = seconds([&] {
+      benchmark::DoNotOptimize(
+          decode_detail::decodeLightField(s.raw, s.grid, options, decode_detail::Kernels::Reference));
+    });
     state.counters["ratio"] = reference / fast;
   }
 }

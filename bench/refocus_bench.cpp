@@ -28,11 +28,12 @@
 #include <span>
 #include <vector>
 
+#include "core/memory_floor.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/light_field_io.hpp"
-#include "lfcam/memory_floor.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/refocus.hpp"
+#include "render/references.hpp"
 
 namespace {
 

@@ -21,12 +21,12 @@
 #include <thread>
 #include <vector>
 
-#include "lfcam/image_encode.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/viewer.hpp"
 #include "lfcam/viewer_server.hpp"
+#include "viewer/image_encode.hpp"
 
 namespace {
 

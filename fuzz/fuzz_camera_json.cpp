@@ -4,6 +4,7 @@
 
 #include "fuzz_support.hpp"
 #include "lfcam/camera_model.hpp"
+#include "simulate/camera_json.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

@@ -1,6 +1,7 @@
 // Lenslet grid JSON (lenslet_grid.hpp gridFromJson), written by calibration and read by decode.
 #include <nlohmann/json.hpp>
 
+#include "calibrate/grid_json.hpp"
 #include "fuzz_support.hpp"
 #include "lfcam/lenslet_grid.hpp"
 

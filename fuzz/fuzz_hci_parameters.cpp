@@ -1,7 +1,7 @@
 // The HCI benchmark's parameters.cfg: parsed alone (hci_parameters.hpp), then read as part of a
 // small valid folder of 2 x 2 views.
 #include "fuzz_support.hpp"
-#include "lfcam/hci_parameters.hpp"
+#include "io/hci_parameters.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/light_field_io.hpp"
 

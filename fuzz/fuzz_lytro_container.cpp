@@ -1,8 +1,9 @@
 // Lytro containers (.lfp, .lfr): sections, SHA-1 names, the JSON table of contents, its
 // references, the listing, and the raw frame with its metadata and packed samples.
 #include "fuzz_support.hpp"
-#include "lfcam/lytro_contents.hpp"
 #include "lfcam/raw_io.hpp"
+#include "raw_io/lytro_contents.hpp"
+#include "raw_io/lytro_raw.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

@@ -2,7 +2,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fuzz_support.hpp"
-#include "lfcam/lytro_metadata.hpp"
+#include "raw_io/lytro_metadata.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

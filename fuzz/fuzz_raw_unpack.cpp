@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "fuzz_support.hpp"
-#include "lfcam/raw_packing.hpp"
+#include "raw_io/raw_packing.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "analysis/references.hpp"
 #include "lfcam/analysis.hpp"
 
 namespace lfcam {

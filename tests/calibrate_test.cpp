@@ -10,10 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "calibrate/calibrate_internal.hpp"
+#include "calibrate/grid_json.hpp"
 #include "lfcam/calibrate.hpp"
 #include "lfcam/scene.hpp"
 #include "lfcam/simulate.hpp"
 #include "lfcam/simulated_grid.hpp"
+#include "simulate/camera_json.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {
@@ -347,7 +349,7 @@ TEST(Median3x3, FastKernelMatchesReference) {
   for (auto [w, h] : {std::pair{1, 1}, {2, 5}, {3, 3}, {17, 9}, {64, 31}}) {
     Image image(w, h, 1);
     for (float& v : image.pixels()) v = value(random);
-    const Image fast = median3x3(image), slow = median3x3Reference(image);
+    const Image fast = median3x3(image), slow = calibrate_detail::median3x3Reference(image);
     for (std::size_t k = 0; k < fast.pixels().size(); ++k)
       ASSERT_EQ(fast.pixels()[k], slow.pixels()[k]) << w << "x" << h;
   }

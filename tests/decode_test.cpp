@@ -42,7 +42,7 @@ TEST(Decode, FastDemosaicMatchesReference) {
     for (DemosaicMethod method : {DemosaicMethod::MalvarHeCutler, DemosaicMethod::HamiltonAdams}) {
       const Image mosaic = randomImage(37, 29, 1, 7 + int(filter));
       const Image fast = demosaic(mosaic, filter, method);
-      const Image reference = demosaicReference(mosaic, filter, method);
+      const Image reference = decode_detail::demosaicReference(mosaic, filter, method);
       ASSERT_EQ(fast.channels(), 3);
       EXPECT_LT(maxDifference(fast.pixels(), reference.pixels()), 1e-5)
           << colorFilterName(filter) << " method " << int(method);
@@ -157,8 +157,7 @@ TEST(Decode, FastSamplingMatchesReference) {
     options.sampling = sampling;
     options.views = 9;
     auto fast = decodeLightField(raw, grid, options);
-    options.referenceKernels = true;
-    auto reference = decodeLightField(raw, grid, options);
+    auto reference = decode_detail::decodeLightField(raw, grid, options, decode_detail::Kernels::Reference);
     ASSERT_TRUE(fast.ok() && reference.ok());
     ASSERT_EQ(fast->shape(), (LightFieldShape{9, 9, 14, 12, 3}));
     EXPECT_LT(maxDifference(fast->samples(), reference->samples()), 1e-4);
@@ -188,8 +187,7 @@ TEST(Decode, LightFieldAwareDemosaicMatchesReference) {
     options.demosaic = DemosaicMethod::LightFieldAware;
     options.views = 9;
     auto fast = decodeLightField(raw, grid, options);
-    options.referenceKernels = true;
-    auto reference = decodeLightField(raw, grid, options);
+    auto reference = decode_detail::decodeLightField(raw, grid, options, decode_detail::Kernels::Reference);
     ASSERT_TRUE(fast.ok() && reference.ok());
     EXPECT_LT(maxDifference(fast->samples(), reference->samples()), 1e-4);
     options.demosaic = DemosaicMethod::MalvarHeCutler;
@@ -211,8 +209,9 @@ TEST(Decode, LightFieldAwareDemosaicReferenceIsPublic) {
     grid.columns = 9, grid.rows = 8;
     const Image mosaic = randomImage(71, 61, 1, 31 + int(packing));
     const Image fast = demosaic(mosaic, ColorFilter::BGGR, DemosaicMethod::LightFieldAware, &grid);
-    const Image reference = demosaicReference(mosaic, ColorFilter::BGGR, DemosaicMethod::LightFieldAware, &grid);
-    const Image malvar = demosaicReference(mosaic, ColorFilter::BGGR, DemosaicMethod::MalvarHeCutler);
+    const Image reference =
+        decode_detail::demosaicReference(mosaic, ColorFilter::BGGR, DemosaicMethod::LightFieldAware, &grid);
+    const Image malvar = decode_detail::demosaicReference(mosaic, ColorFilter::BGGR, DemosaicMethod::MalvarHeCutler);
     EXPECT_LT(maxDifference(fast.pixels(), reference.pixels()), 1e-4);
     EXPECT_GT(maxDifference(reference.pixels(), malvar.pixels()), 0.01);  // not Malvar-He-Cutler's
   }

@@ -6,8 +6,8 @@
 #include <random>
 #include <string>
 
+#include "io/hci_parameters.hpp"
 #include "lfcam/depth.hpp"
-#include "lfcam/hci_parameters.hpp"
 #include "lfcam/light_field_io.hpp"
 #include "test_support.hpp"
 

@@ -1,7 +1,7 @@
 // Lytro containers: writer/reader round trip, SHA-1 names, damage of every kind gives an error.
 #include <gtest/gtest.h>
 
-#include "lfcam/lytro_container.hpp"
+#include "raw_io/lytro_container.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

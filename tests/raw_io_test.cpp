@@ -11,6 +11,7 @@
 #include "lfcam/image_io.hpp"
 #include "lfcam/raw_io.hpp"
 #include "lfcam/simulate.hpp"
+#include "raw_io/lytro_raw.hpp"
 #include "test_support.hpp"
 #include "tiff_with_levels.hpp"
 
@@ -184,7 +185,7 @@ TEST(RawIo, SimulatorCaptureThroughFirstGenerationLfp) {
   EXPECT_EQ(lfp->blackLevel, 64);
   EXPECT_EQ(lfp->whiteLevel, 4095);
   expectSameHint(*lfp, *png);
-  EXPECT_EQ(lfp->metadata["image"]["rawDetails"]["pixelPacking"]["bitsPerPixel"], 12);
+  EXPECT_EQ(nlohmann::json::parse(lfp->metadataJson)["image"]["rawDetails"]["pixelPacking"]["bitsPerPixel"], 12);
 }
 
 TEST(RawIo, SimulatorCaptureThroughIllumLfrWithWhiteImage) {
@@ -203,7 +204,8 @@ TEST(RawIo, SimulatorCaptureThroughIllumLfrWithWhiteImage) {
     EXPECT_EQ(lfr->whiteLevel, 1023);
     expectSameHint(*lfr, *png);
     EXPECT_EQ(lfr->lenslet->packing, Packing::Hexagonal);
-    EXPECT_EQ(lfr->metadata["image"]["pixelPacking"]["bitsPerPixel"], 10);  // Illum layout, 10-bit
+    EXPECT_EQ(nlohmann::json::parse(lfr->metadataJson)["image"]["pixelPacking"]["bitsPerPixel"],
+              10);  // Illum layout, 10-bit
   }
   auto white = readLytroContainer(dir / "white.lfr");
   ASSERT_TRUE(white);

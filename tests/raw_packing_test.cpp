@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "lfcam/raw_packing.hpp"
+#include "raw_io/raw_packing.hpp"
 
 namespace lfcam {
 namespace {

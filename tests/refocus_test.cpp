@@ -2,6 +2,7 @@
 // for any light field: slope 0 is the mean of the views, a flat field stays flat, an integer
 // slope is an exact shift.
 #include "lfcam/refocus.hpp"
+#include "render/references.hpp"
 
 #include <gtest/gtest.h>
 #include <hwy/targets.h>

@@ -2,6 +2,7 @@
 // at a pixel: fast kernels against the float64 reference on random light fields, the geometry
 // against paper-notes.md computed in millimetres, and the properties of synthetic_camera.hpp.
 #include "lfcam/synthetic_camera.hpp"
+#include "render/references.hpp"
 
 #include <gtest/gtest.h>
 

@@ -12,13 +12,13 @@
 #include <cmath>
 #include <thread>
 
-#include "lfcam/image_encode.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/living_picture.hpp"
 #include "lfcam/viewer.hpp"
 #include "lfcam/viewer_server.hpp"
 #include "test_support.hpp"
+#include "viewer/image_encode.hpp"
 
 namespace lfcam {
 namespace {

@@ -17,8 +17,6 @@ namespace lfcam {
 // |FFT| of channel 0 with zero frequency moved to the centre ((w/2, h/2)), divided by |H(0)|.
 // Usage error for an empty image or one that sums to zero. FFTW (single precision).
 Result<Image> transferFunction(const Image& photo);
-// The same by a direct float64 DFT: the oracle for tests (O(w^2 h^2)).
-Result<Image> transferFunctionReference(const Image& photo);
 
 // The cutoff of `energyShare` (0..1] of the energy of a transfer function as returned above,
 // in cycles per pixel; at most sqrt(0.5) (the corner of the spectrum).

@@ -72,7 +72,6 @@ Result<LensletGrid> calibrateGrid(const RawImage& raw, CalibrationOptions option
 // A starting guess from a metadata file: the simulator's camera.json (its "lattice_px") or a Lytro
 // frame metadata JSON (devices.mla: lensPitch, rotation, sensorOffset; devices.sensor.pixelPitch).
 Result<LensletHint> readLensletHint(const std::filesystem::path& path);
-Result<LensletHint> lensletHintFromJson(const nlohmann::json& json, const std::string& where);
 
 }  // namespace lfcam
 
@@ -81,8 +80,7 @@ namespace lfcam {
 // The steps on their own, for tests.
 
 // 3x3 median of a one-channel image (borders: the window clipped to the image): hot and dead
-// pixels go, the centre of a centrally symmetric spot stays. Fast kernel and its plain reference.
+// pixels go, the centre of a centrally symmetric spot stays.
 Image median3x3(const Image& image);
-Image median3x3Reference(const Image& image);
 
 }  // namespace lfcam

@@ -34,8 +34,6 @@
 #include <optional>
 #include <string>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "lfcam/result.hpp"
 #include "lfcam/sensor_layout.hpp"
 
@@ -121,11 +119,5 @@ struct CameraModel {
   // Checks every value; the error names the key (as in the scene file) that is wrong.
   Status validate(const std::string& where) const;
 };
-
-// Reads the "camera" object of a scene file over `base` (unset keys keep base's values). `where`
-// (a file name) starts every error message, followed by the key path.
-Result<CameraModel> cameraFromJson(const nlohmann::json& json, const CameraModel& base, const std::string& where);
-// The whole model as written to camera.json (docs/formats.md), including the derived lattice.
-nlohmann::json cameraToJson(const CameraModel& camera);
 
 }  // namespace lfcam

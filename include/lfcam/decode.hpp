@@ -66,8 +66,6 @@ struct DecodeOptions {
   bool hexToRectangular = true;
   bool applyWhiteBalance = true;  // raw.whiteBalance and raw.colorMatrix, when present
   std::optional<Optics> optics;   // copied into metadata (the grid alone has no millimetres)
-  // Plain per-pixel and per-sample kernels instead of the fast ones (slow): what tests compare to.
-  bool referenceKernels = false;
 };
 
 Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options = {});
@@ -77,10 +75,6 @@ Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid
 // Demosaics a one-channel mosaic (any scale) into 3 planes (R, G, B); a Mono filter gives a copy.
 // LensletAware and LightFieldAware need the grid (without it: Malvar-He-Cutler); the others ignore it.
 Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid = nullptr);
-// Plain per-pixel implementations of the same, the references the fast kernels are tested against
-// (LightFieldAware's with bounds-checked taps everywhere; LensletAware has only the one).
-Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method,
-                        const LensletGrid* grid = nullptr);
 
 // Replaces each photosite more than `threshold` above every same-colour neighbour (8 of them, two
 // pixels away in a Bayer mosaic) by their median. Returns the number repaired.

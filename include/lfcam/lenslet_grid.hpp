@@ -13,8 +13,6 @@
 #include <filesystem>
 #include <string>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "lfcam/result.hpp"
 #include "lfcam/sensor_layout.hpp"
 
@@ -40,8 +38,6 @@ struct LensletGrid {
 };
 
 // grid.json (docs/formats.md).
-nlohmann::json gridToJson(const LensletGrid& grid);
-Result<LensletGrid> gridFromJson(const nlohmann::json& json, const std::string& where);
 Result<LensletGrid> readGrid(const std::filesystem::path& path);
 Status writeGrid(const std::filesystem::path& path, const LensletGrid& grid);
 

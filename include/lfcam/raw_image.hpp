@@ -10,9 +10,8 @@
 #include <optional>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "lfcam/image.hpp"
+#include "lfcam/light_field.hpp"
 #include "lfcam/sensor_layout.hpp"
 
 namespace lfcam {
@@ -35,10 +34,12 @@ struct RawImage {
   std::optional<LensletHint> lenslet;
   std::optional<std::array<double, 3>> whiteBalance;  // gains for R, G, B
   std::optional<std::array<double, 9>> colorMatrix;   // camera RGB -> linear sRGB, row-major
+  // The main lens and microlens geometry, when the metadata states it (the simulator's camera.json).
+  std::optional<Optics> optics;
   // Where the raw came from ("lytro-lfp", "lytro-lfr", "simulator", "libraw", "image") and the
-  // frame metadata as the file gave it, for `lfcam info`.
+  // frame metadata as the file gave it, as JSON text ("" when it gave none), for `lfcam info`.
   std::string source;
-  nlohmann::json metadata;
+  std::string metadataJson;
 };
 
 }  // namespace lfcam

@@ -1,8 +1,8 @@
 // Reading raw sensor images into RawImage (raw_image.hpp), and writing simulated Lytro raws.
 //
 // readRaw recognises its input by content:
-//   - a Lytro container (.lfp, .lfr) holding a raw frame: unpacked (raw_packing.hpp) and
-//     described by its frame metadata (lytro_metadata.hpp);
+//   - a Lytro container (.lfp, .lfr) holding a raw frame: unpacked and described by its frame
+//     metadata;
 //   - a PNG or TIFF lenslet image, 8 or 16 bit: values in DN (a 16-bit file holds DN directly,
 //     an 8-bit file its codes 0-255). Black/white levels and the Bayer pattern come from the
 //     options, else from a camera.json beside the file written by `lfcam simulate` (with the
@@ -18,8 +18,6 @@
 #include <string>
 #include <string_view>
 
-#include "lfcam/lytro_container.hpp"
-#include "lfcam/lytro_metadata.hpp"
 #include "lfcam/raw_image.hpp"
 #include "lfcam/result.hpp"
 
@@ -36,25 +34,22 @@ struct RawReadOptions {
 
 Result<RawImage> readRaw(const std::filesystem::path& path, const RawReadOptions& options = {});
 
-// The raw frame of a parsed container (Unsupported when it holds only processed pictures).
-Result<RawImage> rawFromLytroContainer(const LytroContainer& container, const std::string& where);
-
 // "RGGB", "BGGR", "GRBG", "GBRG", "mono" (any case).
 std::optional<ColorFilter> parseColorFilterName(std::string_view name);
+
+enum class LytroStyle { FirstGeneration, Illum };  // .lfp (F01) or .lfr (Illum)
 
 struct LytroWriteOptions {
   LytroStyle style = LytroStyle::FirstGeneration;
   double pixelPitchMm = 0.0014;  // the Lytro sensors' 1.4 um unless the caller knows better
   bool modulationFrame = false;  // a white image (Lytro's "modulation" frame)
-  nlohmann::json extra;          // stored in the frame metadata under "lfcam" when not null
+  std::string extraJson;         // a JSON value stored in the frame metadata under "lfcam" when not empty
 };
 
-// A container holding `raw` (integer DN in [0, 65535]) with real-style metadata: F01 style packs
-// 12-bit big-endian when every value fits 12 bits, Illum style 10-bit little-endian when they fit
-// 10 bits; otherwise 16-bit little-endian (as Lytro's own simulator wrote). readRaw of the result
+// A Lytro container holding `raw` (integer DN in [0, 65535]) with real-style metadata: F01 style
+// packs 12-bit big-endian when every value fits 12 bits, Illum style 10-bit little-endian when they
+// fit 10 bits; otherwise 16-bit little-endian (as Lytro's own simulator wrote). readRaw of the file
 // returns the same mosaic, levels, Bayer pattern, lenslet hint, white balance and colour matrix.
-Result<LytroContainer> makeLytroRawContainer(const RawImage& raw, const LytroWriteOptions& options,
-                                             const std::string& where);
 Status writeLytroRaw(const std::filesystem::path& path, const RawImage& raw, const LytroWriteOptions& options);
 
 // `lfcam simulate --container`: from raw.png (or .tiff), white.* and camera.json in `folder`,

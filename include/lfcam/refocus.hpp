@@ -10,8 +10,8 @@
 // pixel is normalised by the rays that actually contributed (section 5.2): no dark borders.
 // A pixel that no ray reaches is 0.
 //
-// refocus is the fast kernel (float32, one pass per view, threaded over rows); refocusReference
-// is the plain float64 per-pixel oracle it is tested against.
+// refocus is the fast kernel (float32, one pass per view, threaded over rows), tested against a
+// plain float64 per-pixel oracle (src/render/references.hpp).
 #pragma once
 
 #include "lfcam/image.hpp"
@@ -20,6 +20,5 @@
 namespace lfcam {
 
 Image refocus(const LightField& lightField, double slope);
-Image refocusReference(const LightField& lightField, double slope);
 
 }  // namespace lfcam

@@ -89,12 +89,6 @@ struct RenderOptions {
 Result<Image> renderSyntheticPhoto(const LightField& lightField, const SyntheticCamera& camera,
                                    const RenderOptions& options = {});
 
-// The float64 oracle: the geometry above per output pixel and per aperture sample, with
-// quadrilinear interpolation of the light field. supersampling = 1 samples the aperture at the
-// views (what Fast computes), more samples between them (what Quadrature computes).
-Result<Image> renderSyntheticPhotoReference(const LightField& lightField, const SyntheticCamera& camera,
-                                            int supersampling = 1);
-
 // Moving the observer (Equation 7, Figures 6, 7 and 18): a pinhole at (u, v) view steps from
 // the centre of the lens plane, moved along the axis by beta, film at the real film plane
 // (alpha = 1). Each pixel takes the one ray through the pinhole, interpolated quadrilinearly.
@@ -108,6 +102,5 @@ struct Observer {
   bool clampToLens = false;
 };
 Result<Image> observe(const LightField& lightField, const Observer& observer);
-Result<Image> observeReference(const LightField& lightField, const Observer& observer);
 
 }  // namespace lfcam

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <utility>
 
+#include "analysis/references.hpp"
 #include "core/fftw_planner.hpp"
 #include "lfcam/analysis.hpp"
 

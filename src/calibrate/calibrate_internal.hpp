@@ -96,6 +96,8 @@ Image smoothBinomial(const Image& work);
 // The plain reference: one whole-image pass per step.
 Image prepareReference(const Image& image, const CalibrationOptions& options, bool smoothed);
 
+// median3x3 (calibrate.hpp), plainly per pixel: the reference of the fast kernel.
+Image median3x3Reference(const Image& image);
 // One row of the 3x3 median (median3x3.cpp): out[x] for x in [x0, x1) of rows `width` wide;
 // above or below is null outside the image, where the window is clipped.
 void median3x3Row(const float* above, const float* row, const float* below, int width, int x0, int x1, float* out);

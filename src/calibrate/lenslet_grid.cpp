@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calibrate/calibrate_internal.hpp"
+#include "calibrate/grid_json.hpp"
 #include "core/json_reader.hpp"
 #include "lfcam/atomic_file.hpp"
 

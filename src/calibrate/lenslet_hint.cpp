@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calibrate/calibrate_internal.hpp"
+#include "calibrate/grid_json.hpp"
 #include "lfcam/calibrate.hpp"
 
 namespace lfcam {

@@ -35,13 +35,6 @@ inline void order(float& a, float& b) {
 
 }  // namespace
 
-Image median3x3Reference(const Image& image) {
-  Image out(image.width(), image.height(), 1);
-  for (int y = 0; y < image.height(); ++y)
-    for (int x = 0; x < image.width(); ++x) out.at(x, y, 0) = clippedMedian(image, x, y);
-  return out;
-}
-
 Image median3x3(const Image& image) {
   const int width = image.width(), height = image.height();
   Image out(width, height, 1);
@@ -54,6 +47,13 @@ Image median3x3(const Image& image) {
 }
 
 namespace calibrate_detail {
+
+Image median3x3Reference(const Image& image) {
+  Image out(image.width(), image.height(), 1);
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) out.at(x, y, 0) = clippedMedian(image, x, y);
+  return out;
+}
 
 void median3x3Row(const float* above, const float* row, const float* below, int width, int x0, int x1, float* out) {
   // Median of the window clipped to the image (borders).

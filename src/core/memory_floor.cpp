@@ -1,4 +1,4 @@
-#include "lfcam/memory_floor.hpp"
+#include "core/memory_floor.hpp"
 
 #include <algorithm>
 #include <chrono>

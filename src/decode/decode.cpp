@@ -209,7 +209,7 @@ Result<Devignetted> devignettedMosaic(const RawImage& raw, const LensletGrid& gr
 }
 
 Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& raw, const LensletGrid& grid,
-                                    const DecodeOptions& options) {
+                                    const DecodeOptions& options, Kernels kernels) {
   LFCAM_TRY(checkInputs(raw, grid, options));
   const int channels = raw.colorFilter == ColorFilter::Mono ? 1 : 3;
   if (planes.channels() != channels || planes.width() != raw.mosaic.width() || planes.height() != raw.mosaic.height())
@@ -225,7 +225,7 @@ Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& 
   layout.views = n;
   layout.sampling = options.sampling;
   layout.integralScale = grid.pitchX / std::max(1.0, std::round(grid.pitchX));
-  sampleLenslets(planes, weight, grid, layout, lf, options.referenceKernels);
+  sampleLenslets(planes, weight, grid, layout, lf, kernels == Kernels::Reference);
   planes = Image();
   weight = Image();
 
@@ -261,22 +261,26 @@ Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& 
   return lf;
 }
 
+Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options,
+                                    Kernels kernels) {
+  LFCAM_ASSIGN_OR_RETURN(auto prepared, devignettedMosaic(raw, grid, options));
+  Image& value = prepared.value;
+  const ColorFilter filter = raw.colorFilter;
+  const bool reference = kernels == Kernels::Reference;
+
+  // 3. Demosaicing.
+  Image planes = filter != ColorFilter::Mono && options.demosaic == DemosaicMethod::LightFieldAware
+                     ? demosaicLightField(value, filter, grid, prepared.weight, reference)
+                 : reference ? demosaicReference(value, filter, options.demosaic, &grid)
+                             : demosaic(value, filter, options.demosaic, &grid);
+  value = Image();
+  return decodeDemosaiced(std::move(planes), std::move(prepared.weight), raw, grid, options, kernels);
+}
+
 }  // namespace decode_detail
 
 Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options) {
-  auto prepared = decode_detail::devignettedMosaic(raw, grid, options);
-  if (!prepared.ok()) return prepared.error();
-  Image& value = prepared->value;
-  const ColorFilter filter = raw.colorFilter;
-
-  // 3. Demosaicing.
-  Image planes =
-      filter != ColorFilter::Mono && options.demosaic == DemosaicMethod::LightFieldAware
-          ? decode_detail::demosaicLightField(value, filter, grid, prepared->weight, options.referenceKernels)
-      : options.referenceKernels ? demosaicReference(value, filter, options.demosaic, &grid)
-                                 : demosaic(value, filter, options.demosaic, &grid);
-  value = Image();
-  return decode_detail::decodeDemosaiced(std::move(planes), std::move(prepared->weight), raw, grid, options);
+  return decode_detail::decodeLightField(raw, grid, options, decode_detail::Kernels::Fast);
 }
 
 }  // namespace lfcam

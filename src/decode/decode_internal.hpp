@@ -15,6 +15,18 @@
 
 namespace lfcam::decode_detail {
 
+// The fast kernels, or the plain per-pixel and per-sample ones they are tested against (slow).
+enum class Kernels { Fast, Reference };
+
+// decodeLightField (decode.hpp) with the chosen kernels.
+Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options,
+                                    Kernels kernels);
+
+// Plain per-pixel implementations of demosaic (decode.hpp), the references the fast kernels are
+// tested against (LightFieldAware's with bounds-checked taps everywhere; LensletAware has only one).
+Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method,
+                        const LensletGrid* grid = nullptr);
+
 // Colour (0 R, 1 G, 2 B) of photosite (x, y) of a Bayer filter, from a 2x2 table.
 struct CfaTable {
   explicit CfaTable(ColorFilter filter);
@@ -98,6 +110,6 @@ struct Devignetted {
 Result<Devignetted> devignettedMosaic(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options);
 // Steps 4 to 6: `planes` (3, or 1 for a Mono raw, of the raw's size) and `weight` as step 2 left them.
 Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& raw, const LensletGrid& grid,
-                                    const DecodeOptions& options);
+                                    const DecodeOptions& options, Kernels kernels = Kernels::Fast);
 
 }  // namespace lfcam::decode_detail

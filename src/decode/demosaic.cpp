@@ -169,14 +169,12 @@ std::vector<int> microlensLabels(const LensletGrid& grid, int width, int height)
   return label;
 }
 
-}  // namespace decode_detail
-
 Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid) {
   if (filter == ColorFilter::Mono) return monoCopy(mosaic);
   const CfaTable cfa(filter);
   if (method == DemosaicMethod::LensletAware && grid) return demosaicLensletAware(mosaic, cfa, *grid);
   if (method == DemosaicMethod::LightFieldAware && grid)
-    return decode_detail::demosaicLightField(mosaic, filter, *grid, Image(), true);
+    return demosaicLightField(mosaic, filter, *grid, Image(), true);
   const int w = mosaic.width(), h = mosaic.height();
   Image out(w, h, 3);
   const Mosaic m{mosaic.plane(0), w, h};
@@ -202,6 +200,8 @@ Image demosaicReference(const Image& mosaic, ColorFilter filter, DemosaicMethod 
   return out;
 }
 
+}  // namespace decode_detail
+
 Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, const LensletGrid* grid) {
   if (filter == ColorFilter::Mono) return monoCopy(mosaic);
   const CfaTable cfa(filter);
@@ -209,7 +209,7 @@ Image demosaic(const Image& mosaic, ColorFilter filter, DemosaicMethod method, c
   if (method == DemosaicMethod::LightFieldAware && grid)
     return decode_detail::demosaicLightField(mosaic, filter, *grid, Image());
   const int w = mosaic.width(), h = mosaic.height();
-  if (w < 8 || h < 8) return demosaicReference(mosaic, filter, method);
+  if (w < 8 || h < 8) return decode_detail::demosaicReference(mosaic, filter, method);
   Image out(w, h, 3);
   const Mosaic reflected{mosaic.plane(0), w, h};
   const Direct direct{mosaic.plane(0), w};

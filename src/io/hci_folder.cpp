@@ -11,9 +11,9 @@
 #include <sstream>
 #include <system_error>
 
+#include "io/hci_parameters.hpp"
 #include "io/io_support.hpp"
 #include "io/view_folder.hpp"
-#include "lfcam/hci_parameters.hpp"
 
 namespace lfcam::io {
 

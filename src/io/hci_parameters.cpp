@@ -1,6 +1,6 @@
 // parameters.cfg of the HCI benchmark (hci_parameters.hpp): a bounded INI reader, the keys lfcam
 // uses, and the equivalent plenoptic optics.
-#include "lfcam/hci_parameters.hpp"
+#include "io/hci_parameters.hpp"
 
 #include <algorithm>
 #include <cctype>

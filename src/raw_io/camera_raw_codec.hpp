@@ -8,9 +8,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "lfcam/raw_image.hpp"
 #include "lfcam/result.hpp"
@@ -24,7 +23,7 @@ struct CameraRawCodes {
   double blackLevel = 0, whiteLevel = 65535;  // DN
   std::optional<std::array<double, 3>> whiteBalance;
   std::optional<std::array<double, 9>> colorMatrix;
-  nlohmann::json metadata;
+  std::string metadataJson;  // RawImage::metadataJson
 };
 
 struct CameraRawCodec {

@@ -20,7 +20,7 @@ Result<RawImage> readCameraRaw(const std::filesystem::path& path) {
   raw.whiteBalance = codes.whiteBalance;
   raw.colorMatrix = codes.colorMatrix;
   raw.source = "libraw";
-  raw.metadata = std::move(codes.metadata);
+  raw.metadataJson = std::move(codes.metadataJson);
   return raw;
 }
 

@@ -1,5 +1,5 @@
 // Lytro containers (lytro_container.hpp): scanning, SHA-1 checks, writing.
-#include "lfcam/lytro_container.hpp"
+#include "raw_io/lytro_container.hpp"
 
 #include <openssl/evp.h>
 

@@ -1,5 +1,5 @@
 // Describing and extracting Lytro containers (lytro_contents.hpp).
-#include "lfcam/lytro_contents.hpp"
+#include "raw_io/lytro_contents.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,9 +10,10 @@
 #include "lfcam/atomic_file.hpp"
 #include "lfcam/color_map.hpp"
 #include "lfcam/image_io.hpp"
-#include "lfcam/lytro_metadata.hpp"
 #include "lfcam/memory_budget.hpp"
 #include "lfcam/raw_io.hpp"
+#include "raw_io/lytro_metadata.hpp"
+#include "raw_io/lytro_raw.hpp"
 
 namespace lfcam {
 

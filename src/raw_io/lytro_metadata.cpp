@@ -1,5 +1,5 @@
 // Lytro frame metadata (lytro_metadata.hpp).
-#include "lfcam/lytro_metadata.hpp"
+#include "raw_io/lytro_metadata.hpp"
 
 #include <cmath>
 

@@ -6,6 +6,8 @@
 
 #include "lfcam/memory_budget.hpp"
 #include "lfcam/raw_io.hpp"
+#include "raw_io/lytro_metadata.hpp"
+#include "raw_io/lytro_raw.hpp"
 
 namespace lfcam {
 
@@ -71,7 +73,7 @@ Result<RawImage> rawFromLytroContainer(const LytroContainer& container, const st
   raw.whiteBalance = format.whiteBalance;
   raw.colorMatrix = format.colorMatrix;
   raw.source = container.tableOfContents.contains("frames") ? "lytro-lfr" : "lytro-lfp";
-  raw.metadata = std::move(metadata);
+  raw.metadataJson = metadata.dump();
   return raw;
 }
 
@@ -106,7 +108,11 @@ Result<LytroContainer> makeLytroRawContainer(const RawImage& raw, const LytroWri
   format.whiteBalance = raw.whiteBalance;
   format.colorMatrix = raw.colorMatrix;
   json metadata = makeLytroFrameMetadata(format, options.style);
-  if (!options.extra.is_null()) metadata["lfcam"] = options.extra;
+  if (!options.extraJson.empty()) {
+    json extra = json::parse(options.extraJson, nullptr, false);
+    if (extra.is_discarded()) return makeError(ErrorCode::Usage, where + ": the extra metadata is not JSON");
+    metadata["lfcam"] = std::move(extra);
+  }
 
   LytroSection image = makeLytroSection(LytroSectionKind::Component, packRaw(format.packing, samples));
   LytroSection meta = makeLytroSection(LytroSectionKind::Component, metadata.dump(1));
@@ -167,10 +173,11 @@ Status writeSimulationContainers(const std::filesystem::path& folder, LytroStyle
     LytroWriteOptions options;
     options.style = style;
     options.modulationFrame = std::string(stem) == "white";
-    const json& sensor = raw.metadata["sensor"];
-    if (sensor.contains("pixel_pitch_mm") && sensor["pixel_pitch_mm"].is_number())
+    const json camera = json::parse(raw.metadataJson, nullptr, false);
+    const json sensor = camera.is_object() ? camera.value("sensor", json()) : json();
+    if (sensor.is_object() && sensor.contains("pixel_pitch_mm") && sensor["pixel_pitch_mm"].is_number())
       options.pixelPitchMm = sensor["pixel_pitch_mm"].get<double>();
-    options.extra = raw.metadata;
+    options.extraJson = raw.metadataJson;
     LFCAM_TRY(writeLytroRaw(folder / (std::string(stem) + extension), raw, options));
   }
   return {};

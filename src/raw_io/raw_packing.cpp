@@ -1,6 +1,6 @@
 // Lytro raw packings (raw_packing.hpp). A trailing partial group (pixel counts that are not a
 // multiple of 2 or 4) is packed as if padded with zeros, so every size round-trips.
-#include "lfcam/raw_packing.hpp"
+#include "raw_io/raw_packing.hpp"
 
 #include <limits>
 

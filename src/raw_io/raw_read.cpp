@@ -5,11 +5,15 @@
 #include <fstream>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 #include "io/io_support.hpp"
 #include "io/tiff_file.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/raw_io.hpp"
 #include "raw_io/libraw_read.hpp"
+#include "raw_io/lytro_container.hpp"
+#include "raw_io/lytro_raw.hpp"
 
 namespace lfcam {
 
@@ -22,6 +26,22 @@ bool hasCameraRawExtension(const std::filesystem::path& path) {
                                 ".sr2", ".orf", ".rw2", ".raf", ".pef", ".srw", ".3fr", ".erf",
                                 ".kdc", ".dcr", ".mrw", ".mos", ".iiq", ".rwl", ".x3f"};
   return std::any_of(std::begin(known), std::end(known), [&](const char* k) { return ext == k; });
+}
+
+// The optics of a simulator capture: its light field's steps and its main lens.
+std::optional<Optics> opticsFromCameraJson(const nlohmann::json& camera) {
+  const nlohmann::json lf = camera.value("light_field", nlohmann::json()),
+                       lens = camera.value("main_lens", nlohmann::json());
+  auto number = [](const nlohmann::json& o, const char* key) {
+    return o.is_object() && o.contains(key) && o[key].is_number() ? o[key].get<double>() : 0.0;
+  };
+  Optics optics;
+  optics.lensStepMm = number(lf, "lens_step_mm");
+  optics.spatialStepMm = number(lf, "spatial_step_mm");
+  optics.lensToMicrolensMm = number(lens, "image_distance_mm");
+  if (number(lens, "focal_length_mm") > 0) optics.focalLengthMm = number(lens, "focal_length_mm");
+  if (optics.lensStepMm <= 0 || optics.spatialStepMm <= 0 || optics.lensToMicrolensMm <= 0) return std::nullopt;
+  return optics;
 }
 
 // camera.json written by `lfcam simulate` beside the image, when it describes this sensor.
@@ -52,8 +72,9 @@ void applyCameraJson(const std::filesystem::path& path, RawImage& raw) {
     hint.packing = lattice.value("packing", "square") == "hexagonal" ? Packing::Hexagonal : Packing::Square;
     raw.lenslet = hint;
   }
+  raw.optics = opticsFromCameraJson(json);
   raw.source = "simulator";
-  raw.metadata = json;
+  raw.metadataJson = json.dump();
 }
 
 Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOptions& options) {

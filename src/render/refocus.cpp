@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lfcam/parallel.hpp"
+#include "render/references.hpp"
 #include "render/shift_and_add.hpp"
 #include "render/shift_and_add_rows.hpp"
 

@@ -16,6 +16,7 @@
 
 #include "lfcam/parallel.hpp"
 #include "lfcam/refocus.hpp"
+#include "render/references.hpp"
 #include "render/shift_and_add.hpp"
 
 namespace lfcam {

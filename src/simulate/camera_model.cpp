@@ -7,6 +7,7 @@
 #include "core/json_reader.hpp"
 #include "lfcam/memory_budget.hpp"
 #include "lfcam/simulated_grid.hpp"
+#include "simulate/camera_json.hpp"
 
 namespace lfcam {
 

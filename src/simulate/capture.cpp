@@ -14,6 +14,7 @@
 #include "lfcam/memory_budget.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/simulate.hpp"
+#include "simulate/camera_json.hpp"
 #include "simulate/tracing.hpp"
 
 namespace lfcam {

@@ -8,6 +8,7 @@
 
 #include "core/json_reader.hpp"
 #include "lfcam/image_io.hpp"
+#include "simulate/camera_json.hpp"
 
 namespace lfcam {
 

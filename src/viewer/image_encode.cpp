@@ -1,5 +1,5 @@
 // JPEG and PNG bytes in memory, through io/jpeg_file and io/png_file (libjpeg, libpng).
-#include "lfcam/image_encode.hpp"
+#include "viewer/image_encode.hpp"
 
 #include <vector>
 

@@ -9,8 +9,8 @@
 
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/focal_stack.hpp"
-#include "lfcam/image_encode.hpp"
 #include "lfcam/synthetic_camera.hpp"
+#include "viewer/image_encode.hpp"
 #include "viewer/viewer_assets.hpp"
 
 namespace lfcam {

@@ -14,10 +14,10 @@
 #include "lfcam/color_map.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/focal_stack.hpp"
-#include "lfcam/image_encode.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/synthetic_camera.hpp"
 #include "lfcam/viewer.hpp"
+#include "viewer/image_encode.hpp"
 
 namespace lfcam {
 

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "cli/cli_support.hpp"
-#include "lfcam/lytro_container.hpp"
 #include "lfcam/raw_io.hpp"
+#include "raw_io/lytro_container.hpp"
 
 namespace lfcam {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <fstream>
 
-#include "lfcam/lytro_contents.hpp"
-#include "lfcam/lytro_metadata.hpp"
+#include "raw_io/lytro_contents.hpp"
+#include "raw_io/lytro_metadata.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

@@ -19,9 +19,9 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "core/memory_floor.hpp"
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/fourier_slice.hpp"
-#include "lfcam/memory_floor.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/synthetic_camera.hpp"

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "lfcam/lytro_contents.hpp"
+#include "raw_io/lytro_contents.hpp"
 
 namespace lfcam::cli {
 

@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "lfcam/lytro_container.hpp"
 #include "lytro_info.hpp"
+#include "raw_io/lytro_container.hpp"
 
 namespace lfcam::cli {
 

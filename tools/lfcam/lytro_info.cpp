@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "lfcam/lytro_contents.hpp"
+#include "raw_io/lytro_contents.hpp"
 
 namespace lfcam::cli {
 

@@ -5,34 +5,11 @@
 #include <map>
 #include <tuple>
 
-#include <nlohmann/json.hpp>
-
 #include "lfcam/calibrate.hpp"
 #include "lfcam/raw_io.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {
-
-namespace {
-
-// The optics of a simulator capture, from the camera.json that readRaw keeps as metadata.
-std::optional<Optics> opticsFromMetadata(const nlohmann::json& metadata) {
-  if (!metadata.is_object()) return std::nullopt;
-  const nlohmann::json lf = metadata.value("light_field", nlohmann::json()),
-                       lens = metadata.value("main_lens", nlohmann::json());
-  auto number = [](const nlohmann::json& o, const char* key) {
-    return o.is_object() && o.contains(key) && o[key].is_number() ? o[key].get<double>() : 0.0;
-  };
-  Optics optics;
-  optics.lensStepMm = number(lf, "lens_step_mm");
-  optics.spatialStepMm = number(lf, "spatial_step_mm");
-  optics.lensToMicrolensMm = number(lens, "image_distance_mm");
-  if (number(lens, "focal_length_mm") > 0) optics.focalLengthMm = number(lens, "focal_length_mm");
-  if (optics.lensStepMm <= 0 || optics.spatialStepMm <= 0 || optics.lensToMicrolensMm <= 0) return std::nullopt;
-  return optics;
-}
-
-}  // namespace
 
 void addDecodeMethodOptions(CLI::App& command, DecodeOptions& decode) {
   command.add_option("--demosaic", decode.demosaic, "mhc (default), ha (Hamilton-Adams), lenslet or lightfield")
@@ -109,7 +86,7 @@ Result<LightField> decodeRawInput(RawDecodeInput input) {
     grid = calibrated;
   }
   bar(0.4);
-  if (!input.decode.optics) input.decode.optics = opticsFromMetadata(raw.metadata);
+  if (!input.decode.optics) input.decode.optics = raw.optics;
   auto lf = decodeLightField(raw, grid, input.decode);
   if (!lf) return makeError(lf.error().code, input.raw + ": " + lf.error().message);
   bar(1.0);

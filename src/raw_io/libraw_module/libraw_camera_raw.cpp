@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "raw_io/camera_raw_codec.hpp"
 
 namespace lfcam {
@@ -79,11 +81,12 @@ Result<CameraRawCodes> readCodes(const std::filesystem::path& path) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) any |= (matrix[r * 3 + c] = color.rgb_cam[r][c]) != 0;
   if (any) raw.colorMatrix = matrix;
-  raw.metadata = {{"make", lr->imgdata.idata.make},
-                  {"model", lr->imgdata.idata.model},
-                  {"raw_size", {size.raw_width, size.raw_height}},
-                  {"margins", {size.left_margin, size.top_margin}},
-                  {"iso", lr->imgdata.other.iso_speed}};
+  raw.metadataJson = nlohmann::json{{"make", lr->imgdata.idata.make},
+                                    {"model", lr->imgdata.idata.model},
+                                    {"raw_size", {size.raw_width, size.raw_height}},
+                                    {"margins", {size.left_margin, size.top_margin}},
+                                    {"iso", lr->imgdata.other.iso_speed}}
+                         .dump();
   return raw;
 }
 

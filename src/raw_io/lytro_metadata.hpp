@@ -17,9 +17,10 @@
 #include <nlohmann/json.hpp>
 
 #include "lfcam/raw_image.hpp"
-#include "lfcam/raw_packing.hpp"
+#include "lfcam/raw_io.hpp"
 #include "lfcam/result.hpp"
 #include "lfcam/sensor_layout.hpp"
+#include "raw_io/raw_packing.hpp"
 
 namespace lfcam {
 
@@ -47,8 +48,6 @@ Result<LytroFrameFormat> parseLytroFrameMetadata(const nlohmann::json& metadata,
 // Bayer pattern from Lytro's mosaic description (tile "r,gr:gb,b" and the upper-left pixel, or
 // tile "monochrome").
 std::optional<ColorFilter> lytroMosaicFilter(const nlohmann::json& mosaic);
-
-enum class LytroStyle { FirstGeneration, Illum };  // .lfp (F01) or .lfr (Illum)
 
 // Frame metadata in the layout of `style` describing `format` (the writer's side of
 // parseLytroFrameMetadata: reading it back gives `format` again).

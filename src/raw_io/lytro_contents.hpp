@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/lytro_container.hpp"
 #include "lfcam/result.hpp"
+#include "raw_io/lytro_container.hpp"
 
 namespace lfcam {
 

@@ -1,0 +1,12 @@
+// The oracles the fast analysis kernels are tested against (not public).
+#pragma once
+
+#include "lfcam/image.hpp"
+#include "lfcam/result.hpp"
+
+namespace lfcam {
+
+// transferFunction (analysis.hpp) by a direct float64 DFT (O(w^2 h^2)).
+Result<Image> transferFunctionReference(const Image& photo);
+
+}  // namespace lfcam

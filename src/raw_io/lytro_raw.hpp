@@ -1,0 +1,21 @@
+// Raw frames in Lytro containers, on parsed containers (readRaw and writeLytroRaw in raw_io.hpp
+// are the file-level entry points).
+#pragma once
+
+#include <string>
+
+#include "lfcam/raw_image.hpp"
+#include "lfcam/raw_io.hpp"
+#include "lfcam/result.hpp"
+#include "raw_io/lytro_container.hpp"
+
+namespace lfcam {
+
+// The raw frame of a parsed container (Unsupported when it holds only processed pictures).
+Result<RawImage> rawFromLytroContainer(const LytroContainer& container, const std::string& where);
+
+// The container writeLytroRaw writes.
+Result<LytroContainer> makeLytroRawContainer(const RawImage& raw, const LytroWriteOptions& options,
+                                             const std::string& where);
+
+}  // namespace lfcam
