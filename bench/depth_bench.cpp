@@ -15,7 +15,10 @@
 //   BM_AllInFocus   allInFocus given the depth map (focal stack + blending). Same counter.
 //   BM_DepthAndAllInFocus  both, as `lfcam edof` without --depth does: the goal is < 5 s on 2 cores.
 //
-// Run: build-*/bench/depth_bench [--benchmark_filter=...]
+// Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--benchmark_filter=...]
+//   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
+//                       each scene keeping its own range: how candidate defaults are compared
+//   --development-only  the table without antinous, for choosing settings (it is held out)
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -28,6 +31,7 @@
 #include "edof/depth_experiment.hpp"
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/depth_knobs.hpp"
 #include "lfcam/disparity_scores.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
@@ -163,19 +167,22 @@ void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam
 // Every scene's HCI scores with today's defaults (disparity_scores.hpp; 15-pixel border; bumpiness
 // on the planes of the ground truth): the development scenes, on which defaults are chosen, then
 // HCI antinous, held out: never used to choose a parameter.
-void printScores() {
+void printScores(const lfcam::DepthOptions& options, bool heldOut) {
   std::printf("%-28s %8s %8s %9s %9s %7s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100", "bumpiness", "seconds");
   for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes()) {
     const auto start = std::chrono::steady_clock::now();
-    auto depth = lfcam::estimateDepth(scene.lightField,
-                                      {.disparityMin = scene.disparityMin, .disparityMax = scene.disparityMax});
+    lfcam::DepthOptions sceneOptions = options;
+    sceneOptions.disparityMin = scene.disparityMin;
+    sceneOptions.disparityMax = scene.disparityMax;
+    auto depth = lfcam::estimateDepth(scene.lightField, sceneOptions);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (depth) printRow(scene.name, *depth, scene.disparity, seconds);
   }
+  if (!heldOut) return;
   auto truth = lfcam::readImage(kFolder + "/gt_disp_lowres.pfm");
   if (!truth) return (void)std::printf("hci-antinous (held out): not found in %s\n", kFolder.c_str());
   const auto start = std::chrono::steady_clock::now();
-  auto depth = lfcam::estimateDepth(antinous());
+  auto depth = lfcam::estimateDepth(antinous(), options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (depth) printRow("hci-antinous (held out)", *depth, *truth, seconds);
 }
@@ -183,7 +190,23 @@ void printScores() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  printScores();
+  // The table's own flags, taken out before the benchmark library reads the rest.
+  lfcam::DepthOptions options;
+  bool heldOut = true;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string argument = argv[i];
+    if (argument == "--development-only") {
+      heldOut = false;
+    } else if (argument == "--options" && i + 1 < argc) {
+      if (auto read = lfcam::readDepthOptions(argv[++i], options); !read)
+        return std::fprintf(stderr, "depth_bench: %s\n", read.error().message.c_str()), 2;
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  printScores(options, heldOut);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -29,9 +29,13 @@ pack() {
 "$lfcam" convert "$scratch/lf3.lf.h5" -o "$scratch/lenslet16.tif" --16bit
 "$lfcam" convert "$scratch/lf.lf.h5" -o "$scratch/hci"
 "$lfcam" convert "$scratch/lf3.lf.h5" -o "$scratch/rc" --layout rowcol
+"$lfcam" convert "$scratch/hci" -o "$scratch/lf8.lf.h5"             # 8-bit sRGB codes
+"$lfcam" convert "$scratch/lenslet16.tif" -o "$scratch/lf16.lf.h5"  # 16-bit linear codes
 "$lfcam" simulate pinhole -o "$scratch/sim" --size 64 --samples 1 --no-ground-truth --no-white >/dev/null
 seed hdf5_light_field "$scratch/lf.lf.h5"
 seed hdf5_light_field "$scratch/lf3.lf.h5"
+seed hdf5_light_field "$scratch/lf8.lf.h5"
+seed hdf5_light_field "$scratch/lf16.lf.h5"
 seed pfm "$scratch/disparity.pfm"
 seed lenslet_image "$scratch/lenslet.png"
 seed lenslet_image "$scratch/lenslet16.tif"

@@ -6,10 +6,14 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   python3              # tests/module_includes: the check of module boundaries
+  python3-dev pybind11-dev python3-numpy python3-pytest  # the Python package (python/) and its tests
+  python3-h5py         # tests/h5py: the native .lf.h5 as Python users read it
   clang-format-14      # tests/format: the check of the one style (.clang-format)
   ccache               # repeat builds (scripts/build.sh, build-san) reuse earlier compiles
   libpng-dev libjpeg-dev libtiff-dev libopenexr-dev libgif-dev  # image formats: their own libraries (docs/design.md, "Start-up")
   libhdf5-dev          # the native .lf.h5 light-field file
+  libdeflate-dev       # its chunks, deflated and inflated by lfcam's own threads
+  zlib1g-dev libzstd-dev  # bench/native_codec_bench: the codecs it could have used instead
   libeigen3-dev        # least-squares fits (lenslet grid)
   nlohmann-json3-dev   # metadata, scene and grid JSON
   libcli11-dev         # the command line

@@ -1,7 +1,7 @@
 // The filters of src/edof/filters.cpp against plain references on random inputs: boxFilter
 // (double running sums) against the window average pixel by pixel; the guided filter (its own
 // float box sums for small radii, boxFilter beyond) against He et al.'s formula with those plain
-// averages.
+// averages; depth's row sampler against bilinearSample.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "core/bilinear.hpp"
 #include "core/parabola.hpp"
 #include "edof/edof_internal.hpp"
 
@@ -38,6 +39,28 @@ TEST(ParabolaVertex, FindsTheMinimumOfAParabolaBetweenSamples) {
   EXPECT_EQ(parabolaVertex(1.0, 1.0, 1.0), 0.0) << "flat: no minimum between the samples";
   EXPECT_EQ(parabolaVertex(0.0, 1.0, 0.0), 0.0) << "a maximum is no minimum";
   EXPECT_EQ(parabolaVertex(3.0, 0.0, -2.0), 0.5) << "beyond the next sample: clamped to half a step";
+}
+
+// Rows shifted by random amounts, sampled a row at a time, against each sample on its own; shifts
+// reach past the borders, where both clamp.
+TEST(SampleShiftedRow, MatchesBilinearSampleOnRandomInputs) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> value(-1, 1);
+  for (const auto& [ns, nt] : {std::pair{37, 23}, std::pair{2, 2}, std::pair{64, 5}}) {
+    std::vector<float> plane(std::size_t(ns) * nt);
+    for (float& v : plane) v = value(random);
+    const int pad = 12;
+    std::uniform_real_distribution<double> shift(-(pad - 2), pad - 2);
+    std::vector<float> padded(std::size_t(ns) + 2 * pad), out(ns);
+    for (int trial = 0; trial < 50; ++trial) {
+      const int y = trial % nt;
+      const double shiftX = trial == 0 ? 0.0 : shift(random), shiftY = trial == 0 ? 0.0 : shift(random);
+      sampleShiftedRow(plane.data(), ns, nt, y, shiftX, shiftY, pad, padded.data(), out.data());
+      for (int x = 0; x < ns; ++x)
+        ASSERT_NEAR(out[x], bilinearSample(plane.data(), ns, nt, x + shiftX, y + shiftY), 1e-5)
+            << ns << "x" << nt << " y " << y << " shift " << shiftX << ", " << shiftY << " x " << x;
+    }
+  }
 }
 
 TEST(BoxFilter, MatchesThePlainWindowMeanOnRandomInputs) {

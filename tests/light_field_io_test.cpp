@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <set>
 #include <string>
@@ -137,6 +138,25 @@ TEST(LightFieldIoHdf5, WithoutWeightOrMetadata) {
   EXPECT_FALSE(read->metadata.disparityMin);
 }
 
+// A fixed-length string attribute of an HDF5 object, as h5py or MATLAB would read it.
+std::string readStringAttribute(hid_t object, const char* name) {
+  if (H5Aexists(object, name) <= 0) return "(none)";
+  hid_t attribute = H5Aopen(object, name, H5P_DEFAULT);
+  hid_t type = H5Aget_type(attribute);
+  std::string text(H5Tget_size(type), '\0');
+  H5Aread(attribute, type, text.data());
+  H5Tclose(type), H5Aclose(attribute);
+  return text.substr(0, text.find('\0'));
+}
+
+double readScaleAttribute(hid_t object) {
+  double scale = 0;
+  hid_t attribute = H5Aopen(object, "scale", H5P_DEFAULT);
+  H5Aread(attribute, H5T_NATIVE_DOUBLE, &scale);
+  H5Aclose(attribute);
+  return scale;
+}
+
 // The layout promised in docs/formats.md, checked with the HDF5 API as h5py or MATLAB would see it.
 TEST(LightFieldIoHdf5, FileLayoutIsTheDocumentedOne) {
   test::TempDir dir;
@@ -165,6 +185,7 @@ TEST(LightFieldIoHdf5, FileLayoutIsTheDocumentedOne) {
     filters.insert(H5Pget_filter2(dcpl, unsigned(i), nullptr, nullptr, nullptr, 0, nullptr, nullptr));
   EXPECT_TRUE(filters.count(H5Z_FILTER_SHUFFLE));
   EXPECT_TRUE(filters.count(H5Z_FILTER_DEFLATE));
+  EXPECT_EQ(readStringAttribute(data, "encoding"), "float");
   // Sample (u=2, v=1, s=6, t=4, c=1) sits at [v][u][c][t][s].
   std::vector<float> all(lf.samples().size());
   ASSERT_GE(H5Dread(data, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()), 0);
@@ -177,7 +198,12 @@ TEST(LightFieldIoHdf5, FileLayoutIsTheDocumentedOne) {
   hsize_t weightDims[4] = {};
   ASSERT_EQ(H5Sget_simple_extent_dims(weightSpace, weightDims, nullptr), 4);
   EXPECT_EQ(std::vector<hsize_t>(weightDims, weightDims + 4), (std::vector<hsize_t>{2, 3, 5, 7}));
-  H5Sclose(weightSpace), H5Dclose(weight);
+  // Weights of 1 everywhere: 8-bit codes 255 with a scale of 1/255.
+  hid_t weightType = H5Dget_type(weight);
+  EXPECT_TRUE(H5Tequal(weightType, H5T_STD_U8LE) > 0);
+  EXPECT_EQ(readStringAttribute(weight, "encoding"), "linear");
+  EXPECT_EQ(readScaleAttribute(weight), 1.0 / 255.0);
+  H5Tclose(weightType), H5Sclose(weightSpace), H5Dclose(weight);
 
   for (const char* name : {"lfcam_format", "lfcam_version", "axes", "source"})
     EXPECT_GT(H5Aexists(file, name), 0) << name;
@@ -192,7 +218,7 @@ TEST(LightFieldIoHdf5, FileLayoutIsTheDocumentedOne) {
   hid_t versionAttribute = H5Aopen(file, "lfcam_version", H5P_DEFAULT);
   H5Aread(versionAttribute, H5T_NATIVE_INT, &version);
   H5Aclose(versionAttribute);
-  EXPECT_EQ(version, 1);
+  EXPECT_EQ(version, 2);
   EXPECT_EQ(H5Aexists(file, "lens_step_mm"), 0);  // no optics, no attribute
   H5Fclose(file);
 }
@@ -268,6 +294,212 @@ TEST(LightFieldIoHdf5, AcceptsAnUntaggedFileOfTheRightLayout) {
   ASSERT_TRUE(read) << read.error().message;
   EXPECT_EQ(read->shape(), (LightFieldShape{.nu = 3, .nv = 2, .ns = 5, .nt = 4, .channels = 1}));
   EXPECT_EQ(read->at(2, 1, 4, 3, 0), 0.5f);
+}
+
+// The precision rule (io/sample_encoding.hpp): the most compact type that gives every sample back.
+TEST(LightFieldIoHdf5, SamplesAreStoredInThePrecisionTheyCameIn) {
+  test::TempDir dir;
+  const LightFieldShape shape{.nu = 3, .nv = 2, .ns = 40, .nt = 30, .channels = 3};
+  LightField half = randomLightField(shape, 7);
+  for (float& value : half.samples()) value = std::ldexp(std::round(std::ldexp(value, 10)), -10);  // 10-bit steps
+  struct Case {
+    const char* file;
+    LightField lightField;
+    hid_t type;
+    const char* encoding;
+    double scale;
+  };
+  Case cases[] = {
+      {"srgb8.lf.h5", randomLightField(shape, 5, Quantise::Srgb8), H5T_STD_U8LE, "srgb8", 0},
+      {"linear16.lf.h5", randomLightField(shape, 6, Quantise::Linear16), H5T_STD_U16LE, "linear", 1.0 / 65535.0},
+      {"half.lf.h5", std::move(half), -1, "float", 0},
+      {"float.lf.h5", randomLightField(shape, 8), H5T_IEEE_F32LE, "float", 0},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.file);
+    ASSERT_TRUE(writeLightField(dir / c.file, c.lightField));
+    auto read = readLightField(dir / c.file);
+    ASSERT_TRUE(read) << read.error().message;
+    EXPECT_EQ(maxDifference(*read, c.lightField), 0.0f);
+    hid_t file = H5Fopen((dir / c.file).c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t data = H5Dopen2(file, "/lightfield", H5P_DEFAULT);
+    hid_t type = H5Dget_type(data);
+    if (c.type >= 0) {
+      EXPECT_TRUE(H5Tequal(type, c.type) > 0);
+    } else {
+      EXPECT_EQ(H5Tget_class(type), H5T_FLOAT);
+      EXPECT_EQ(H5Tget_size(type), 2u);
+    }
+    EXPECT_EQ(readStringAttribute(data, "encoding"), c.encoding);
+    if (c.scale > 0) EXPECT_EQ(readScaleAttribute(data), c.scale);
+    if (std::string(c.encoding) == "srgb8") {  // what h5py gets: the sRGB codes themselves
+      std::vector<std::uint8_t> codes(c.lightField.samples().size());
+      ASSERT_GE(H5Dread(data, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, codes.data()), 0);
+      EXPECT_EQ(codes[17], std::lround(srgbFromLinear(c.lightField.samples()[17]) * 255.0f));
+    } else {  // libhdf5 converts float16 and float32 itself, and 16-bit codes times the scale are the samples
+      std::vector<float> values(c.lightField.samples().size());
+      ASSERT_GE(H5Dread(data, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+      const double scale = c.scale > 0 ? c.scale : 1.0;
+      EXPECT_EQ(float(values[17] * scale), c.lightField.samples()[17]);
+    }
+    H5Tclose(type), H5Dclose(data), H5Fclose(file);
+  }
+  // 8-bit sRGB costs a quarter of float32 before compression (which does better on floats of few values).
+  EXPECT_LT(fs::file_size(dir / "srgb8.lf.h5") * 2, fs::file_size(dir / "float.lf.h5"));
+}
+
+// Writes /lightfield as lfcam 1 did: float32, one chunk per view, shuffle and deflate applied by
+// libhdf5, lfcam_version 1, no encoding attribute.
+void writeVersion1File(const fs::path& path, const LightField& lf) {
+  const LightFieldShape& shape = lf.shape();
+  const hsize_t dims[5] = {hsize_t(shape.nv), hsize_t(shape.nu), hsize_t(shape.channels), hsize_t(shape.nt),
+                           hsize_t(shape.ns)};
+  const hsize_t chunk[5] = {1, 1, dims[2], dims[3], dims[4]};
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, 5, chunk);
+  H5Pset_shuffle(dcpl);
+  H5Pset_deflate(dcpl, 1);
+  hid_t space = H5Screate_simple(5, dims, nullptr);
+  hid_t data = H5Dcreate2(file, "lightfield", H5T_IEEE_F32LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  H5Dwrite(data, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, lf.samples().data());
+  hid_t scalar = H5Screate(H5S_SCALAR);
+  hid_t version = H5Acreate2(file, "lfcam_version", H5T_STD_I32LE, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  const int one = 1;
+  H5Awrite(version, H5T_NATIVE_INT, &one);
+  H5Aclose(version), H5Sclose(scalar), H5Dclose(data), H5Sclose(space), H5Pclose(dcpl), H5Fclose(file);
+}
+
+TEST(LightFieldIoHdf5, FilesOfTheFirstVersionStillRead) {
+  test::TempDir dir;
+  const LightField lf = randomLightField(kSmall, 9, Quantise::Srgb8);
+  writeVersion1File(dir / "v1.lf.h5", lf);
+  auto read = readLightField(dir / "v1.lf.h5");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(maxDifference(*read, lf), 0.0f);
+}
+
+// A filter HDF5 does not know in the reading process: one line naming it, not libhdf5's stack.
+TEST(LightFieldIoHdf5, AMissingFilterPluginIsOneClearError) {
+  test::TempDir dir;
+  constexpr H5Z_filter_t kTestFilter = 300;  // in HDF5's range for testing
+  const H5Z_class2_t identity = {H5Z_CLASS_T_VERS,
+                                 kTestFilter,
+                                 1,
+                                 1,
+                                 "lfcam test filter",
+                                 nullptr,
+                                 nullptr,
+                                 [](unsigned, std::size_t, const unsigned[], std::size_t bytes, std::size_t*,
+                                    void**) -> std::size_t { return bytes; }};
+  ASSERT_GE(H5Zregister(&identity), 0);
+  const LightField lf = randomLightField(kSmall, 10);
+  {
+    const hsize_t dims[5] = {2, 3, 3, 5, 7}, chunk[5] = {1, 1, 3, 5, 7};
+    hid_t file = H5Fcreate((dir / "plugin.lf.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, 5, chunk);
+    H5Pset_filter(dcpl, kTestFilter, H5Z_FLAG_MANDATORY, 0, nullptr);
+    hid_t space = H5Screate_simple(5, dims, nullptr);
+    hid_t data = H5Dcreate2(file, "lightfield", H5T_IEEE_F32LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    ASSERT_GE(H5Dwrite(data, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, lf.samples().data()), 0);
+    H5Dclose(data), H5Sclose(space), H5Pclose(dcpl), H5Fclose(file);
+  }
+  auto read = readLightField(dir / "plugin.lf.h5");  // readable while the filter is there
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(maxDifference(*read, lf), 0.0f);
+  ASSERT_GE(H5Zunregister(kTestFilter), 0);
+  read = readLightField(dir / "plugin.lf.h5");
+  expectErrorMentioning(read, "plugin.lf.h5");
+  expectErrorMentioning(read, "filter 300 (lfcam test filter)");
+  EXPECT_EQ(read.error().code, ErrorCode::Unsupported);
+}
+
+// An integer dataset of the given type with the given attributes, as a careless or hostile tool
+// might write it.
+void writeCodesFile(const fs::path& path, hid_t type, const char* encoding, std::optional<double> scale) {
+  const hsize_t dims[5] = {1, 2, 1, 4, 4};
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t space = H5Screate_simple(5, dims, nullptr);
+  hid_t data = H5Dcreate2(file, "lightfield", type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  std::vector<unsigned> codes(32, 7);
+  H5Dwrite(data, H5T_NATIVE_UINT, H5S_ALL, H5S_ALL, H5P_DEFAULT, codes.data());
+  hid_t scalar = H5Screate(H5S_SCALAR);
+  if (encoding) {
+    hid_t stringType = H5Tcopy(H5T_C_S1);
+    H5Tset_size(stringType, std::strlen(encoding) + 1);
+    hid_t attribute = H5Acreate2(data, "encoding", stringType, scalar, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(attribute, stringType, encoding);
+    H5Aclose(attribute), H5Tclose(stringType);
+  }
+  if (scale) {
+    hid_t attribute = H5Acreate2(data, "scale", H5T_IEEE_F64LE, scalar, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(attribute, H5T_NATIVE_DOUBLE, &*scale);
+    H5Aclose(attribute);
+  }
+  H5Sclose(scalar), H5Dclose(data), H5Sclose(space), H5Fclose(file);
+}
+
+TEST(LightFieldIoHdf5, IntegerCodesNeedAnEncodingThatFitsThem) {
+  test::TempDir dir;
+  writeCodesFile(dir / "good.h5", H5T_STD_U16LE, "linear", 0.5);  // as h5py might write it
+  auto good = readLightField(dir / "good.h5");
+  ASSERT_TRUE(good) << good.error().message;
+  EXPECT_EQ(good->at(1, 0, 3, 3, 0), 3.5f);
+  writeCodesFile(dir / "srgb.h5", H5T_STD_U8LE, "srgb8", std::nullopt);
+  auto srgb = readLightField(dir / "srgb.h5");
+  ASSERT_TRUE(srgb) << srgb.error().message;
+  EXPECT_EQ(srgb->at(0, 0, 0, 0, 0), linearFromSrgb(7 / 255.0f));
+
+  struct Case {
+    const char* file;
+    hid_t type;
+    const char* encoding;
+    std::optional<double> scale;
+    const char* mentioned;
+  };
+  const Case cases[] = {
+      {"no-encoding.h5", H5T_STD_U8LE, nullptr, std::nullopt, "without an 'encoding'"},
+      {"wide-srgb.h5", H5T_STD_U16LE, "srgb8", std::nullopt, "8-bit unsigned"},
+      {"signed.h5", H5T_STD_I16LE, "linear", 1.0, "unsigned"},
+      {"wide.h5", H5T_STD_U32LE, "linear", 1.0, "unsigned"},
+      {"no-scale.h5", H5T_STD_U8LE, "linear", std::nullopt, "scale"},
+      {"nan-scale.h5", H5T_STD_U8LE, "linear", NAN, "scale"},
+      {"negative-scale.h5", H5T_STD_U8LE, "linear", -1.0, "scale"},
+      {"huge-scale.h5", H5T_STD_U8LE, "linear", 1e300, "scale"},
+      {"unknown.h5", H5T_STD_U8LE, "gamma22", std::nullopt, "unknown encoding 'gamma22'"},
+  };
+  for (const Case& bad : cases) {
+    SCOPED_TRACE(bad.file);
+    writeCodesFile(dir / bad.file, bad.type, bad.encoding, bad.scale);
+    auto read = readLightField(dir / bad.file);
+    expectErrorMentioning(read, bad.file);
+    expectErrorMentioning(read, bad.mentioned);
+  }
+}
+
+// Chunks rewritten after the fact: too short, too long, not deflate at all.
+TEST(LightFieldIoHdf5, ChunksOfTheWrongSizeOrCorruptAreErrors) {
+  test::TempDir dir;
+  const LightField lf = randomLightField(kSmall, 11, Quantise::Srgb8);
+  const std::vector<unsigned char> view(3 * 5 * 7, 9);
+  const std::vector<std::vector<unsigned char>> stored = {
+      {view.begin(), view.end() - 1}, std::vector<unsigned char>(view.size() * 2, 9), {0x78, 0x01, 0xff, 0xff}};
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    SCOPED_TRACE(i);
+    const fs::path path = dir / ("chunk" + std::to_string(i) + ".lf.h5");
+    ASSERT_TRUE(writeLightField(path, lf));
+    hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    hid_t data = H5Dopen2(file, "lightfield", H5P_DEFAULT);
+    const hsize_t offset[5] = {1, 2, 0, 0, 0};
+    // Filter mask 0: deflate applied (all but the last are not deflate streams at all).
+    ASSERT_GE(H5Dwrite_chunk(data, H5P_DEFAULT, 0, offset, stored[i].size(), stored[i].data()), 0);
+    H5Dclose(data), H5Fclose(file);
+    auto read = readLightField(path);
+    expectErrorMentioning(read, path.filename().string());
+    expectErrorMentioning(read, "view 5");
+    EXPECT_EQ(read.error().code, ErrorCode::Format);
+  }
 }
 
 TEST(LightFieldIoHdf5, GarbageAndTruncatedFilesAreErrors) {

@@ -1,6 +1,6 @@
 // Depth from a light field: the disparity seen through the centre of the aperture, from the two
 // cues a plenoptic camera offers (Adelson and Wang 1992; Ng et al. 2005, section 5.2). Scores
-// against a ground truth: disparity_scores.hpp. Settings by name: depth_knobs.hpp.
+// against a ground truth: disparity_scores.hpp. Settings by name: depth_knobs.hpp. In 3D: point_cloud.hpp.
 //
 // Input: a light field of at least 2 views (light_field.hpp), its colour or luminance.
 // Output: disparity ("slope") in pixels of (s, t) per view step, positive nearer than the plane
@@ -44,19 +44,19 @@ struct DepthOptions {
   std::optional<double> disparityMin, disparityMax;  // default: metadata, else [-2, 2]
   int labels = 0;                                    // candidate disparities; 0: one per 0.1 px, within [16, 96]
   // 2. Cost.
-  double defocusWeight = 0.75;  // weight of the defocus cue against the correspondence cue
+  double defocusWeight = 0.4;  // weight of the defocus cue against the correspondence cue
   // 3. Aggregation.
   int filterRadius = 1;         // guided filter window: (2 r + 1)^2 pixels
   double filterEpsilon = 3e-5;  // guided filter regulariser, squared linear luminance
   // 4. Regularisation.
-  double smoothness = 0.7;  // scales both jump penalties of the optimisation; 0 disables it
+  double smoothness = 0.4;  // scales both jump penalties of the optimisation; 0 disables it
   // 5. Refinement.
   int refineSteps = 2;         // fine search: steps per label on each side; 0 disables it
-  int refineRadius = 2;        // guided filter window of the fine search: (2 r + 1)^2 pixels
+  int refineRadius = 1;        // guided filter window of the fine search: (2 r + 1)^2 pixels
   int refineSmoothRadius = 2;  // local mean of the map the fine search starts from; 0: none
   // 6. Cleanup.
-  double fillLambda = 1.0;    // edge-aware fill (needs refineSteps > 0); 0 disables it
-  double fillSigma = 0.02;    // centre-view (sRGB) colour difference that weakens a link to 1/e
+  double fillLambda = 0.5;    // edge-aware fill (needs refineSteps > 0); 0 disables it
+  double fillSigma = 0.01;    // centre-view (sRGB) colour difference that weakens a link to 1/e
   int occlusionBand = 3;      // background beside nearer surfaces reclaimed within it; 0: off
   int medianRadius = 5;       // weighted median window; 0 disables it
   double medianSigma = 0.05;  // guide (sRGB luminance) difference that weighs a neighbour 0.6

@@ -43,6 +43,12 @@ class BackgroundTasks {
   std::unique_ptr<State> state_;
 };
 
+// Cooperative cancellation, for interactive callers (the Python package on Ctrl-C): while it is
+// requested, parallelFor starts no further sub-range, so a long call returns soon. Its result is
+// then meaningless: whoever requested the cancellation discards it, then withdraws the request.
+void requestCancellation(bool requested);
+bool cancellationRequested();
+
 // Limits every later parallelFor to `threads` threads (0: all cores). Lives for the process.
 void setThreadCount(int threads);
 

@@ -9,6 +9,7 @@
 
 #include "calibrate/calibrate_internal.hpp"
 #include "core/fftw_planner.hpp"
+#include "core/parabola.hpp"
 
 namespace lfcam::calibrate_detail {
 
@@ -92,13 +93,10 @@ Result<Lattice> latticeFromAutocorrelation(const Image& prepared, const std::str
       if (!isMax) continue;
       const double valley = at(int(std::lround(dx / 2.0)), int(std::lround(dy / 2.0)));
       if (v - valley < 0.02) continue;
-      // Parabolic sub-pixel position along each axis.
-      auto vertex = [](double m, double c, double p) {
-        const double d = m - 2 * c + p;
-        return d < 0 ? 0.5 * (m - p) / d : 0.0;
-      };
-      peaks.push_back(
-          {dx + vertex(at(dx - 1, dy), v, at(dx + 1, dy)), dy + vertex(at(dx, dy - 1), v, at(dx, dy + 1)), v});
+      // Sub-pixel position along each axis: the vertex of the parabola through the peak, as the
+      // minimum of the negated samples.
+      peaks.push_back({dx + parabolaVertex(-at(dx - 1, dy), -v, -at(dx + 1, dy)),
+                       dy + parabolaVertex(-at(dx, dy - 1), -v, -at(dx, dy + 1)), v});
     }
   if (peaks.empty()) return makeError(ErrorCode::Format, where + ": no periodic microlens pattern found");
   double strongest = 0;

@@ -10,39 +10,31 @@
 #include <Eigen/Dense>
 
 #include "calibrate/calibrate_internal.hpp"
+#include "core/bilinear.hpp"
 
 namespace lfcam::calibrate_detail {
 
 namespace {
 
-// Bilinear sample at continuous position (x, y) (pixel centres at half-integers); the caller keeps
-// it inside the image.
-inline float bilinear(const float* data, int width, double x, double y) {
-  const double fx = x - 0.5, fy = y - 0.5;
-  const int ix = int(std::floor(fx)), iy = int(std::floor(fy));
-  const float ax = float(fx - ix), ay = float(fy - iy);
-  const float* p = data + std::size_t(iy) * width + ix;
-  return (1 - ay) * ((1 - ax) * p[0] + ax * p[1]) + ay * ((1 - ax) * p[width] + ax * p[width + 1]);
-}
-
 // The reference: each sample at (x + dx, y + dy) interpolated on its own.
 class PointSampler {
  public:
-  PointSampler(const Image& image, int) : data_(image.plane(0)), width_(image.width()) {}
+  PointSampler(const Image& image, int) : data_(image.plane(0)), width_(image.width()), height_(image.height()) {}
   void moveTo(double x, double y) {
     x_ = x;
     y_ = y;
   }
-  float at(int dx, int dy) const { return bilinear(data_, width_, x_ + dx, y_ + dy); }
+  // Pixel centres at half-integers; the caller keeps the window inside the image.
+  float at(int dx, int dy) const { return bilinearSample(data_, width_, height_, x_ + dx - 0.5, y_ + dy - 0.5); }
 
  private:
   const float* data_;
-  int width_;
+  int width_, height_;
   double x_ = 0, y_ = 0;
 };
 
 // The fast path: the (2 reach + 1)^2 window of offsets resampled at the centre's phase, the
-// horizontal interpolation first (each row once), then the vertical, as bilinear() does per sample.
+// horizontal interpolation first (each row once), then the vertical, as bilinearSample does per sample.
 class GridSampler {
  public:
   GridSampler(const Image& image, int reach)
@@ -63,13 +55,13 @@ class GridSampler {
     for (int j = 0; j <= size_; ++j) {
       const float* p = data_ + std::size_t(iy - reach_ + j) * width_ + (ix - reach_);
       float* h = rows_ + std::size_t(j) * size_;
-      for (int i = 0; i < size_; ++i) h[i] = (1 - ax) * p[i] + ax * p[i + 1];
+      for (int i = 0; i < size_; ++i) h[i] = p[i] + ax * (p[i + 1] - p[i]);
     }
     for (int j = 0; j < size_; ++j) {
       const float* top = rows_ + std::size_t(j) * size_;
       const float* bottom = top + size_;
       float* g = grid_ + std::size_t(j) * size_;
-      for (int i = 0; i < size_; ++i) g[i] = (1 - ay) * top[i] + ay * bottom[i];
+      for (int i = 0; i < size_; ++i) g[i] = top[i] + ay * (bottom[i] - top[i]);
     }
   }
   float at(int dx, int dy) const { return grid_[std::size_t(dy + reach_) * size_ + (dx + reach_)]; }

@@ -6,6 +6,7 @@
 #include <tbb/task_group.h>
 
 #include <algorithm>
+#include <atomic>
 #include <deque>
 #include <memory>
 
@@ -16,13 +17,19 @@ std::unique_ptr<tbb::global_control>& threadLimit() {
   static std::unique_ptr<tbb::global_control> limit;
   return limit;
 }
+std::atomic<bool> cancelled{false};
 }  // namespace
+
+void requestCancellation(bool requested) { cancelled.store(requested, std::memory_order_relaxed); }
+bool cancellationRequested() { return cancelled.load(std::memory_order_relaxed); }
 
 void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
                  const std::function<void(std::size_t, std::size_t)>& body) {
   if (begin >= end) return;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, grain == 0 ? 1 : grain),
-                    [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      if (!cancellationRequested()) body(range.begin(), range.end());
+                    });
 }
 
 void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,

@@ -1,5 +1,6 @@
 // Depth from a light field (depth.hpp): cost volume from the correspondence and defocus cues,
-// guided-filter aggregation, semi-global optimisation, sub-label read-out; distances; scores.
+// guided-filter aggregation, semi-global optimisation, sub-label read-out, fine search, cleanup,
+// confidence (the seven stages of depth.hpp, numbered alike below); distances.
 #include "lfcam/depth.hpp"
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "core/bilinear.hpp"
 #include "core/parabola.hpp"
 #include "edof/depth_experiment.hpp"
 #include "edof/edof_internal.hpp"
@@ -52,30 +54,6 @@ std::vector<StarView> starViews(const LightField& lightField, int referenceU, in
       views.push_back(view);
     }
   return views;
-}
-
-// Samples row y of `plane` (ns x nt) shifted by (shiftX, shiftY), bilinearly, with coordinates
-// clamped to the view: out[x] = plane(x + shiftX, y + shiftY). `padded` is scratch of ns + 2 pad.
-LFCAM_EDOF_CLONES void sampleShiftedRow(const float* __restrict plane, int ns, int nt, int y, double shiftX,
-                                        double shiftY, int pad, float* __restrict padded, float* __restrict out) {
-  const double rowPosition = y + shiftY;
-  const double rowFloor = std::floor(rowPosition);
-  const float fy = float(rowPosition - rowFloor);
-  const int r0 = std::clamp(int(rowFloor), 0, nt - 1), r1 = std::clamp(int(rowFloor) + 1, 0, nt - 1);
-  const float* row0 = plane + std::size_t(r0) * ns;
-  const float* row1 = plane + std::size_t(r1) * ns;
-  float* body = padded + pad;
-  for (int x = 0; x < ns; ++x) body[x] = row0[x] + fy * (row1[x] - row0[x]);
-  for (int i = 1; i <= pad; ++i) {
-    body[-i] = body[0];
-    body[ns - 1 + i] = body[ns - 1];
-  }
-  const double limit = pad - 2;
-  const double shift = std::clamp(shiftX, -limit, limit);
-  const double shiftFloor = std::floor(shift);
-  const float fx = float(shift - shiftFloor);
-  const float* source = body + int(shiftFloor);
-  for (int x = 0; x < ns; ++x) out[x] = source[x] + fx * (source[x + 1] - source[x]);
 }
 
 // accumulator += (sample - reference)^2
@@ -135,12 +113,11 @@ std::vector<int> subsetsWithViews(const std::vector<StarView>& views, int (&view
   return subsets;
 }
 
-// The correspondence cue for labels [labelBegin, labelEnd), n = ns * nt:
-// the best subset in out[(l - labelBegin) * n + p]; with `perSubset`, every subset with views
-// apart, out[((l - labelBegin) * subsets + i) * n + p] (subsetsWithViews' order). `locking`
-// scales the interpolation-bias term removed (0: none).
+// The correspondence cue for labels [labelBegin, labelEnd), n = ns * nt: the mean squared
+// difference over each subset of views with views, out[((l - labelBegin) * subsets + i) * n + p]
+// (subsetsWithViews' order). `locking` scales the interpolation-bias term removed (0: none).
 void correspondenceCost(const LightField& grey, const std::vector<double>& disparities, int labelBegin, int labelEnd,
-                        double locking, bool perSubset, float* out) {
+                        double locking, float* out) {
   const int ns = grey.ns(), nt = grey.nt();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
@@ -171,14 +148,14 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
         const double d = disparities[l];
         // The reference view brought to the aperture centre's grid (no shift when it is the centre).
         for (int y = y0; y < y1; ++y)
-          sampleShiftedRow(grey.plane(referenceU, referenceV, 0), ns, nt, y, -referenceUc * d, -referenceVc * d, pad,
-                           padded.data(), reference.data() + std::size_t(y - y0) * ns);
+          edof::sampleShiftedRow(grey.plane(referenceU, referenceV, 0), ns, nt, y, -referenceUc * d, -referenceVc * d,
+                                 pad, padded.data(), reference.data() + std::size_t(y - y0) * ns);
         std::fill(accumulator.begin(), accumulator.end(), 0.0f);
         for (const StarView& view : views) {
           for (int y = y0; y < y1; ++y) {
             const float* referenceRow = reference.data() + std::size_t(y - y0) * ns;
-            sampleShiftedRow(grey.plane(view.u, view.v, 0), ns, nt, y, -view.uc * d, -view.vc * d, pad, padded.data(),
-                             sample.data());
+            edof::sampleShiftedRow(grey.plane(view.u, view.v, 0), ns, nt, y, -view.uc * d, -view.vc * d, pad,
+                                   padded.data(), sample.data());
             for (int h = 0; h < kHalves; ++h)
               if ((view.halves >> h) & 1)
                 accumulateSquaredDifference(sample.data(), referenceRow,
@@ -196,11 +173,9 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
               wxy[h] += float(locking * bx * by / viewsIn[h]);
             }
         }
-        // The best half-aperture: at an occlusion boundary, the half that sees only the surface.
         for (int y = y0; y < y1; ++y) {
           const std::size_t row = std::size_t(y) * ns;
           for (int x = 0; x < ns; ++x) {
-            float best = std::numeric_limits<float>::infinity();
             const float cxx = locking > 0 ? secondDiff.xx[row + x] : 0.0f,
                         cyy = locking > 0 ? secondDiff.yy[row + x] : 0.0f,
                         cxy = locking > 0 ? secondDiff.xy[row + x] : 0.0f;
@@ -208,15 +183,23 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
               const int h = subsets[i];
               const float mean = accumulator[(std::size_t(h) * blockRows + (y - y0)) * ns + x] / viewsIn[h] -
                                  (wx[h] * cxx + wy[h] * cyy + wxy[h] * cxy);
-              if (perSubset)
-                out[(std::size_t(l - labelBegin) * subsets.size() + i) * n + row + x] = mean;
-              else
-                best = std::min(best, mean);
+              out[(std::size_t(l - labelBegin) * subsets.size() + i) * n + row + x] = mean;
             }
-            if (!perSubset) out[std::size_t(l - labelBegin) * n + row + x] = std::isfinite(best) ? best : 0.0f;
           }
         }
       }
+    }
+  });
+}
+
+// The best subset of views: at an occlusion boundary, the half-aperture that sees only the
+// surface. out[p] = the lowest of `subsets` planes of n pixels, `stride` floats apart from `first`.
+void lowestSubset(const float* first, std::size_t subsets, std::size_t stride, std::size_t n, float* out) {
+  parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) {
+      float best = std::numeric_limits<float>::infinity();
+      for (std::size_t i = 0; i < subsets; ++i) best = std::min(best, first[i * stride + p]);
+      out[p] = std::isfinite(best) ? best : 0.0f;
     }
   });
 }
@@ -239,13 +222,15 @@ void defocusEnergy(const LightField& grey, double d, float* energy) {
   edof::squaredLaplacian(photo, energy);
 }
 
-// Steps 2-3 with each subset of views aggregated apart (`aggregateSubsetsApart`): per label, each
-// subset's correspondence slice less the defocus cue (the guided filter is linear, so this is
-// the defocus cue aggregated on its own) is aggregated, then the lowest subset taken, as the
-// fine search does (refineDisparity). Labels go in chunks so that only chunk x subsets slices are
-// held besides the volume. Returns cost[l * n + p].
-std::vector<float> aggregatedSubsetCost(const LightField& grey, const std::vector<double>& disparities,
-                                        const edof::GuidedFilter& filter, double defocusWeight, double locking) {
+// Steps 2-3: per label, the correspondence cost of each subset of views less the defocus cue,
+// aggregated, and the lowest subset kept. With `subsetsApart` each subset's slice is aggregated
+// before the lowest is taken (the guided filter is linear, so the defocus cue is aggregated as
+// on its own), as the fine search does (refineDisparity); else the lowest is taken per pixel
+// first. Labels go in chunks so that only chunk x subsets slices are held besides the volume.
+// Returns cost[l * n + p].
+std::vector<float> aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
+                                  const edof::GuidedFilter& filter, double defocusWeight, double locking,
+                                  bool subsetsApart) {
   const std::size_t n = grey.shape().viewPixels();
   const int labels = int(disparities.size());
   int viewsIn[kHalves];
@@ -255,43 +240,33 @@ std::vector<float> aggregatedSubsetCost(const LightField& grey, const std::vecto
   std::vector<float> cost(n * labels), planes(std::size_t(kChunk) * subsets * n), energy(n);
   for (int first = 0; first < labels; first += kChunk) {
     const int last = std::min(labels, first + kChunk);
-    correspondenceCost(grey, disparities, first, last, locking, /*perSubset=*/true, planes.data());
+    correspondenceCost(grey, disparities, first, last, locking, planes.data());
+    if (!subsetsApart)
+      for (int l = first; l < last; ++l)
+        lowestSubset(planes.data() + std::size_t(l - first) * subsets * n, subsets, n, n,
+                     cost.data() + std::size_t(l) * n);
+    // The slices the defocus cue is taken from and the guided filter applied to.
+    const std::size_t perLabel = subsetsApart ? subsets : 1;
+    auto slice = [&](int l, std::size_t i) {
+      return subsetsApart ? planes.data() + (std::size_t(l - first) * subsets + i) * n
+                          : cost.data() + std::size_t(l) * n;
+    };
     if (defocusWeight > 0)
       for (int l = first; l < last; ++l) {
         defocusEnergy(grey, disparities[l], energy.data());
         const float weight = float(defocusWeight);
-        parallelFor(0, subsets, 1, [&](std::size_t begin, std::size_t end) {
+        parallelFor(0, perLabel, 1, [&](std::size_t begin, std::size_t end) {
           for (std::size_t i = begin; i < end; ++i) {
-            float* slice = planes.data() + (std::size_t(l - first) * subsets + i) * n;
-            for (std::size_t p = 0; p < n; ++p) slice[p] -= weight * energy[p];
+            float* target = slice(l, i);
+            for (std::size_t p = 0; p < n; ++p) target[p] -= weight * energy[p];
           }
         });
       }
-    aggregatePlanes(filter, planes.data(), std::size_t(last - first) * subsets, n);
-    parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
-      for (int l = first; l < last; ++l) {
-        float* target = cost.data() + std::size_t(l) * n;
-        const float* slices = planes.data() + std::size_t(l - first) * subsets * n;
-        for (std::size_t p = begin; p < end; ++p) {
-          float best = slices[p];
-          for (std::size_t i = 1; i < subsets; ++i) best = std::min(best, slices[i * n + p]);
-          target[p] = best;
-        }
-      }
-    });
+    aggregatePlanes(filter, slice(first, 0), std::size_t(last - first) * perLabel, n);
+    if (subsetsApart)
+      for (int l = first; l < last; ++l) lowestSubset(slice(l, 0), subsets, n, n, cost.data() + std::size_t(l) * n);
   }
   return cost;
-}
-
-float bilinear(const float* plane, int ns, int nt, double x, double y) {
-  x = std::clamp(x, 0.0, double(ns - 1));
-  y = std::clamp(y, 0.0, double(nt - 1));
-  const int x0 = std::min(int(x), ns - 2), y0 = std::min(int(y), nt - 2);
-  const float fx = float(x - x0), fy = float(y - y0);
-  const float* row0 = plane + std::size_t(y0) * ns + x0;
-  const float* row1 = row0 + ns;
-  const float top = row0[0] + fx * (row0[1] - row0[0]), bottom = row1[0] + fx * (row1[1] - row1[0]);
-  return top + fy * (bottom - top);
 }
 
 // Fine search around a disparity map: the correspondence cost (as correspondenceCost) at
@@ -314,8 +289,8 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
   const std::vector<int> subsets = subsetsWithViews(views, viewsIn);
   const int slices = 2 * steps + 1;
   std::vector<float> cost(n * slices);
-  // With aggregateHalves, subset i and slice k in plane i * slices + k.
-  std::vector<float> subsetCost(aggregateHalves ? subsets.size() * slices * n : 0);
+  // Subset i and slice k in plane i * slices + k.
+  std::vector<float> subsetCost(subsets.size() * slices * n);
   const SecondDifferences secondDiff =
       locking > 0 ? secondDifferences(grey.plane(referenceU, referenceV, 0), ns, nt) : SecondDifferences{};
   parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
@@ -324,12 +299,13 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
         const std::size_t p = y * ns + x;
         for (int k = 0; k < slices; ++k) {
           const double d = disparity[p] + (k - steps) * delta;
-          const float reference =
-              bilinear(grey.plane(referenceU, referenceV, 0), ns, nt, x - referenceUc * d, double(y) - referenceVc * d);
+          const float reference = bilinearSample(grey.plane(referenceU, referenceV, 0), ns, nt, x - referenceUc * d,
+                                                 double(y) - referenceVc * d);
           float sums[kHalves] = {};
           for (const StarView& view : views) {
             const float difference =
-                bilinear(grey.plane(view.u, view.v, 0), ns, nt, x - view.uc * d, double(y) - view.vc * d) - reference;
+                bilinearSample(grey.plane(view.u, view.v, 0), ns, nt, x - view.uc * d, double(y) - view.vc * d) -
+                reference;
             // The interpolation-bias term (correspondenceCost).
             float bias = 0;
             if (locking > 0) {
@@ -340,32 +316,17 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
             for (int h = 0; h < kHalves; ++h)
               if ((view.halves >> h) & 1) sums[h] += difference * difference - bias;
           }
-          if (aggregateHalves) {
-            for (std::size_t i = 0; i < subsets.size(); ++i)
-              subsetCost[(i * slices + k) * n + p] = sums[subsets[i]] / viewsIn[subsets[i]];
-            continue;
-          }
-          float best = std::numeric_limits<float>::infinity();
-          for (int h = 0; h < kHalves; ++h)
-            if (viewsIn[h] > 0) best = std::min(best, sums[h] / viewsIn[h]);
-          cost[std::size_t(k) * n + p] = std::isfinite(best) ? best : 0.0f;
+          for (std::size_t i = 0; i < subsets.size(); ++i)
+            subsetCost[(i * slices + k) * n + p] = sums[subsets[i]] / viewsIn[subsets[i]];
         }
       }
   });
-  if (aggregateHalves) {
-    // Every subset's slices aggregated, then the lowest subset per slice.
-    aggregatePlanes(filter, subsetCost.data(), subsets.size() * slices, n);
-    parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t p = begin; p < end; ++p)
-        for (int k = 0; k < slices; ++k) {
-          float best = std::numeric_limits<float>::infinity();
-          for (std::size_t i = 0; i < subsets.size(); ++i) best = std::min(best, subsetCost[(i * slices + k) * n + p]);
-          cost[std::size_t(k) * n + p] = std::isfinite(best) ? best : 0.0f;
-        }
-    });
-  } else {
-    aggregatePlanes(filter, cost.data(), std::size_t(slices), n);
-  }
+  // Every subset's slices aggregated, then the lowest subset per slice; or the lowest first.
+  if (aggregateHalves) aggregatePlanes(filter, subsetCost.data(), subsets.size() * slices, n);
+  for (int k = 0; k < slices; ++k)
+    lowestSubset(subsetCost.data() + std::size_t(k) * n, subsets.size(), std::size_t(slices) * n, n,
+                 cost.data() + std::size_t(k) * n);
+  if (!aggregateHalves) aggregatePlanes(filter, cost.data(), std::size_t(slices), n);
   parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
     for (std::size_t p = begin; p < end; ++p) {
       int best = 0;
@@ -485,26 +446,11 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.filterRadius, 0),
                                   std::max(options.filterEpsilon, 1e-12));
   const double locking = std::max(experiment.lockingCorrection, 0.0);
-  std::vector<float> cost;
-  if (experiment.aggregateSubsetsApart) {  // 2-3. Cost and aggregation, each subset of views apart
-    cost = aggregatedSubsetCost(grey, disparities, filter, options.defocusWeight, locking);
-  } else {
-    // 2. Cost: the correspondence cue,
-    cost.resize(n * labels);
-    correspondenceCost(grey, disparities, 0, labels, locking, /*perSubset=*/false, cost.data());
-    // less the defocus cue: the full-aperture photograph at each label, sharpest where it is right.
-    if (options.defocusWeight > 0) {
-      std::vector<float> energy(n);
-      for (int l = 0; l < labels; ++l) {
-        defocusEnergy(grey, disparities[l], energy.data());
-        float* slice = cost.data() + std::size_t(l) * n;
-        const float weight = float(options.defocusWeight);
-        for (std::size_t i = 0; i < n; ++i) slice[i] -= weight * energy[i];
-      }
-    }
-    // 3. Aggregation: guided filter per slice, steered by the reference view.
-    aggregatePlanes(filter, cost.data(), std::size_t(labels), n);
-  }
+  // 2. Cost: the correspondence cue over each subset of views, less the defocus cue (the
+  // full-aperture photograph at each label, sharpest where it is right); 3. aggregation: guided
+  // filter per slice, steered by the reference view; the lowest subset.
+  std::vector<float> cost =
+      aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, experiment.aggregateSubsetsApart);
 
   // Pixel-major for the optimisation; and the typical depth of a cost minimum (mean over pixels
   // of mean - min), the scale of the penalties and of the confidence.

@@ -19,6 +19,12 @@
 
 namespace lfcam::edof {
 
+// Row y of `plane` (ns x nt) shifted by (shiftX, shiftY), sampled bilinearly with positions
+// clamped to the plane, as bilinearSample (core/bilinear.hpp) at (x + shiftX, y + shiftY) but a
+// row at a time: out[x] for x in [0, ns). `padded` is scratch of ns + 2 pad floats, |shiftX| <= pad - 2.
+void sampleShiftedRow(const float* plane, int ns, int nt, int y, double shiftX, double shiftY, int pad, float* padded,
+                      float* out);
+
 // Rec. 709 luminance of a linear image (the mean for other channel counts): one channel.
 Image luminance(const Image& image);
 // The light field of luminance: same views, one channel, weight kept.

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <climits>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <mutex>
@@ -13,8 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "io/hdf5_chunk_codec.hpp"
 #include "io/io_support.hpp"
+#include "io/sample_encoding.hpp"
 #include "io/survives_in_child.hpp"
+#include "lfcam/parallel.hpp"
 
 namespace lfcam::io {
 
@@ -23,9 +28,9 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kFormatTag = "lfcam-lightfield";
-constexpr int kFormatVersion = 1;
+constexpr int kFormatVersion = 2;  // 2: samples in their own precision (sample_encoding.hpp)
 constexpr const char* kAxes = "v,u,c,t,s";
-constexpr unsigned kDeflateLevel = 1;  // float samples gain little from higher levels, and cost time
+constexpr int kDeflateLevel = 1;  // higher levels gain little on samples (docs/design.md), and cost time
 
 std::mutex& hdf5Mutex() {
   static std::mutex mutex;
@@ -40,8 +45,21 @@ class Hdf5Session {
     H5Eclear2(H5E_DEFAULT);
   }
 
+  // Runs `work`, which makes no HDF5 call, with the lock released: lfcam's threads encode or
+  // decode samples meanwhile, and a task of another HDF5 user that one of them picks up cannot
+  // wait for a lock its own thread holds.
+  template <class Work>
+  auto unlockedWhile(Work&& work) {
+    lock_.unlock();
+    struct Relock {
+      std::unique_lock<std::mutex>& lock;
+      ~Relock() { lock.lock(); }
+    } relock{lock_};
+    return work();
+  }
+
  private:
-  std::lock_guard<std::mutex> lock_;
+  std::unique_lock<std::mutex> lock_;
 };
 
 // An HDF5 identifier closed by the matching function when it goes out of scope.
@@ -158,29 +176,163 @@ bool writeScalarAttribute(hid_t object, const char* name, hid_t fileType, hid_t 
 
 // ---- reading ----
 
+// Views and values per view of a [nv, nu, ...] dataset.
+std::size_t viewsOf(const std::vector<hsize_t>& dims) { return std::size_t(dims[0] * dims[1]); }
+std::size_t viewValuesOf(const std::vector<hsize_t>& dims) {
+  std::size_t values = 1;
+  for (std::size_t i = 2; i < dims.size(); ++i) values *= std::size_t(dims[i]);
+  return values;
+}
+
+// One stored array, /lightfield or /weight, and how its samples are encoded.
+struct StoredSamples {
+  std::unique_ptr<Handle> dataset;
+  std::vector<hsize_t> dims;
+  SampleEncoding encoding;
+  // Set when lfcam reads the chunks raw and unfilters them itself: one chunk per view, stored in
+  // the encoding's own little-endian type, filtered by shuffle and deflate only, in that order.
+  std::optional<std::vector<H5Z_filter_t>> rawFilters;
+
+  std::size_t views() const { return viewsOf(dims); }
+  std::size_t viewValues() const { return viewValuesOf(dims); }
+};
+
 struct OpenedFile {
-  std::unique_ptr<Handle> file, samples, weight;
+  std::unique_ptr<Handle> file;
+  StoredSamples samples;
+  std::optional<StoredSamples> weight;
   LightFieldInfo info;
 };
 
-// A dataset of floats (any precision: HDF5 converts) of the given rank, or a Format error.
-Result<std::vector<hsize_t>> floatDatasetDims(const fs::path& path, hid_t dataset, const char* name, int rank,
-                                              const char* axes) {
-  Handle type(H5Dget_type(dataset), H5Tclose);
-  Handle space(H5Dget_space(dataset), H5Sclose);
-  if (!type.valid() || H5Tget_class(type.get()) != H5T_FLOAT)
-    return fileError(ErrorCode::Format, path, std::string("dataset ") + name + " does not hold floating-point samples");
+// IEEE binary16, little-endian, as h5py writes numpy's float16.
+Handle float16Type() {
+  Handle type(H5Tcopy(H5T_IEEE_F32LE), H5Tclose);
+  H5Tset_fields(type.get(), 15, 10, 5, 0, 10);
+  H5Tset_size(type.get(), 2);
+  H5Tset_ebias(type.get(), 15);
+  return type;
+}
+
+Handle fileTypeOf(SampleEncodingKind kind) {
+  switch (kind) {
+    case SampleEncodingKind::Srgb8:
+    case SampleEncodingKind::Linear8: return Handle(H5Tcopy(H5T_STD_U8LE), H5Tclose);
+    case SampleEncodingKind::Linear16: return Handle(H5Tcopy(H5T_STD_U16LE), H5Tclose);
+    case SampleEncodingKind::Float16: return float16Type();
+    case SampleEncodingKind::Float32: break;
+  }
+  return Handle(H5Tcopy(H5T_IEEE_F32LE), H5Tclose);
+}
+
+const char* encodingName(SampleEncodingKind kind) {
+  switch (kind) {
+    case SampleEncodingKind::Srgb8: return "srgb8";
+    case SampleEncodingKind::Linear8:
+    case SampleEncodingKind::Linear16: return "linear";
+    case SampleEncodingKind::Float16:
+    case SampleEncodingKind::Float32: break;
+  }
+  return "float";
+}
+
+// The encoding of `dataset` from its type and its `encoding` (and `scale`) attributes.
+Result<SampleEncoding> encodingOf(const fs::path& path, hid_t dataset, hid_t type, const std::string& name) {
+  LFCAM_ASSIGN_OR_RETURN(auto encoding, readStringAttribute(path, dataset, "encoding"));
+  const H5T_class_t typeClass = H5Tget_class(type);
+  const std::size_t size = H5Tget_size(type);
+  if (typeClass == H5T_FLOAT) {
+    if (encoding && *encoding != "float")
+      return fileError(ErrorCode::Format, path,
+                       "dataset " + name + " holds floats but says encoding '" + *encoding + "'");
+    return SampleEncoding{size == 2 ? SampleEncodingKind::Float16 : SampleEncodingKind::Float32};
+  }
+  if (typeClass != H5T_INTEGER)
+    return fileError(ErrorCode::Format, path, "dataset " + name + " does not hold samples (floats or integer codes)");
+  if (!encoding)
+    return fileError(
+        ErrorCode::Format, path,
+        "dataset " + name + " holds integers without an 'encoding' attribute (srgb8, or linear with a scale)");
+  const bool isUnsigned = H5Tget_sign(type) == H5T_SGN_NONE;
+  if (*encoding == "srgb8") {
+    if (!isUnsigned || size != 1)
+      return fileError(ErrorCode::Format, path,
+                       "dataset " + name + " says srgb8 but does not hold 8-bit unsigned codes");
+    return SampleEncoding{SampleEncodingKind::Srgb8};
+  }
+  if (*encoding != "linear")
+    return fileError(ErrorCode::Unsupported, path, "dataset " + name + " has an unknown encoding '" + *encoding + "'");
+  if (!isUnsigned || (size != 1 && size != 2))
+    return fileError(ErrorCode::Format, path,
+                     "dataset " + name + " says linear but does not hold 8- or 16-bit unsigned codes");
+  LFCAM_ASSIGN_OR_RETURN(auto scale, readNumberAttribute(path, dataset, "scale"));
+  if (!scale || !std::isfinite(*scale) || *scale <= 0 || *scale > 1e30)
+    return fileError(ErrorCode::Format, path, "dataset " + name + " needs a positive finite 'scale' attribute");
+  return SampleEncoding{size == 1 ? SampleEncodingKind::Linear8 : SampleEncodingKind::Linear16, *scale};
+}
+
+// The filters lfcam undoes itself when the chunks are laid out as it writes them; nullopt when
+// libhdf5 must read the dataset (and then every filter must be one libhdf5 can load).
+Result<std::optional<std::vector<H5Z_filter_t>>> rawFiltersOf(const fs::path& path, const StoredSamples& stored,
+                                                              hid_t type, const std::string& name) {
+  Handle dcpl(H5Dget_create_plist(stored.dataset->get()), H5Pclose);
+  std::vector<H5Z_filter_t> filters;
+  bool ownFilters = true;
+  for (int i = 0, count = H5Pget_nfilters(dcpl.get()); i < count; ++i) {
+    char filterName[64] = {};
+    unsigned flags = 0;
+    std::size_t values = 0;
+    const H5Z_filter_t filter =
+        H5Pget_filter2(dcpl.get(), unsigned(i), &flags, &values, nullptr, sizeof filterName, filterName, nullptr);
+    const bool own = filter == (filters.empty() ? H5Z_FILTER_SHUFFLE : -1) || filter == H5Z_FILTER_DEFLATE;
+    if (!own && H5Zfilter_avail(filter) <= 0)
+      return fileError(ErrorCode::Unsupported, path,
+                       "dataset " + name + " is compressed with HDF5 filter " + std::to_string(filter) + " (" +
+                           filterName + "), which is not installed: install its plugin and set HDF5_PLUGIN_PATH");
+    ownFilters = ownFilters && own && (filters.empty() || filters.back() != H5Z_FILTER_DEFLATE);
+    filters.push_back(filter);
+  }
+  hsize_t chunk[5] = {};
+  const int rank = int(stored.dims.size());
+  const bool oneViewChunks = H5Pget_layout(dcpl.get()) == H5D_CHUNKED &&
+                             H5Pget_chunk(dcpl.get(), rank, chunk) == rank && chunk[0] == 1 && chunk[1] == 1 &&
+                             std::equal(chunk + 2, chunk + rank, stored.dims.begin() + 2);
+  Handle ownType = fileTypeOf(stored.encoding.kind);
+  if (ownFilters && oneViewChunks && H5Tequal(type, ownType.get()) > 0) return std::optional(filters);
+  return std::optional<std::vector<H5Z_filter_t>>();
+}
+
+Result<StoredSamples> openSamples(const fs::path& path, hid_t file, const char* name, int rank, const char* axes) {
+  StoredSamples stored;
+  const std::string slashName = std::string("/") + name;
+  stored.dataset = std::make_unique<Handle>(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose);
+  if (!stored.dataset->valid()) return hdf5Error(ErrorCode::Format, path, slashName + " is not a readable dataset");
+  Handle type(H5Dget_type(stored.dataset->get()), H5Tclose);
+  Handle space(H5Dget_space(stored.dataset->get()), H5Sclose);
+  if (!type.valid() || !space.valid())
+    return hdf5Error(ErrorCode::Format, path, slashName + " has no readable type or shape");
+  LFCAM_ASSIGN_OR_RETURN(stored.encoding, encodingOf(path, stored.dataset->get(), type.get(), slashName));
   const int found = H5Sget_simple_extent_ndims(space.get());
   if (found != rank)
     return fileError(ErrorCode::Format, path,
-                     std::string("dataset ") + name + " has " + std::to_string(found) + " dimensions, expected " +
+                     "dataset " + slashName + " has " + std::to_string(found) + " dimensions, expected " +
                          std::to_string(rank) + " (" + axes + ")");
-  std::vector<hsize_t> dims(std::size_t(rank), 0);
-  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
-  for (hsize_t dim : dims)
+  stored.dims.assign(std::size_t(rank), 0);
+  H5Sget_simple_extent_dims(space.get(), stored.dims.data(), nullptr);
+  for (hsize_t dim : stored.dims)
     if (dim == 0 || dim > hsize_t(INT_MAX))
-      return fileError(ErrorCode::Format, path, std::string("dataset ") + name + " has an empty or absurd dimension");
-  return dims;
+      return fileError(ErrorCode::Format, path, "dataset " + slashName + " has an empty or absurd dimension");
+  // Samples the file cannot hold mean a corrupt header (or chunks never written): deflate, the
+  // only compression lfcam writes, shrinks at most about 1032:1.
+  std::error_code ec;
+  const std::uint64_t fileSize = fs::file_size(path, ec);
+  std::uint64_t bytes = H5Tget_size(type.get());
+  for (hsize_t dim : stored.dims) bytes = checkedProduct({bytes, dim}).value_or(UINT64_MAX);
+  if (!ec && bytes / 1100 > fileSize + 4096)
+    return fileError(ErrorCode::Format, path,
+                     "truncated or corrupt: " + slashName + " claims " + formatBytes(bytes) +
+                         " of samples but the file has only " + std::to_string(fileSize) + " bytes");
+  LFCAM_ASSIGN_OR_RETURN(stored.rawFilters, rawFiltersOf(path, stored, type.get(), slashName));
+  return stored;
 }
 
 Result<OpenedFile> openLightFieldFile(const fs::path& path) {
@@ -206,29 +358,15 @@ Result<OpenedFile> openLightFieldFile(const fs::path& path) {
   if (H5Lexists(file, "lightfield", H5P_DEFAULT) <= 0)
     return fileError(ErrorCode::Format, path,
                      "not an lfcam light field: no /lightfield dataset (an HDF5 file of another layout)");
-  opened.samples = std::make_unique<Handle>(H5Dopen2(file, "lightfield", H5P_DEFAULT), H5Dclose);
-  if (!opened.samples->valid()) return hdf5Error(ErrorCode::Format, path, "/lightfield is not a readable dataset");
-  LFCAM_ASSIGN_OR_RETURN(auto dims, floatDatasetDims(path, opened.samples->get(), "/lightfield", 5, kAxes));
+  LFCAM_ASSIGN_OR_RETURN(opened.samples, openSamples(path, file, "lightfield", 5, kAxes));
+  const std::vector<hsize_t>& dims = opened.samples.dims;
   LightFieldShape& shape = opened.info.shape;
   shape = {.nu = int(dims[1]), .nv = int(dims[0]), .ns = int(dims[4]), .nt = int(dims[3]), .channels = int(dims[2])};
-  // Samples the file cannot hold mean a corrupt header (or chunks never written): deflate, the
-  // only filter lfcam writes, compresses at most about 1032:1.
-  {
-    std::error_code ec;
-    const std::uint64_t fileSize = fs::file_size(path, ec);
-    const auto bytes = checkedProduct({dims[0], dims[1], dims[2], dims[3], dims[4], sizeof(float)});
-    if (!ec && (!bytes || *bytes / 1100 > fileSize + 4096))
-      return fileError(ErrorCode::Format, path,
-                       "truncated or corrupt: /lightfield claims " + formatBytes(bytes.value_or(UINT64_MAX)) +
-                           " of samples but the file has only " + std::to_string(fileSize) + " bytes");
-  }
   LFCAM_TRY(checkSampleCount(path, {dims[0], dims[1], dims[2], dims[3], dims[4]}));
 
   if (H5Lexists(file, "weight", H5P_DEFAULT) > 0) {
-    opened.weight = std::make_unique<Handle>(H5Dopen2(file, "weight", H5P_DEFAULT), H5Dclose);
-    if (!opened.weight->valid()) return hdf5Error(ErrorCode::Format, path, "/weight is not a readable dataset");
-    LFCAM_ASSIGN_OR_RETURN(auto weightDims, floatDatasetDims(path, opened.weight->get(), "/weight", 4, "v,u,t,s"));
-    if (weightDims != std::vector<hsize_t>{dims[0], dims[1], dims[3], dims[4]})
+    LFCAM_ASSIGN_OR_RETURN(opened.weight, openSamples(path, file, "weight", 4, "v,u,t,s"));
+    if (opened.weight->dims != std::vector<hsize_t>{dims[0], dims[1], dims[3], dims[4]})
       return fileError(ErrorCode::Format, path, "/weight does not match the dimensions of /lightfield");
     opened.info.hasWeight = true;
   }
@@ -260,19 +398,15 @@ Result<OpenedFile> openLightFieldFile(const fs::path& path) {
   return opened;
 }
 
-// True when a per-view read touches each stored chunk once (chunks no larger than a view).
-bool readsViewByView(hid_t dataset) {
-  Handle dcpl(H5Dget_create_plist(dataset), H5Pclose);
-  if (H5Pget_layout(dcpl.get()) != H5D_CHUNKED) return true;
-  hsize_t chunk[5] = {};
-  const int rank = H5Pget_chunk(dcpl.get(), 5, chunk);
-  return rank >= 2 && chunk[0] == 1 && chunk[1] == 1;
+// The start of view `view` in a [nv, nu, ...] dataset.
+std::vector<hsize_t> viewOffset(const std::vector<hsize_t>& dims, std::size_t view) {
+  std::vector<hsize_t> offset(dims.size(), 0);
+  offset[0] = view / dims[1];
+  offset[1] = view % dims[1];
+  return offset;
 }
 
-// Reads `dataset` (views outermost, `viewValues` floats each) into `out`, view by view when the
-// chunks allow, so that progress can be reported.
-
-// The extent of one view, (1, 1, rest of dims), and its selection in a [nv, nu, ...] dataset.
+// The extent of one view, (1, 1, rest of dims).
 std::vector<hsize_t> oneViewCount(const std::vector<hsize_t>& dims) {
   std::vector<hsize_t> count = dims;
   count[0] = count[1] = 1;
@@ -280,74 +414,163 @@ std::vector<hsize_t> oneViewCount(const std::vector<hsize_t>& dims) {
 }
 
 void selectView(hid_t fileSpace, const std::vector<hsize_t>& dims, std::size_t view) {
-  std::vector<hsize_t> start(dims.size(), 0);
-  start[0] = view / dims[1];
-  start[1] = view % dims[1];
-  const std::vector<hsize_t> count = oneViewCount(dims);
+  const std::vector<hsize_t> start = viewOffset(dims, view), count = oneViewCount(dims);
   H5Sselect_hyperslab(fileSpace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
 }
 
-Status readViews(const fs::path& path, hid_t dataset, int rank, std::size_t views, std::size_t viewValues, float* out,
-                 const std::function<void()>& viewDone) {
-  if (!readsViewByView(dataset)) {
-    if (H5Dread(dataset, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0)
-      return hdf5Error(ErrorCode::Format, path, "cannot read samples");
-    for (std::size_t i = 0; i < views; ++i) viewDone();
-    return {};
+// One chunk as stored, and which of the dataset's filters were applied to it.
+struct RawChunk {
+  std::vector<unsigned char> bytes;
+  ChunkFilters filters;
+};
+
+// The stored bytes of views [first, last), read through libhdf5 without its filters.
+Result<std::vector<RawChunk>> readRawChunks(const fs::path& path, const StoredSamples& stored, std::size_t first,
+                                            std::size_t last) {
+  std::error_code ec;
+  const std::uint64_t fileSize = fs::file_size(path, ec);
+  std::vector<RawChunk> chunks(last - first);
+  for (std::size_t view = first; view < last; ++view) {
+    const std::vector<hsize_t> offset = viewOffset(stored.dims, view);
+    const std::string which = "the chunk of view " + std::to_string(view);
+    hsize_t size = 0;
+    if (H5Dget_chunk_storage_size(stored.dataset->get(), offset.data(), &size) < 0 || size == 0)
+      return fileError(ErrorCode::Format, path, "truncated or corrupt: " + which + " is missing");
+    if (ec || size > fileSize)
+      return fileError(ErrorCode::Format, path,
+                       "truncated or corrupt: " + which + " claims more bytes than the file has");
+    RawChunk& chunk = chunks[view - first];
+    chunk.bytes.resize(std::size_t(size));
+    std::uint32_t skipped = 0;
+    if (H5Dread_chunk(stored.dataset->get(), H5P_DEFAULT, offset.data(), &skipped, chunk.bytes.data()) < 0)
+      return hdf5Error(ErrorCode::Format, path, "cannot read " + which);
+    const std::vector<H5Z_filter_t>& filters = *stored.rawFilters;
+    for (std::size_t i = 0; i < filters.size(); ++i) {
+      const bool applied = (skipped & (1u << i)) == 0;
+      (filters[i] == H5Z_FILTER_SHUFFLE ? chunk.filters.shuffle : chunk.filters.deflate) = applied;
+    }
   }
+  return chunks;
+}
+
+// Views [first, last) of `stored` into `out` (viewValues floats each) by libhdf5, converted by it
+// to float or to native integer codes, which decodeSamples reads as little-endian.
+static_assert(std::endian::native == std::endian::little);
+Status readViewsThroughLibhdf5(const fs::path& path, const StoredSamples& stored, std::size_t first, std::size_t last,
+                               float* out) {
+  const hid_t dataset = stored.dataset->get();
+  const SampleEncodingKind kind = stored.encoding.kind;
+  const bool codes = bytesPerSample(kind) < 4 && kind != SampleEncodingKind::Float16;
+  const hid_t memoryType = !codes                                 ? H5T_NATIVE_FLOAT
+                           : kind == SampleEncodingKind::Linear16 ? H5T_NATIVE_UINT16
+                                                                  : H5T_NATIVE_UINT8;
   Handle fileSpace(H5Dget_space(dataset), H5Sclose);
-  std::vector<hsize_t> dims(static_cast<std::size_t>(rank), 0);
-  H5Sget_simple_extent_dims(fileSpace.get(), dims.data(), nullptr);
-  // The memory space has the selection's shape: with a flat one, HDF5 copies element by element.
-  const std::vector<hsize_t> count = oneViewCount(dims);
-  Handle memorySpace(H5Screate_simple(rank, count.data(), nullptr), H5Sclose);
-  for (std::size_t view = 0; view < views; ++view) {
-    selectView(fileSpace.get(), dims, view);
-    if (H5Dread(dataset, H5T_NATIVE_FLOAT, memorySpace.get(), fileSpace.get(), H5P_DEFAULT, out + view * viewValues) <
-        0)
+  const std::vector<hsize_t> count = oneViewCount(stored.dims);
+  Handle memorySpace(H5Screate_simple(int(count.size()), count.data(), nullptr), H5Sclose);
+  const std::size_t viewValues = stored.viewValues();
+  std::vector<unsigned char> scratch(codes ? viewValues * bytesPerSample(kind) : 0);
+  for (std::size_t view = first; view < last; ++view) {
+    selectView(fileSpace.get(), stored.dims, view);
+    float* target = out + view * viewValues;
+    void* buffer = codes ? static_cast<void*>(scratch.data()) : static_cast<void*>(target);
+    if (H5Dread(dataset, memoryType, memorySpace.get(), fileSpace.get(), H5P_DEFAULT, buffer) < 0)
       return hdf5Error(ErrorCode::Format, path, "cannot read samples");
-    viewDone();
+    if (codes) decodeSamples(stored.encoding, scratch.data(), viewValues, target);
+  }
+  return {};
+}
+
+// Views are read a batch at a time: libhdf5 reads a batch's chunks under its lock, then lfcam's
+// threads unfilter and decode them without it, so memory holds one batch of stored bytes.
+constexpr std::size_t kViewsPerBatch = 16;
+
+Status decodeRawChunks(const fs::path& path, const StoredSamples& stored, std::size_t first,
+                       const std::vector<RawChunk>& chunks, float* out) {
+  const std::size_t viewValues = stored.viewValues();
+  const std::size_t elementSize = bytesPerSample(stored.encoding.kind);
+  std::vector<std::string> problems(chunks.size());
+  parallelFor(0, chunks.size(), 1, [&](std::size_t begin, std::size_t end) {
+    std::vector<unsigned char> codes(viewValues * elementSize);
+    for (std::size_t i = begin; i < end; ++i) {
+      problems[i] = unfilterChunk(chunks[i].bytes.data(), chunks[i].bytes.size(), elementSize, chunks[i].filters,
+                                  codes.data(), codes.size());
+      if (problems[i].empty()) decodeSamples(stored.encoding, codes.data(), viewValues, out + (first + i) * viewValues);
+    }
+  });
+  for (std::size_t i = 0; i < problems.size(); ++i)
+    if (!problems[i].empty())
+      return fileError(ErrorCode::Format, path, "view " + std::to_string(first + i) + ": " + problems[i]);
+  return {};
+}
+
+// Every view of `stored` into `out`, reporting each view done; `session` is unlocked while
+// lfcam's threads decode.
+Status readSamples(const fs::path& path, Hdf5Session& session, const StoredSamples& stored, float* out,
+                   const std::function<void()>& viewDone) {
+  for (std::size_t first = 0; first < stored.views(); first += kViewsPerBatch) {
+    const std::size_t last = std::min(stored.views(), first + kViewsPerBatch);
+    if (stored.rawFilters) {
+      LFCAM_ASSIGN_OR_RETURN(auto chunks, readRawChunks(path, stored, first, last));
+      LFCAM_TRY(session.unlockedWhile([&] { return decodeRawChunks(path, stored, first, chunks, out); }));
+    } else {
+      LFCAM_TRY(readViewsThroughLibhdf5(path, stored, first, last, out));
+    }
+    for (std::size_t view = first; view < last; ++view) viewDone();
   }
   return {};
 }
 
 // ---- writing ----
 
-Status writeViews(const fs::path& path, hid_t file, const char* name, const std::vector<hsize_t>& dims,
-                  const float* values, const std::function<void()>& viewDone) {
+// Writes `values` (views outermost, `dims` = [nv, nu, ...]) as one dataset of the most compact
+// exact encoding, one deflated chunk per view, encoded and deflated by lfcam's threads a batch at a
+// time with `session` unlocked.
+Status writeSamples(const fs::path& path, Hdf5Session& session, hid_t file, const char* name,
+                    const std::vector<hsize_t>& dims, std::span<const float> values,
+                    std::span<const SampleEncoding> candidates, const std::function<void()>& viewDone) {
   const int rank = int(dims.size());
-  const std::size_t views = std::size_t(dims[0] * dims[1]);
-  std::size_t viewValues = 1;
-  for (int i = 2; i < rank; ++i) viewValues *= std::size_t(dims[std::size_t(i)]);
+  const std::size_t views = viewsOf(dims), viewValues = viewValuesOf(dims);
+  const SampleEncoding encoding =
+      session.unlockedWhile([&] { return exactEncodingOf(values, viewValues, candidates); });
+  const std::size_t elementSize = bytesPerSample(encoding.kind);
+  // A chunk holds at most 4 GiB; a view that large would not be a light field this tool can hold.
+  if (viewValues * elementSize > (std::size_t(1) << 31))
+    return fileError(ErrorCode::Unsupported, path, "a view larger than 2 GiB does not fit one HDF5 chunk");
+  const ChunkFilters filters{.shuffle = elementSize > 1, .deflate = true};
 
-  // One chunk per view, unless a view passes HDF5's 4 GiB chunk limit: then bands of rows.
-  std::vector<hsize_t> chunk = dims;
-  chunk[0] = chunk[1] = 1;
-  constexpr std::size_t kMaxChunkBytes = std::size_t(1) << 31;
-  if (viewValues * sizeof(float) > kMaxChunkBytes) {
-    const std::size_t rowBytes = std::size_t(dims.back()) * sizeof(float);
-    for (int i = 2; i < rank - 2; ++i) chunk[std::size_t(i)] = 1;
-    chunk[std::size_t(rank - 2)] = std::max<hsize_t>(1, kMaxChunkBytes / rowBytes);
-  }
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  const std::vector<hsize_t> chunk = oneViewCount(dims);
   H5Pset_chunk(dcpl.get(), rank, chunk.data());
-  if (H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
-    H5Pset_shuffle(dcpl.get());
-    H5Pset_deflate(dcpl.get(), kDeflateLevel);
-  }
+  if (filters.shuffle) H5Pset_shuffle(dcpl.get());
+  H5Pset_deflate(dcpl.get(), kDeflateLevel);
   Handle fileSpace(H5Screate_simple(rank, dims.data(), nullptr), H5Sclose);
-  Handle dataset(H5Dcreate2(file, name, H5T_IEEE_F32LE, fileSpace.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
-                 H5Dclose);
+  Handle type = fileTypeOf(encoding.kind);
+  Handle dataset(H5Dcreate2(file, name, type.get(), fileSpace.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), H5Dclose);
   if (!dataset.valid()) return hdf5Error(ErrorCode::Io, path, std::string("cannot create dataset ") + name);
+  bool ok = writeStringAttribute(dataset.get(), "encoding", encodingName(encoding.kind));
+  if (encoding.kind == SampleEncodingKind::Linear8 || encoding.kind == SampleEncodingKind::Linear16)
+    ok = ok && writeScalarAttribute(dataset.get(), "scale", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, encoding.scale);
+  if (!ok) return hdf5Error(ErrorCode::Io, path, std::string("cannot write the encoding of ") + name);
 
-  const std::vector<hsize_t> count = oneViewCount(dims);
-  Handle memorySpace(H5Screate_simple(rank, count.data(), nullptr), H5Sclose);
-  for (std::size_t view = 0; view < views; ++view) {
-    selectView(fileSpace.get(), dims, view);
-    if (H5Dwrite(dataset.get(), H5T_NATIVE_FLOAT, memorySpace.get(), fileSpace.get(), H5P_DEFAULT,
-                 values + view * viewValues) < 0)
-      return hdf5Error(ErrorCode::Io, path, "cannot write samples");
-    viewDone();
+  for (std::size_t first = 0; first < views; first += kViewsPerBatch) {
+    const std::size_t last = std::min(views, first + kViewsPerBatch);
+    std::vector<std::vector<unsigned char>> chunks(last - first);
+    session.unlockedWhile([&] {
+      parallelFor(first, last, 1, [&](std::size_t begin, std::size_t end) {
+        std::vector<unsigned char> codes(viewValues * elementSize);
+        for (std::size_t view = begin; view < end; ++view) {
+          encodeExactly(encoding, values.subspan(view * viewValues, viewValues), codes.data());
+          chunks[view - first] = filterChunk(codes.data(), codes.size(), elementSize, filters, kDeflateLevel);
+        }
+      });
+    });
+    for (std::size_t view = first; view < last; ++view) {
+      const std::vector<unsigned char>& bytes = chunks[view - first];
+      const std::vector<hsize_t> offset = viewOffset(dims, view);
+      if (H5Dwrite_chunk(dataset.get(), H5P_DEFAULT, 0, offset.data(), bytes.size(), bytes.data()) < 0)
+        return hdf5Error(ErrorCode::Io, path, "cannot write samples");
+      viewDone();
+    }
   }
   return {};
 }
@@ -390,52 +613,60 @@ bool startsLikeHdf5(const fs::path& path) {
 
 namespace {
 
-// The samples (and weights) of an opened file, read view by view.
-Result<LightField> readOpened(const fs::path& path, const OpenedFile& opened, const ProgressCallback& progress) {
+// The samples (and weights) of an opened file.
+Result<LightField> readOpened(const fs::path& path, Hdf5Session& session, const OpenedFile& opened,
+                              const ProgressCallback& progress) {
   const LightFieldShape& shape = opened.info.shape;
   LightField lightField(shape);
   lightField.metadata = opened.info.metadata;
 
-  const std::size_t views = shape.views();
-  const std::size_t steps = views * (opened.info.hasWeight ? 2 : 1);
+  const std::size_t steps = shape.views() * (opened.weight ? 2 : 1);
   std::size_t done = 0;
   const auto viewDone = [&] {
     ++done;
     if (progress) progress(double(done) / double(steps));
   };
-  LFCAM_TRY(readViews(path, opened.samples->get(), 5, views, shape.viewPixels() * std::size_t(shape.channels),
-                      lightField.samples().data(), viewDone));
-  if (opened.info.hasWeight) {
+  LFCAM_TRY(readSamples(path, session, opened.samples, lightField.samples().data(), viewDone));
+  if (opened.weight) {
     lightField.enableWeight();
-    LFCAM_TRY(
-        readViews(path, opened.weight->get(), 4, views, shape.viewPixels(), lightField.weights().data(), viewDone));
+    LFCAM_TRY(readSamples(path, session, *opened.weight, lightField.weights().data(), viewDone));
   }
   return lightField;
 }
 
-// What the reader will ask of libhdf5, asked first in a throwaway process (survives_in_child.hpp):
-// the metadata, every chunk's entry in the chunk index, and, when the samples are small enough to
-// read twice without notice, every sample. A crash or hang there refuses the file. Larger files
-// are read once, after the child has walked their metadata and chunk index; what it does not
-// exercise for them is the decompression of the chunks' payloads (zlib's, which is hardened).
-Status refuseWhatCrashesLibhdf5(const fs::path& path) {
+// What the reader will ask of libhdf5, asked first in a throwaway process (survives_in_child.hpp).
+// For a file laid out as lfcam writes it, that is everything: the metadata, and the raw bytes of
+// every chunk, which libhdf5 only copies; their decompression is lfcam's own (zlib, bounded to the
+// chunk's size) and happens once, in the parent. For other files, libhdf5 runs the filters
+// itself, so the child also reads every sample when they are small enough to read twice without
+// notice; larger ones are read once, after the child has walked their metadata and chunk index.
+// A probe reads no samples, and its child opens the file only.
+Status refuseWhatCrashesLibhdf5(const fs::path& path, bool readsSamples) {
   constexpr std::size_t kReadTwiceBytes = std::size_t(64) << 20;
   const ChildOutcome outcome = survivesInChild(
       [&] {
         auto opened = openLightFieldFile(path);
-        if (!opened) return;  // a clean error: the parent will find and report it itself
-        for (const auto* dataset : {opened->samples.get(), opened->weight.get()}) {
+        if (!opened || !readsSamples) return;  // a clean error is the parent's to find and report
+        for (StoredSamples* stored : {&opened->samples, opened->weight ? &*opened->weight : nullptr}) {
+          if (!stored) continue;
+          if (stored->rawFilters) {
+            for (std::size_t first = 0; first < stored->views(); first += kViewsPerBatch)
+              if (!readRawChunks(path, *stored, first, std::min(stored->views(), first + kViewsPerBatch))) return;
+            continue;
+          }
           hsize_t chunks = 0;
-          if (!dataset || H5Dget_num_chunks(dataset->get(), H5S_ALL, &chunks) < 0) continue;
+          if (H5Dget_num_chunks(stored->dataset->get(), H5S_ALL, &chunks) < 0) continue;
           for (hsize_t i = 0; i < std::min<hsize_t>(chunks, 4096); ++i) {
             hsize_t offset[5] = {}, size = 0;
             unsigned filterMask = 0;
             haddr_t address = 0;
-            H5Dget_chunk_info(dataset->get(), H5S_ALL, i, offset, &filterMask, &address, &size);
+            H5Dget_chunk_info(stored->dataset->get(), H5S_ALL, i, offset, &filterMask, &address, &size);
+          }
+          if (stored->views() * stored->viewValues() * sizeof(float) <= kReadTwiceBytes) {
+            std::vector<float> scratch(stored->views() * stored->viewValues());
+            (void)readViewsThroughLibhdf5(path, *stored, 0, stored->views(), scratch.data());
           }
         }
-        const LightFieldShape& shape = opened->info.shape;
-        if (shape.samples() * sizeof(float) <= kReadTwiceBytes) (void)readOpened(path, *opened, {});
       },
       std::chrono::seconds(30));
   if (outcome == ChildOutcome::Crashed)
@@ -450,16 +681,16 @@ Status refuseWhatCrashesLibhdf5(const fs::path& path) {
 
 Result<LightFieldInfo> probeHdf5(const fs::path& path) {
   Hdf5Session session;
-  LFCAM_TRY(refuseWhatCrashesLibhdf5(path));
+  LFCAM_TRY(refuseWhatCrashesLibhdf5(path, false));
   LFCAM_ASSIGN_OR_RETURN(auto opened, openLightFieldFile(path));
   return opened.info;
 }
 
 Result<LightField> readHdf5(const fs::path& path, const ProgressCallback& progress) {
   Hdf5Session session;
-  LFCAM_TRY(refuseWhatCrashesLibhdf5(path));
+  LFCAM_TRY(refuseWhatCrashesLibhdf5(path, true));
   LFCAM_ASSIGN_OR_RETURN(auto opened, openLightFieldFile(path));
-  return readOpened(path, opened, progress);
+  return readOpened(path, session, opened, progress);
 }
 
 Status writeHdf5(const fs::path& file, const LightField& lightField, const ProgressCallback& progress,
@@ -478,10 +709,11 @@ Status writeHdf5(const fs::path& file, const LightField& lightField, const Progr
   };
   LFCAM_TRY(writeMetadata(path, handle.get(), lightField.metadata));
   const auto nv = hsize_t(shape.nv), nu = hsize_t(shape.nu), nt = hsize_t(shape.nt), ns = hsize_t(shape.ns);
-  LFCAM_TRY(writeViews(path, handle.get(), "lightfield", {nv, nu, hsize_t(shape.channels), nt, ns},
-                       lightField.samples().data(), viewDone));
+  LFCAM_TRY(writeSamples(path, session, handle.get(), "lightfield", {nv, nu, hsize_t(shape.channels), nt, ns},
+                         lightField.samples(), kColorEncodings, viewDone));
   if (lightField.hasWeight())
-    LFCAM_TRY(writeViews(path, handle.get(), "weight", {nv, nu, nt, ns}, lightField.weights().data(), viewDone));
+    LFCAM_TRY(writeSamples(path, session, handle.get(), "weight", {nv, nu, nt, ns}, lightField.weights(),
+                           kWeightEncodings, viewDone));
   if (!handle.close()) return hdf5Error(ErrorCode::Io, path, "cannot write");
   return {};
 }

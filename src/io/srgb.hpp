@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 
 namespace lfcam::io {
 
@@ -14,6 +15,9 @@ const std::array<float, 256>& linearOfSrgb8Codes();
 // by the value's bucket and a step or two, the same code as the reference's binary search.
 std::uint8_t srgb8FromLinear(float linear);
 std::uint8_t srgb8FromLinearReference(float linear);
+// The codes whose linearFromSrgb8 are exactly `linear` (same bits), into `codes`; false as soon
+// as a value is none of the 256. One table look-up per value, for millions of samples.
+bool srgb8CodesOf(std::span<const float> linear, std::uint8_t* codes);
 
 // Integer codes of linear files: value = code / max, code = round(clamp(value) * max).
 std::uint8_t unorm8FromLinear(float value);

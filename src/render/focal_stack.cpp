@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/bilinear.hpp"
 #include "core/parabola.hpp"
 
 namespace lfcam {
@@ -33,12 +34,7 @@ namespace {
 bool sampleView(const LightField& lightField, int u, int v, int c, double px, double py, double& value) {
   const int ns = lightField.ns(), nt = lightField.nt();
   if (!(px >= 0 && py >= 0 && px <= ns - 1 && py <= nt - 1)) return false;
-  const int x0 = std::min(int(px), std::max(0, ns - 2)), y0 = std::min(int(py), std::max(0, nt - 2));
-  const int x1 = std::min(x0 + 1, ns - 1), y1 = std::min(y0 + 1, nt - 1);
-  const double fx = px - x0, fy = py - y0;
-  const float* plane = lightField.plane(u, v, c);
-  auto at = [&](int x, int y) { return double(plane[std::size_t(y) * ns + x]); };
-  value = (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x1, y0)) + fy * ((1 - fx) * at(x0, y1) + fx * at(x1, y1));
+  value = bilinearSample(lightField.plane(u, v, c), ns, nt, px, py);
   return true;
 }
 

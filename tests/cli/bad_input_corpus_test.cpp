@@ -169,24 +169,31 @@ struct H5Spec {
   std::map<std::string, std::string> strings{{"lfcam_format", "lfcam-lightfield"}, {"axes", "v,u,c,t,s"}};
   std::map<std::string, double> numbers{{"lfcam_version", 1}};
   std::vector<hsize_t> weightDims{};
+  std::map<std::string, std::string> sampleStrings{};  // attributes of /lightfield: encoding
+  std::map<std::string, double> sampleNumbers{};       // and scale
 };
 
-fs::path writeH5(const fs::path& path, const H5Spec& spec) {
-  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  for (const auto& [name, value] : spec.strings) {
+void writeAttributes(hid_t object, const std::map<std::string, std::string>& strings,
+                     const std::map<std::string, double>& numbers) {
+  for (const auto& [name, value] : strings) {
     hid_t type = H5Tcopy(H5T_C_S1);
     H5Tset_size(type, value.size() + 1);
     hid_t space = H5Screate(H5S_SCALAR);
-    hid_t attribute = H5Acreate2(file, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t attribute = H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
     H5Awrite(attribute, type, value.c_str());
     H5Aclose(attribute), H5Sclose(space), H5Tclose(type);
   }
-  for (const auto& [name, value] : spec.numbers) {
+  for (const auto& [name, value] : numbers) {
     hid_t space = H5Screate(H5S_SCALAR);
-    hid_t attribute = H5Acreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t attribute = H5Acreate2(object, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
     H5Awrite(attribute, H5T_NATIVE_DOUBLE, &value);
     H5Aclose(attribute), H5Sclose(space);
   }
+}
+
+fs::path writeH5(const fs::path& path, const H5Spec& spec) {
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  writeAttributes(file, spec.strings, spec.numbers);
   const auto dataset = [&](const char* name, const std::vector<hsize_t>& dims) {
     const std::vector<hsize_t> unlimited(dims.size(), H5S_UNLIMITED);  // chunks may exceed a dimension
     hid_t space = H5Screate_simple(int(dims.size()), dims.data(), unlimited.data());
@@ -201,11 +208,24 @@ fs::path writeH5(const fs::path& path, const H5Spec& spec) {
       std::vector<float> values(count, spec.value);
       H5Dwrite(data, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
     }
+    if (std::string(name) == "lightfield") writeAttributes(data, spec.sampleStrings, spec.sampleNumbers);
     H5Dclose(data), H5Pclose(dcpl), H5Sclose(space);
   };
   dataset("lightfield", spec.dims);
   if (!spec.weightDims.empty()) dataset("weight", spec.weightDims);
   H5Fclose(file);
+  return path;
+}
+
+// A copy of lfcam's own file `from` whose chunk of view (0, 0) is replaced by `stored` bytes.
+fs::path withChunk(const fs::path& from, const fs::path& folder, const std::string& stored) {
+  const fs::path path = folder / "a.lf.h5";
+  fs::copy_file(from, path);
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  hid_t data = H5Dopen2(file, "lightfield", H5P_DEFAULT);
+  const hsize_t origin[5] = {};
+  H5Dwrite_chunk(data, H5P_DEFAULT, 0, origin, stored.size(), stored.data());
+  H5Dclose(data), H5Fclose(file);
   return path;
 }
 
@@ -314,6 +334,24 @@ TEST_F(BadInputCorpus, Hdf5) {
          return writeH5(f / "a.lf.h5", {.value = -std::numeric_limits<float>::infinity(), .weightDims = {3, 3, 4, 4}});
        },
        "a.lf.h5"},
+      {"h5 8-bit codes without an encoding", [](auto f) { return writeH5(f / "a.lf.h5", {.type = H5T_STD_U8LE}); },
+       "a.lf.h5"},
+      {"h5 linear codes with a NaN scale",
+       [](auto f) {
+         return writeH5(f / "a.lf.h5", {.type = H5T_STD_U16LE,
+                                        .sampleStrings = {{"encoding", "linear"}},
+                                        .sampleNumbers = {{"scale", std::numeric_limits<double>::quiet_NaN()}}});
+       },
+       "a.lf.h5"},
+      {"h5 sRGB said of floats",
+       [](auto f) {
+         return writeH5(f / "a.lf.h5", {.sampleStrings = {{"encoding", "srgb8"}}});
+       },
+       "a.lf.h5"},
+      {"h5 chunk shorter than a view", [](auto f) { return withChunk(base("lf.lf.h5"), f, "\x78\x01\x63\x00"); },
+       "a.lf.h5"},
+      {"h5 chunk that is no deflate stream",
+       [](auto f) { return withChunk(base("lf.lf.h5"), f, std::string(5000, 'x')); }, "a.lf.h5"},
       {"a folder named like an h5 file",
        [](auto f) {
          fs::create_directories(f / "a.lf.h5");

@@ -75,7 +75,8 @@ TEST(DecodeCommand, NeedsAGridOrAWhiteImage) {
       0);
   auto decode = runLfcam({"decode", sim + "/raw.png", "-o", (dir / "out.lf.h5").string()}, dir.path());
   EXPECT_EQ(decode.exitStatus, 2);
-  EXPECT_NE(decode.err.find("lfcam: " + sim + "/raw.png: decoding needs --grid or a --white image"), std::string::npos)
+  EXPECT_NE(decode.err.find("lfcam: " + sim + "/raw.png: decoding needs a grid file or a white image"),
+            std::string::npos)
       << decode.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.lf.h5"));
 }

@@ -35,6 +35,49 @@ TEST(CliDepth, WritesDisparityConfidencePictureAndDistance) {
   for (float z : distance->pixels()) ASSERT_GT(z, 0.0f);
 }
 
+// --metric writes millimetres where the disparity was, the same as --distance; --ply a point cloud
+// of the sure points; without optics all three are usage errors before any work.
+TEST(CliDepth, MetresAndPointCloudWhenTheOpticsAreKnown) {
+  test::TempDir dir;
+  const fs::path input = test::makeSynthLightField(dir);
+  const auto result = runLfcam({"depth", input.string(), "-o", (dir / "z.pfm").string(), "--metric", "--distance",
+                                (dir / "same.pfm").string(), "--ply", (dir / "all.ply").string()},
+                               dir.path());
+  ASSERT_EQ(result.exitStatus, 0) << result.err;
+  auto metric = readImage(dir / "z.pfm");
+  auto distance = readImage(dir / "same.pfm");
+  ASSERT_TRUE(metric && distance);
+  EXPECT_EQ(metric->pixels().size(), distance->pixels().size());
+  for (std::size_t i = 0; i < metric->pixels().size(); ++i) ASSERT_EQ(metric->pixels()[i], distance->pixels()[i]);
+  for (float z : metric->pixels()) ASSERT_GT(z, 100.0f);  // beyond the synthetic camera's 90 mm focal length
+  auto vertices = [](const std::string& ply) {
+    const std::size_t at = ply.find("element vertex ");
+    return at == std::string::npos ? -1L : std::stol(ply.substr(at + 15));
+  };
+  const long all = vertices(test::readBytes(dir / "all.ply"));
+  EXPECT_GT(all, 48 * 48 / 2);
+  ASSERT_EQ(runLfcam({"depth", input.string(), "-o", (dir / "d.pfm").string(), "--ply", (dir / "sure.ply").string(),
+                      "--min-confidence", "0.9"},
+                     dir.path())
+                .exitStatus,
+            0);
+  EXPECT_LT(vertices(test::readBytes(dir / "sure.ply")), all);
+
+  ASSERT_EQ(runLfcam({"convert", input.string(), "--layout", "rowcol", "-o", (dir / "rowcol").string()}, dir.path())
+                .exitStatus,
+            0);
+  for (const std::vector<std::string>& flags : {std::vector<std::string>{"--metric"}, {"--ply", "x.ply"}}) {
+    std::vector<std::string> args{"depth", (dir / "rowcol").string(), "-o", (dir / "n.pfm").string()};
+    args.insert(args.end(), flags.begin(), flags.end());
+    const auto noOptics = runLfcam(args, dir.path());
+    EXPECT_EQ(noOptics.exitStatus, 2) << noOptics.err;
+    EXPECT_EQ(noOptics.errLines(), 1) << noOptics.err;
+    EXPECT_NE(noOptics.err.find("optics"), std::string::npos) << noOptics.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "n.pfm"));
+  EXPECT_FALSE(fs::exists(dir / "x.ply"));
+}
+
 TEST(CliEdof, WithAndWithoutADepthMap) {
   test::TempDir dir;
   const fs::path input = test::makeSynthLightField(dir);
@@ -96,6 +139,8 @@ TEST(CliDepth, ErrorsSayWhatIsWrongInOneLine) {
       {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--options", (dir / "bad.json").string()}, 1},
       {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--options", (dir / "no.json").string()}, 1},
       {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--median-radius", "-1"}, 2},
+      {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--ply", (dir / "no" / "c.ply").string()}, 2},
+      {{"depth", input.string(), "-o", (dir / "d.pfm").string(), "--ply", "c.ply", "--min-confidence", "2"}, 2},
   };
   for (const Case& c : cases) {
     const auto result = runLfcam(c.args, dir.path());
@@ -104,6 +149,7 @@ TEST(CliDepth, ErrorsSayWhatIsWrongInOneLine) {
   }
   EXPECT_FALSE(fs::exists(dir / "d.pfm"));
   EXPECT_FALSE(fs::exists(dir / "e.png"));
+  EXPECT_FALSE(fs::exists(dir / "c.ply"));
 }
 
 }  // namespace

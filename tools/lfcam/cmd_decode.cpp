@@ -10,7 +10,7 @@ namespace lfcam::cli {
 
 void addDecodeCommand(CLI::App& app, Job& job) {
   struct Options {
-    RawDecodeInput input;
+    RawFiles input;
     std::string bayer, output;
   };
   auto options = std::make_shared<Options>();

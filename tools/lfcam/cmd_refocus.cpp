@@ -50,12 +50,7 @@ void addRefocusCommand(CLI::App& app, Job& job) {
       LFCAM_ASSIGN_OR_RETURN(auto camera, cameraFrom(options->camera, lightField, options->input.path));
       double slopeValue = options->slope.value_or(0.0);
       if (options->alpha) {
-        const auto& optics = lightField.metadata.optics;
-        if (!optics)
-          return makeError(ErrorCode::Usage, options->input.path +
-                                                 ": no optics metadata, so --alpha cannot be converted to a "
-                                                 "slope; use --slope (pixels per view step)");
-        slopeValue = optics->slopeFromAlpha(*options->alpha);
+        LFCAM_ASSIGN_OR_RETURN(slopeValue, slopeFromAlpha(lightField, *options->alpha, options->input.path));
       }
       if (point) {
         auto found = slopeAtPixel(lightField, point->first, point->second);
@@ -63,7 +58,7 @@ void addRefocusCommand(CLI::App& app, Job& job) {
         slopeValue = *found;
         std::printf("slope %.4f\n", slopeValue);
       }
-      return renderSlopes(lightField, options->camera, camera.first, camera.second, {slopeValue},
+      return renderPhotos(lightField, camera, {slopeValue},
                           [&](int, double, Image&& photo) { return writeImage(options->output, photo, writeOptions); });
     };
   });

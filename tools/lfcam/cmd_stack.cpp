@@ -58,32 +58,24 @@ void addStackCommand(CLI::App& app, Job& job) {
       LFCAM_ASSIGN_OR_RETURN(auto camera, cameraFrom(options->camera, lightField, options->input.path));
       std::vector<double> slopeValues = values;
       const auto& optics = lightField.metadata.optics;
-      if (!options->alphas.empty()) {
-        if (!optics)
-          return makeError(ErrorCode::Usage, options->input.path +
-                                                 ": no optics metadata, so --alphas cannot be converted to "
-                                                 "slopes; use --slopes");
+      if (!options->alphas.empty())
         for (double& value : slopeValues) {
-          if (!(value > 0)) return makeError(ErrorCode::Usage, "--alphas: every alpha must be positive");
-          value = optics->slopeFromAlpha(value);
+          LFCAM_ASSIGN_OR_RETURN(value, slopeFromAlpha(lightField, value, options->input.path));
         }
-      }
       ProgressBar bar("focal stack");
       return writeFolderAtomically(options->output, [&](const std::filesystem::path& folder) -> Status {
         nlohmann::json slices = nlohmann::json::array();
         // Each slice is encoded and written while the next is rendered; a few wait at most.
         BackgroundTasks writes(kSlicesWaitingToBeWritten);
-        LFCAM_TRY(renderSlopes(lightField, options->camera, camera.first, camera.second, slopeValues,
-                               [&](int index, double slope, Image&& photo) -> Status {
-                                 const std::string name = sliceName(index);
-                                 nlohmann::json slice{{"file", name}, {"slope", slope}};
-                                 if (optics) slice["alpha"] = optics->alphaFromSlope(slope);
-                                 slices.push_back(slice);
-                                 bar(double(index + 1) / double(slopeValues.size()));
-                                 auto shared = std::make_shared<Image>(std::move(photo));
-                                 return writes.add(
-                                     [&, shared, name] { return writeImage(folder / name, *shared, writeOptions); });
-                               }));
+        LFCAM_TRY(renderPhotos(lightField, camera, slopeValues, [&](int index, double slope, Image&& photo) -> Status {
+          const std::string name = sliceName(index);
+          nlohmann::json slice{{"file", name}, {"slope", slope}};
+          if (optics) slice["alpha"] = optics->alphaFromSlope(slope);
+          slices.push_back(slice);
+          bar(double(index + 1) / double(slopeValues.size()));
+          auto shared = std::make_shared<Image>(std::move(photo));
+          return writes.add([&, shared, name] { return writeImage(folder / name, *shared, writeOptions); });
+        }));
         LFCAM_TRY(writes.wait());
         std::ofstream out(folder / "stack.json");
         out << nlohmann::json{{"slices", slices}}.dump(2) << "\n";

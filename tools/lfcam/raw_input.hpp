@@ -8,17 +8,11 @@
 
 #include "lfcam/camera_model.hpp"
 #include "lfcam/decode.hpp"
+#include "lfcam/decode_files.hpp"
 #include "lfcam/light_field.hpp"
 #include "lfcam/result.hpp"
 
 namespace lfcam::cli {
-
-struct RawDecodeInput {
-  std::string raw, white, dark, grid;  // files; grid: grid.json, else calibrated from the white image
-  std::optional<ColorFilter> bayer;    // overrides what the raw says
-  std::optional<double> blackLevel;    // DN, overrides what the raw and white say; a dark frame wins
-  DecodeOptions decode;                // its white and dark are filled from the files
-};
 
 // --demosaic and --sampling, the decoder's method choices, on `command` (lfcam decode and every
 // command that decodes a raw on the way).
@@ -29,6 +23,7 @@ void addBlackLevelOption(CLI::App& command, std::optional<double>& blackLevel);
 
 // "RGGB", "mono", ... (any case); Usage error naming the option otherwise.
 Result<ColorFilter> parseBayerOption(const std::string& text);
-Result<LightField> decodeRawInput(RawDecodeInput input);
+// decodeRawFiles (decode_files.hpp) with a progress bar on a terminal.
+Result<LightField> decodeRawInput(RawFiles files);
 
 }  // namespace lfcam::cli

@@ -5,19 +5,19 @@
 
 #include <CLI/CLI.hpp>
 
+#include <array>
 #include <cstdio>
-#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "lfcam/focal_stack.hpp"
-#include "lfcam/fourier_slice.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/light_field.hpp"
+#include "lfcam/photo_settings.hpp"
 #include "lfcam/result.hpp"
-#include "lfcam/synthetic_camera.hpp"
 
 namespace lfcam::cli {
 
@@ -77,51 +77,26 @@ inline void addCameraOptions(CLI::App& command, CameraOptions& options) {
       ->check(CLI::PositiveNumber);
 }
 
-// The camera and render options the flags describe, for this light field (slope left at 0).
-inline Result<std::pair<SyntheticCamera, RenderOptions>> cameraFrom(const CameraOptions& options,
-                                                                    const LightField& lightField,
-                                                                    const std::string& inputName) {
-  SyntheticCamera camera;
-  double u = 0, v = 0;
+// The photograph the flags describe, for this light field (slope left at 0).
+inline Result<PhotoSetup> cameraFrom(const CameraOptions& options, const LightField& lightField,
+                                     const std::string& inputName) {
+  PhotoSettings settings;
   if (!options.centre.empty()) {
     LFCAM_ASSIGN_OR_RETURN(auto centre, parsePair(options.centre, "--aperture-centre"));
-    u = centre.first, v = centre.second;
+    settings.apertureCentre = std::array<double, 2>{centre.first, centre.second};
   }
   if (!options.mask.empty()) {
-    if (options.radius) return makeError(ErrorCode::Usage, "--aperture and --aperture-mask exclude each other");
     LFCAM_ASSIGN_OR_RETURN(auto mask, readImage(options.mask));
-    camera.aperture = Aperture::fromMask(std::move(mask), u, v);
-  } else if (options.radius) {
-    camera.aperture =
-        options.shape == "square" ? Aperture::square(*options.radius, u, v) : Aperture::circle(*options.radius, u, v);
-  } else if (!options.centre.empty()) {
-    return makeError(ErrorCode::Usage, "--aperture-centre needs --aperture R or --aperture-mask FILE");
+    settings.apertureMask = std::make_shared<const Image>(std::move(mask));
   }
-  if (options.beta && *options.beta != 1) {
-    const auto& optics = lightField.metadata.optics;
-    if (!optics)
-      return makeError(ErrorCode::Usage,
-                       inputName + ": no optics metadata, so the lens plane cannot be moved (--beta)");
-    camera.beta = *options.beta;
-    camera.parallax = optics->lensStepMm / optics->spatialStepMm;
-  }
-  if (options.method == "fourier" && (camera.aperture.shape != Aperture::Shape::Full || camera.beta != 1))
-    return makeError(ErrorCode::Usage, "--method fourier renders the full aperture at beta 1 only");
-  RenderOptions render;
-  render.method = options.method == "quadrature" ? RenderMethod::Quadrature : RenderMethod::Fast;
-  render.supersampling = options.supersampling;
-  return std::pair{std::move(camera), render};
-}
-
-// Renders one photograph per slope, by the Fourier slice method when asked (its spectrum made
-// once), else by renderSyntheticPhoto.
-inline Status renderSlopes(const LightField& lightField, const CameraOptions& options, SyntheticCamera camera,
-                           const RenderOptions& render, const std::vector<double>& slopes,
-                           const std::function<Status(int, double, Image&&)>& sink) {
-  if (options.method != "fourier") return renderFocalStack(lightField, slopes, camera, render, sink);
-  LFCAM_ASSIGN_OR_RETURN(auto refocuser, FourierRefocuser::create(lightField));
-  for (std::size_t i = 0; i < slopes.size(); ++i) LFCAM_TRY(sink(int(i), slopes[i], refocuser.refocus(slopes[i])));
-  return {};
+  settings.apertureRadius = options.radius;
+  settings.squareAperture = options.shape == "square";
+  settings.method = options.method == "quadrature" ? PhotoMethod::Quadrature
+                    : options.method == "fourier"  ? PhotoMethod::Fourier
+                                                   : PhotoMethod::Fast;
+  settings.supersampling = options.supersampling;
+  settings.beta = options.beta;
+  return photoSetup(settings, lightField, inputName);
 }
 
 }  // namespace lfcam::cli

@@ -1,0 +1,18 @@
+"""lfcam: light-field photography with a hand-held plenoptic camera (Ng et al. 2005).
+
+The same C++ library as the `lfcam` command, with its names and defaults:
+
+    import lfcam
+    lf = lfcam.read("../shared/data/hci-antinous")        # a LightField
+    photo = lfcam.refocus(lf, 0.5, aperture=2)            # an Image
+    pixels = photo.array                                  # numpy, (channels, height, width), no copy
+
+Errors raise lfcam.UsageError (a wrong argument) or lfcam.Error (a file or input that fails),
+with the command line's one-line messages.
+"""
+from ._lfcam import (AllInFocus, DepthMap, Error, Image, LensletGrid, LightField, UsageError, calibrate, decode,
+                     depth, edof, observer, read, read_image, refocus, score, stack, write, write_image)
+
+__all__ = ["AllInFocus", "DepthMap", "Error", "Image", "LensletGrid", "LightField", "UsageError", "calibrate",
+           "decode", "depth", "edof", "observer", "read", "read_image", "refocus", "score", "stack", "write",
+           "write_image"]

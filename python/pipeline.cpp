@@ -1,0 +1,293 @@
+// The pipeline's functions, with the command line's names and defaults (lfcam --help): files,
+// calibration and decoding, photographs, depth, all-in-focus and scores. Each long call runs
+// without the GIL and stops on Ctrl-C (interruptible.hpp).
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "arrays.hpp"
+#include "errors.hpp"
+#include "interruptible.hpp"
+#include "lfcam/all_in_focus.hpp"
+#include "lfcam/calibrate.hpp"
+#include "lfcam/decode_files.hpp"
+#include "lfcam/depth.hpp"
+#include "lfcam/depth_knobs.hpp"
+#include "lfcam/disparity_scores.hpp"
+#include "lfcam/focal_stack.hpp"
+#include "lfcam/image_io.hpp"
+#include "lfcam/lenslet_grid.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/photo_settings.hpp"
+#include "lfcam/raw_io.hpp"
+#include "lfcam/synthetic_camera.hpp"
+
+namespace py = pybind11;
+
+namespace lfcam::python {
+
+namespace {
+
+using Path = std::filesystem::path;
+
+template <class T>
+T choice(const std::map<std::string, T>& names, const std::string& name, const char* what) {
+  auto it = names.find(name);
+  if (it != names.end()) return it->second;
+  std::string known;
+  for (const auto& [key, value] : names) known += (known.empty() ? "" : ", ") + key;
+  throw LibraryError(ErrorCode::Usage, std::string(what) + ": '" + name + "' is not one of " + known);
+}
+
+ColorFilter colorFilterNamed(const std::string& name) {
+  if (auto filter = parseColorFilterName(name)) return *filter;
+  throw LibraryError(ErrorCode::Usage, "bayer: '" + name + "' is not one of RGGB, BGGR, GRBG, GBRG, mono");
+}
+
+PhotoSettings photoSettings(std::optional<double> aperture, const std::string& shape,
+                            std::optional<std::array<double, 2>> centre, std::optional<py::array> mask,
+                            const std::string& method, int supersampling, std::optional<double> beta) {
+  PhotoSettings settings;
+  settings.apertureRadius = aperture;
+  settings.squareAperture = choice<bool>({{"circle", false}, {"square", true}}, shape, "aperture_shape");
+  settings.apertureCentre = centre;
+  if (mask) settings.apertureMask = std::make_shared<const Image>(imageFromArray(*mask, "aperture_mask"));
+  settings.method = choice<PhotoMethod>(
+      {{"fast", PhotoMethod::Fast}, {"quadrature", PhotoMethod::Quadrature}, {"fourier", PhotoMethod::Fourier}}, method,
+      "method");
+  settings.supersampling = supersampling;
+  settings.beta = beta;
+  return settings;
+}
+
+std::vector<Image> photographs(const LightField& lf, const PhotoSettings& settings, const std::vector<double>& slopes) {
+  const PhotoSetup setup = valueOrThrow(photoSetup(settings, lf, "light field"));
+  std::vector<Image> photos;
+  interruptible([&] {
+    throwIfError(renderPhotos(lf, setup, slopes, [&](int, double, Image&& photo) -> Status {
+      photos.push_back(std::move(photo));
+      return {};
+    }));
+  });
+  return photos;
+}
+
+// Sets the depth knobs given as keyword arguments (their flag names with '_' for '-').
+void setDepthKnobs(DepthOptions& options, const py::kwargs& knobs) {
+  for (const auto& [key, value] : knobs) {
+    std::string name = py::str(key);
+    std::replace(name.begin(), name.end(), '_', '-');
+    const DepthKnob* knob = nullptr;
+    for (const DepthKnob& k : depthKnobs())
+      if (name == k.name) knob = &k;
+    if (!knob) throw LibraryError(ErrorCode::Usage, "depth: unknown option '" + std::string(py::str(key)) + "'");
+    const double number = value.cast<double>();
+    if (!(number >= knob->min && number <= knob->max))
+      throw LibraryError(ErrorCode::Usage, "depth: " + std::string(py::str(key)) + " = " + std::to_string(number) +
+                                               " is outside [" + std::to_string(knob->min) + ", " +
+                                               std::to_string(knob->max) + "]");
+    std::visit(
+        [&](auto member) {
+          using Member = std::remove_reference_t<decltype(options.*member)>;
+          if constexpr (std::is_same_v<Member, int>)
+            options.*member = int(number);
+          else
+            options.*member = number;
+        },
+        knob->member);
+  }
+}
+
+}  // namespace
+
+void bindPipeline(py::module_& m) {
+  py::class_<LensletGrid>(m, "LensletGrid", "The microlens lattice found by calibrate (grid.json).")
+      .def_readonly("pitch_x", &LensletGrid::pitchX)
+      .def_readonly("pitch_y", &LensletGrid::pitchY)
+      .def_readonly("rotation_rad", &LensletGrid::rotationRad)
+      .def_readonly("origin", &LensletGrid::origin)
+      .def_readonly("columns", &LensletGrid::columns)
+      .def_readonly("rows", &LensletGrid::rows)
+      .def_property_readonly("hexagonal", [](const LensletGrid& g) { return g.packing == Packing::Hexagonal; })
+      .def(
+          "write", [](const LensletGrid& g, const Path& path) { throwIfError(writeGrid(path, g)); }, py::arg("path"));
+
+  m.def(
+      "read",
+      [](const Path& path, std::optional<int> lensletViews) {
+        return interruptible([&] { return valueOrThrow(readLightField(path, {.lensletViews = lensletViews})); });
+      },
+      py::arg("path"), py::kw_only(), py::arg("lenslet_views") = py::none(),
+      "Reads a light field: .lf.h5, an HCI or RR_CC folder of views, or a lenslet image.");
+  m.def(
+      "write",
+      [](const Path& path, const LightField& lf) { interruptible([&] { throwIfError(writeLightField(path, lf)); }); },
+      py::arg("path"), py::arg("light_field"), "Writes a light field; the format follows the name (.lf.h5, a folder).");
+  m.def(
+      "read_image", [](const Path& path) { return interruptible([&] { return valueOrThrow(readImage(path)); }); },
+      py::arg("path"), "Reads an image in linear light (PNG, JPEG, TIFF, EXR, PFM).");
+  m.def(
+      "write_image",
+      [](const Path& path, const Image& image, std::optional<std::string> bitDepth) {
+        ImageWriteOptions options;
+        if (bitDepth)
+          options.sampleType =
+              choice<SampleType>({{"8", SampleType::UInt8}, {"16", SampleType::UInt16}, {"float", SampleType::Float32}},
+                                 *bitDepth, "bit_depth");
+        interruptible([&] { throwIfError(writeImage(path, image, options)); });
+      },
+      py::arg("path"), py::arg("image"), py::kw_only(), py::arg("bit_depth") = py::none(),
+      "Writes an image; bit_depth '8', '16' or 'float' (default: the format's own).");
+
+  m.def(
+      "calibrate",
+      [](const Path& white, std::optional<Path> metadata, bool pinhole, bool scene, std::optional<std::string> bayer,
+         std::optional<double> blackLevel) {
+        CalibrationOptions options;
+        if (bayer) options.colorFilter = colorFilterNamed(*bayer);
+        if (pinhole && scene) throw LibraryError(ErrorCode::Usage, "calibrate: pinhole and scene exclude each other");
+        if (pinhole) options.target = CalibrationTarget::Pinhole;
+        if (scene) options.target = CalibrationTarget::Scene;
+        return interruptible([&] {
+          if (metadata) options.hint = valueOrThrow(readLensletHint(*metadata));
+          const RawImage raw = valueOrThrow(readRaw(white, {.blackLevel = blackLevel, .useCameraJson = false}));
+          return valueOrThrow(calibrateGrid(raw, options, white.string()));
+        });
+      },
+      py::arg("white"), py::kw_only(), py::arg("metadata") = py::none(), py::arg("pinhole") = false,
+      py::arg("scene") = false, py::arg("bayer") = py::none(), py::arg("black_level") = py::none(),
+      "Finds the microlens grid in a white image (or a pinhole image, or a scene raw).");
+  m.def(
+      "decode",
+      [](const std::string& raw, std::string white, std::string dark, std::string grid,
+         std::optional<std::string> bayer, std::optional<double> blackLevel, int views, const std::string& demosaic,
+         const std::string& sampling) {
+        RawFiles files{.raw = raw, .white = white, .dark = dark, .grid = grid, .blackLevel = blackLevel};
+        if (bayer) files.bayer = colorFilterNamed(*bayer);
+        files.decode.views = views;
+        files.decode.demosaic = choice<DemosaicMethod>({{"mhc", DemosaicMethod::MalvarHeCutler},
+                                                        {"ha", DemosaicMethod::HamiltonAdams},
+                                                        {"lenslet", DemosaicMethod::LensletAware},
+                                                        {"lightfield", DemosaicMethod::LightFieldAware}},
+                                                       demosaic, "demosaic");
+        files.decode.sampling = choice<Sampling>(
+            {{"subpixel", Sampling::SubPixel}, {"integral", Sampling::IntegralPitch}}, sampling, "sampling");
+        return interruptible([&] { return valueOrThrow(decodeRawFiles(std::move(files))); });
+      },
+      py::arg("raw"), py::kw_only(), py::arg("white") = "", py::arg("dark") = "", py::arg("grid") = "",
+      py::arg("bayer") = py::none(), py::arg("black_level") = py::none(), py::arg("views") = 0,
+      py::arg("demosaic") = "mhc", py::arg("sampling") = "subpixel",
+      "Decodes a raw lenslet image into a light field; the grid is calibrated from the white image when no grid "
+      "file is given.");
+
+  m.def(
+      "refocus",
+      [](const LightField& lf, std::optional<double> slope, std::optional<double> alpha,
+         std::optional<std::array<double, 2>> focusAt, std::optional<double> aperture, const std::string& shape,
+         std::optional<std::array<double, 2>> centre, std::optional<py::array> mask, const std::string& method,
+         int supersampling, std::optional<double> beta) {
+        if (int(slope.has_value()) + int(alpha.has_value()) + int(focusAt.has_value()) != 1)
+          throw LibraryError(ErrorCode::Usage, "refocus: give the focus depth with one of slope, alpha or focus_at");
+        const PhotoSettings settings = photoSettings(aperture, shape, centre, mask, method, supersampling, beta);
+        double value = slope.value_or(0.0);
+        if (alpha) value = valueOrThrow(slopeFromAlpha(lf, *alpha, "light field"));
+        if (focusAt)
+          value = interruptible([&] { return valueOrThrow(slopeAtPixel(lf, (*focusAt)[0], (*focusAt)[1])); });
+        return std::move(photographs(lf, settings, {value}).front());
+      },
+      py::arg("light_field"), py::arg("slope") = py::none(), py::kw_only(), py::arg("alpha") = py::none(),
+      py::arg("focus_at") = py::none(), py::arg("aperture") = py::none(), py::arg("aperture_shape") = "circle",
+      py::arg("aperture_centre") = py::none(), py::arg("aperture_mask") = py::none(), py::arg("method") = "fast",
+      py::arg("supersampling") = 0, py::arg("beta") = py::none(),
+      "A photograph refocused at a slope (pixels per view step), a relative film depth alpha, or the depth of image "
+      "point focus_at=(x, y); aperture radius and centre in view steps; method 'fast', 'quadrature' or 'fourier'.");
+  m.def(
+      "stack",
+      [](const LightField& lf, std::optional<std::vector<double>> slopes, std::optional<std::vector<double>> alphas,
+         std::optional<double> aperture, const std::string& shape, std::optional<std::array<double, 2>> centre,
+         std::optional<py::array> mask, const std::string& method, int supersampling, std::optional<double> beta) {
+        if (slopes.has_value() == alphas.has_value())
+          throw LibraryError(ErrorCode::Usage, "stack: give the depths with one of slopes or alphas");
+        const PhotoSettings settings = photoSettings(aperture, shape, centre, mask, method, supersampling, beta);
+        std::vector<double> values = slopes ? *slopes : *alphas;
+        if (alphas)
+          for (double& value : values) value = valueOrThrow(slopeFromAlpha(lf, value, "light field"));
+        return photographs(lf, settings, values);
+      },
+      py::arg("light_field"), py::arg("slopes") = py::none(), py::kw_only(), py::arg("alphas") = py::none(),
+      py::arg("aperture") = py::none(), py::arg("aperture_shape") = "circle", py::arg("aperture_centre") = py::none(),
+      py::arg("aperture_mask") = py::none(), py::arg("method") = "fast", py::arg("supersampling") = 0,
+      py::arg("beta") = py::none(), "A focal stack: one photograph per slope (or alpha), as refocus makes them.");
+  m.def(
+      "observer",
+      [](const LightField& lf, double u, double v, double beta, bool clamp) {
+        Observer observer{.u = u, .v = v, .beta = beta, .clampToLens = clamp};
+        if (beta != 1) {
+          if (!lf.metadata.optics)
+            throw LibraryError(ErrorCode::Usage,
+                               "observer: the light field has no optics metadata, so beta must stay 1");
+          observer.parallax = lf.metadata.optics->lensStepMm / lf.metadata.optics->spatialStepMm;
+        }
+        return interruptible([&] { return valueOrThrow(observe(lf, observer)); });
+      },
+      py::arg("light_field"), py::arg("u"), py::arg("v"), py::kw_only(), py::arg("beta") = 1.0,
+      py::arg("clamp") = false,
+      "The view of a pinhole at (u, v) view steps from the centre, moved along the axis by beta (Equation 7).");
+
+  py::class_<DepthMap>(m, "DepthMap", "A disparity map of the aperture centre and its confidence.")
+      .def_property_readonly("disparity", [](DepthMap& d) { return d.disparity.copy(); })
+      .def_property_readonly("confidence", [](DepthMap& d) { return d.confidence.copy(); })
+      .def_readonly("disparity_min", &DepthMap::disparityMin)
+      .def_readonly("disparity_max", &DepthMap::disparityMax)
+      .def_readonly("labels", &DepthMap::labels);
+  m.def(
+      "depth",
+      [](const LightField& lf, std::optional<Path> options, const py::kwargs& knobs) {
+        DepthOptions settings;
+        if (options) throwIfError(readDepthOptions(*options, settings));
+        setDepthKnobs(settings, knobs);
+        return interruptible([&] { return valueOrThrow(estimateDepth(lf, settings)); });
+      },
+      py::arg("light_field"), py::kw_only(), py::arg("options") = py::none(),
+      "Disparity (pixels per view step) of the centre view and its confidence. Every option of `lfcam depth` is "
+      "a keyword with '_' for '-' (e.g. defocus_weight=0.5); options= names a JSON options file.");
+  py::class_<AllInFocus>(m, "AllInFocus", "An all-in-focus photograph and the slope chosen per pixel.")
+      .def_property_readonly("photo", [](AllInFocus& a) { return a.photo.copy(); })
+      .def_property_readonly("slope", [](AllInFocus& a) { return a.slope.copy(); })
+      .def_readonly("slopes", &AllInFocus::slopes);
+  m.def(
+      "edof",
+      [](const LightField& lf, std::optional<py::array> depth, std::optional<double> min, std::optional<double> max,
+         double step) {
+        std::optional<Image> disparity;
+        if (depth) disparity = imageFromArray(*depth, "depth");
+        AllInFocusOptions options{.disparity = disparity ? &*disparity : nullptr,
+                                  .disparityMin = min,
+                                  .disparityMax = max,
+                                  .sliceStep = step};
+        return interruptible([&] { return valueOrThrow(allInFocus(lf, options)); });
+      },
+      py::arg("light_field"), py::kw_only(), py::arg("depth") = py::none(), py::arg("min") = py::none(),
+      py::arg("max") = py::none(), py::arg("step") = 0.0,
+      "Extended depth of field: an all-in-focus photomontage of a focal stack (Figure 15), following a disparity "
+      "map when given (e.g. depth(...).disparity.array).");
+  m.def(
+      "score",
+      [](const py::array& estimate, const py::array& truth, std::optional<py::array> mask, int border) {
+        const Image e = imageFromArray(estimate, "estimate"), t = imageFromArray(truth, "truth");
+        const Image planes = mask ? imageFromArray(*mask, "mask") : Image();
+        const HciScores s = interruptible([&] { return valueOrThrow(scoreHci(e, t, planes, border)); });
+        py::dict d;
+        d["badpix_0.01"] = s.badPix001, d["badpix_0.03"] = s.badPix003, d["badpix_0.07"] = s.badPix007;
+        d["mse_x100"] = s.mse100, d["bumpiness"] = s.bumpiness, d["pixels"] = s.pixels;
+        return d;
+      },
+      py::arg("estimate"), py::arg("truth"), py::kw_only(), py::arg("mask") = py::none(), py::arg("border") = 15,
+      "The HCI benchmark's scores of a disparity map against its ground truth, as `lfcam score --json` prints "
+      "them.");
+}
+
+}  // namespace lfcam::python

@@ -1,0 +1,63 @@
+// Decoding from files (decode_files.hpp).
+#include "lfcam/decode_files.hpp"
+
+#include <tuple>
+#include <utility>
+
+#include "lfcam/calibrate.hpp"
+#include "lfcam/lenslet_grid.hpp"
+#include "lfcam/raw_io.hpp"
+
+namespace lfcam {
+
+Result<LightField> decodeRawFiles(RawFiles input, const ProgressCallback& progress) {
+  const auto bar = [&](double fraction) {
+    if (progress) progress(fraction);
+  };
+  RawReadOptions readOptions;
+  readOptions.colorFilter = input.bayer;
+  // A dark frame is subtracted instead of any black level, so a given level is then not used.
+  if (input.dark.empty()) readOptions.blackLevel = input.blackLevel;
+  LFCAM_ASSIGN_OR_RETURN(auto raw, readRaw(input.raw, readOptions));
+  bar(0.1);
+  RawImage dark, white;
+  if (!input.dark.empty()) {
+    LFCAM_ASSIGN_OR_RETURN(auto read, readRaw(input.dark, readOptions));
+    dark = std::move(read);
+    input.decode.dark = &dark;
+  }
+  if (!input.white.empty()) {
+    LFCAM_ASSIGN_OR_RETURN(auto read, readRaw(input.white, readOptions));
+    white = std::move(read);
+    input.decode.white = &white;
+  }
+  // Checked here as well as in decodeLightField, so that the message names the file that is wrong.
+  for (const auto& [file, image, what] :
+       {std::tuple{&input.dark, &dark, "dark frame"}, std::tuple{&input.white, &white, "white image"}}) {
+    const Image& mosaic = image->mosaic;
+    if (file->empty() || (mosaic.width() == raw.mosaic.width() && mosaic.height() == raw.mosaic.height())) continue;
+    return makeError(ErrorCode::Usage, *file + ": " + what + " of " + std::to_string(mosaic.width()) + "x" +
+                                           std::to_string(mosaic.height()) + " pixels does not match the raw's " +
+                                           std::to_string(raw.mosaic.width()) + "x" +
+                                           std::to_string(raw.mosaic.height()) + " (" + input.raw + ")");
+  }
+  bar(0.2);
+  LensletGrid grid;
+  if (!input.grid.empty()) {
+    LFCAM_ASSIGN_OR_RETURN(auto read, readGrid(input.grid));
+    grid = read;
+  } else {
+    if (input.white.empty())
+      return makeError(ErrorCode::Usage, input.raw + ": decoding needs a grid file or a white image to calibrate from");
+    LFCAM_ASSIGN_OR_RETURN(auto calibrated, calibrateGrid(white, CalibrationOptions{}, input.white));
+    grid = calibrated;
+  }
+  bar(0.4);
+  if (!input.decode.optics) input.decode.optics = raw.optics;
+  auto lf = decodeLightField(raw, grid, input.decode);
+  if (!lf) return makeError(lf.error().code, input.raw + ": " + lf.error().message);
+  bar(1.0);
+  return lf;
+}
+
+}  // namespace lfcam

@@ -1,0 +1,161 @@
+"""The Python package lfcam (python/): zero-copy views, round trips, errors, and results identical
+to the command line's. Run by CTest (label python) with PYTHONPATH=build/python; tests on
+../shared/data skip, saying so, when it is absent."""
+import os
+import signal
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import lfcam
+
+DATA = os.environ.get("LFCAM_SHARED_DATA_DIR", "")
+ANTINOUS = os.path.join(DATA, "hci-antinous")
+LFCAM = os.environ.get("LFCAM_EXECUTABLE", "")
+
+
+def needs_antinous():
+    if not os.path.isdir(ANTINOUS):
+        pytest.skip(f"real data absent: {ANTINOUS} (see ../shared/data/SOURCES.md)")
+
+
+def sloped_light_field(disparity=1, views=5, size=48, seed=3):
+    """A textured plane of integer disparity: view (u, v) is the centre view shifted by -(u, v) d."""
+    texture = np.random.default_rng(seed).random((size + 2 * views * abs(disparity), ) * 2, dtype=np.float32)
+    samples = np.zeros((views, views, 1, size, size), np.float32)
+    centre, margin = (views - 1) // 2, views * abs(disparity)
+    for v in range(views):
+        for u in range(views):
+            dy, dx = (v - centre) * disparity, (u - centre) * disparity
+            samples[v, u, 0] = texture[margin + dy:margin + dy + size, margin + dx:margin + dx + size]
+    return lfcam.LightField(samples)
+
+
+def test_samples_are_a_view_not_a_copy():
+    lf = lfcam.LightField.zeros(3, 2, 8, 6, channels=3)
+    assert lf.samples.shape == (2, 3, 3, 6, 8)
+    lf.samples[1, 2, 0, 4, 5] = 7.5  # view (u=2, v=1), red, row 4, column 5
+    assert lf.view(2, 1).array[0, 4, 5] == 7.5
+    assert np.asarray(lf)[1, 2, 0, 4, 5] == 7.5
+    samples = lf.samples
+    del lf  # the array keeps the light field alive
+    assert samples[1, 2, 0, 4, 5] == 7.5
+
+
+def test_image_array_is_a_view_and_round_trips(tmp_path):
+    pixels = np.random.default_rng(1).random((3, 20, 30), dtype=np.float32)
+    image = lfcam.Image(pixels)
+    image.array[2, 19, 29] = 0.25
+    assert np.asarray(image)[2, 19, 29] == 0.25
+    lfcam.write_image(tmp_path / "a.exr", image, bit_depth="float")
+    back = lfcam.read_image(tmp_path / "a.exr")
+    assert (back.width, back.height, back.channels) == (30, 20, 3)
+    np.testing.assert_array_equal(back.array, image.array)
+
+
+def test_light_field_round_trips_through_lf_h5(tmp_path):
+    lf = sloped_light_field()
+    lfcam.write(tmp_path / "a.lf.h5", lf)
+    back = lfcam.read(tmp_path / "a.lf.h5")
+    np.testing.assert_array_equal(back.samples, lf.samples)
+
+
+def test_refocus_at_the_planes_disparity_is_its_texture():
+    lf = sloped_light_field(disparity=1)
+    photo = lfcam.refocus(lf, 1.0).array[0]
+    centre = lf.view(2, 2).array[0]
+    inner = (slice(6, -6), slice(6, -6))  # away from the borders, where fewer views contribute
+    np.testing.assert_allclose(photo[inner], centre[inner], atol=1e-5)
+    blurred = lfcam.refocus(lf, -1.0).array[0]
+    assert np.abs(blurred[inner] - centre[inner]).mean() > 0.05
+
+
+def test_depth_finds_the_disparity_and_takes_the_commands_options():
+    lf = sloped_light_field(disparity=1)
+    result = lfcam.depth(lf, min=-2.0, max=2.0, median_radius=2)
+    disparity = result.disparity.array[0][8:-8, 8:-8]
+    assert abs(np.median(disparity) - 1.0) < 0.05
+    with pytest.raises(lfcam.UsageError, match="unknown option 'no_such_knob'"):
+        lfcam.depth(lf, no_such_knob=1)
+    with pytest.raises(lfcam.UsageError, match="median_radius"):
+        lfcam.depth(lf, median_radius=-4)
+
+
+def test_score_of_the_truth_is_perfect():
+    truth = np.linspace(-1, 1, 64 * 64, dtype=np.float32).reshape(64, 64)
+    scores = lfcam.score(truth, truth, border=4)
+    assert scores["badpix_0.07"] == 0 and scores["mse_x100"] == 0 and scores["pixels"] == 56 * 56
+    with pytest.raises(lfcam.UsageError):
+        lfcam.score(truth, truth[:32], border=4)
+
+
+def test_bad_arrays_and_arguments_raise_one_line_errors():
+    with pytest.raises(lfcam.UsageError, match="expected an array of 5 dimensions, got 3"):
+        lfcam.LightField(np.zeros((2, 3, 4), np.float32))
+    with pytest.raises(lfcam.UsageError, match="expected a numeric array"):
+        lfcam.Image(np.array([["a", "b"], ["c", "d"]]))
+    lf = sloped_light_field()
+    with pytest.raises(lfcam.UsageError, match="give the focus depth"):
+        lfcam.refocus(lf)
+    with pytest.raises(lfcam.UsageError, match="no optics metadata"):
+        lfcam.refocus(lf, alpha=1.1)
+    with pytest.raises(lfcam.UsageError, match="'wavelet' is not one of"):
+        lfcam.refocus(lf, 0.0, method="wavelet")
+    with pytest.raises(lfcam.Error) as failed:
+        lfcam.read("/no/such/light/field.lf.h5")
+    assert "\n" not in str(failed.value) and "/no/such/light/field.lf.h5" in str(failed.value)
+    assert not isinstance(failed.value, lfcam.UsageError)
+
+
+def test_threads_overlap_calls_with_the_same_results():
+    lf = sloped_light_field(size=96)
+    alone = lfcam.refocus(lf, 0.5).array.copy()
+    results = [None] * 4
+
+    def run(k):
+        results[k] = lfcam.refocus(lf, 0.5).array.copy()
+
+    threads = [threading.Thread(target=run, args=(k, )) for k in range(4)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    for result in results:
+        np.testing.assert_array_equal(result, alone)
+
+
+def test_refocus_is_the_commands_photograph(tmp_path):
+    needs_antinous()
+    out = tmp_path / "cli.exr"
+    subprocess.run([LFCAM, "refocus", ANTINOUS, "--slope", "0.5", "--aperture", "2", "--bit-depth", "float", "-o",
+                    str(out)], check=True, capture_output=True)
+    lf = lfcam.read(ANTINOUS)
+    photo = lfcam.refocus(lf, 0.5, aperture=2)
+    np.testing.assert_array_equal(photo.array, lfcam.read_image(out).array)
+    stack = lfcam.stack(lf, alphas=[0.98, 1.0, 1.02])
+    assert len(stack) == 3
+    np.testing.assert_array_equal(stack[1].array, lfcam.refocus(lf, 0.0).array)
+
+
+def test_ctrl_c_stops_a_long_call_soon():
+    lf = sloped_light_field(size=192, views=9)
+    start = time.perf_counter()
+    lfcam.stack(lf, [0.1] * 8)
+    per_photo = (time.perf_counter() - start) / 8
+    count = max(8, int(3.0 / per_photo))  # about 3 s of work, measured in this run
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    timer = threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT))
+    try:
+        timer.start()
+        start = time.perf_counter()
+        with pytest.raises(KeyboardInterrupt):
+            lfcam.stack(lf, [0.1] * count)
+        stopped_after = time.perf_counter() - start
+    finally:
+        timer.cancel()
+        signal.signal(signal.SIGINT, previous)
+    assert stopped_after < 0.5 * count * per_photo  # it did not run to the end
+    np.testing.assert_array_equal(lfcam.refocus(lf, 0.1).array, lfcam.stack(lf, [0.1])[0].array)  # usable again
