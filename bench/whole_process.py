@@ -3,8 +3,9 @@
 
 A user runs a command, not a kernel: these are wall-clock times of whole processes (start-up,
 reading, work, writing), the median of several runs after one warm-up run (files in the page
-cache). Each row is compared with a floor measured alongside it, so the ratio holds on a noisy
-or shared machine:
+cache), and the CPU time the process used (user + system, all its threads), which other jobs on a
+shared machine disturb far less. Each row is compared with a floor measured alongside it, so the
+ratio holds on a noisy or shared machine:
   - start-up rows: bench/process_floor.c, a C program that does nothing;
   - rows that read files: bench/read_floor.c, which reads the same bytes and copies them once.
 
@@ -13,6 +14,7 @@ or shared machine:
 """
 import argparse
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -21,19 +23,28 @@ import tempfile
 import time
 
 
+def children_cpu_seconds():
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def time_once(command):
+    """Wall-clock and CPU seconds of one run."""
+    cpu = children_cpu_seconds()
     start = time.perf_counter()
     finished = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     elapsed = time.perf_counter() - start
     if finished.returncode != 0:
         sys.exit(f"whole_process.py: {' '.join(command)} failed ({finished.returncode}): "
                  f"{finished.stderr.decode(errors='replace').strip()}")
-    return elapsed
+    return elapsed, children_cpu_seconds() - cpu
 
 
 def median_time(command, runs):
+    """Medians of the wall-clock and of the CPU seconds."""
     time_once(command)  # warm-up: page cache, lazily loaded libraries
-    return statistics.median(time_once(command) for _ in range(runs))
+    times = [time_once(command) for _ in range(runs)]
+    return statistics.median(t[0] for t in times), statistics.median(t[1] for t in times)
 
 
 def files_in(folder):
@@ -85,18 +96,19 @@ def main():
     only = set(filter(None, args.only.split(",")))
     try:
         print(f"whole processes, median of {args.runs} runs after a warm-up; floors timed in the same run")
-        print(f"{'row':<14}{'lfcam s':>10}{'floor s':>10}{'ratio':>8}{'goal s':>9}")
+        print(f"{'row':<14}{'lfcam s':>10}{'cpu s':>8}{'floor s':>10}{'ratio':>8}{'goal s':>9}")
         measured = {}
         for name, command, floor, goal in rows:
             if only and name not in only:
                 continue
             if name == "stack-native" and not os.path.exists(native):
                 time_once(rows[4][1])  # the native file comes from the convert row
-            seconds = median_time(command, args.runs)
-            floor_seconds = median_time(floor, args.runs)
+            seconds, cpu_seconds = median_time(command, args.runs)
+            floor_seconds, _ = median_time(floor, args.runs)
             measured[name] = seconds
             goal_text = f"{goal:.2f}" if goal else "<png"
-            print(f"{name:<14}{seconds:>10.3f}{floor_seconds:>10.4f}{seconds / floor_seconds:>8.1f}{goal_text:>9}")
+            print(f"{name:<14}{seconds:>10.3f}{cpu_seconds:>8.3f}{floor_seconds:>10.4f}{seconds / floor_seconds:>8.1f}"
+                  f"{goal_text:>9}")
         if os.path.exists(native):
             png_bytes = sum(os.path.getsize(path) for path in hci_files if path.endswith(".png"))
             native_bytes = os.path.getsize(native)

@@ -1,4 +1,4 @@
-// Lenslet (macro-pixel) images: the image readers (lfcam's PNG structure check, OpenImageIO), the
+// Lenslet (macro-pixel) images: the image readers (lfcam's PNG structure check, libpng, libtiff, ...), the
 // description that gives the view count, and the macro-pixel period estimate.
 #include "fuzz_support.hpp"
 #include "lfcam/light_field_io.hpp"

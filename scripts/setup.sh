@@ -10,8 +10,7 @@ packages=(
   python3-h5py         # tests/h5py: the native .lf.h5 as Python users read it
   clang-format-14      # tests/format: the check of the one style (.clang-format)
   ccache               # repeat builds (scripts/build.sh, build-san) reuse earlier compiles
-  libpng-dev libjpeg-dev libopenexr-dev libgif-dev  # PNG, JPEG, OpenEXR, GIF: their own libraries (docs/design.md, "Start-up")
-  libopenimageio-dev   # image files: TIFF
+  libpng-dev libjpeg-dev libtiff-dev libopenexr-dev libgif-dev  # image formats: their own libraries (docs/design.md, "Start-up")
   libhdf5-dev          # the native .lf.h5 light-field file
   libdeflate-dev       # its chunks, deflated and inflated by lfcam's own threads
   zlib1g-dev libzstd-dev  # bench/native_codec_bench: the codecs it could have used instead

@@ -78,7 +78,7 @@ TEST(RawIo, GivenBlackLevelOutOfRangeIsAUsageError) {
   EXPECT_EQ(highest->blackLevel, 4094);
 }
 
-// The DNG BlackLevel and WhiteLevel tags of a plain TIFF (OpenImageIO does not pass them on):
+// The DNG BlackLevel and WhiteLevel tags of a plain TIFF:
 // one value or a pattern (its mean), SHORT or RATIONAL, either byte order; a given level wins.
 TEST(RawIo, TiffBlackAndWhiteLevelTags) {
   test::TempDir dir;

@@ -1,6 +1,6 @@
 // A 16-bit greyscale TIFF carrying the DNG BlackLevel and WhiteLevel tags, as machine-vision and
-// microscope software writes them, built byte by byte: OpenImageIO 2.4 neither writes nor reads
-// these tags, so it cannot make such a file for the tests.
+// microscope software writes them, built byte by byte so that the file does not come from the
+// library whose reading the tests check (libtiff), in either byte order and tag type.
 #pragma once
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// Image files: PNG (8/16-bit), TIFF (8/16-bit, float), OpenEXR, JPEG through OpenImageIO, and
-// PFM (the HCI benchmark's disparity maps) by lfcam's own small reader and writer.
+// Image files: PNG (8/16-bit), TIFF (8/16-bit, float), OpenEXR, JPEG through their own libraries,
+// and PFM (the HCI benchmark's disparity maps) by lfcam's own small reader and writer.
 //
 // Values in memory are linear light. 8-bit files are taken to hold sRGB-encoded values: reading
 // decodes them to linear, writing encodes (the round trip of 8-bit codes is exact). 16-bit and

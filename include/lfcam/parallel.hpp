@@ -4,8 +4,10 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 
 #include "lfcam/progress.hpp"
+#include "lfcam/result.hpp"
 
 namespace lfcam {
 
@@ -19,6 +21,27 @@ void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
 void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
                  const std::function<void(std::size_t, std::size_t)>& body, const ProgressCallback& progress,
                  std::size_t slices = 50);
+
+// Work handed to the same pool to run beside the caller's, so that writing one result overlaps
+// computing the next (e.g. the slices of a focal stack). At most `pending` tasks wait at a time:
+// beyond that, add() first finishes them all (the caller helps, so one thread suffices), which
+// bounds the memory the tasks hold, and returns the first error so far so that the caller can stop.
+// wait() (also called by the destructor) finishes every task and returns the first error in the
+// order the tasks were added.
+class BackgroundTasks {
+ public:
+  explicit BackgroundTasks(std::size_t pending);
+  ~BackgroundTasks();
+  BackgroundTasks(const BackgroundTasks&) = delete;
+  BackgroundTasks& operator=(const BackgroundTasks&) = delete;
+
+  Status add(std::function<Status()> task);
+  Status wait();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // Cooperative cancellation, for interactive callers (the Python package on Ctrl-C): while it is
 // requested, parallelFor starts no further sub-range, so a long call returns soon. Its result is

@@ -3,9 +3,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <atomic>
+#include <deque>
 #include <memory>
 
 namespace lfcam {
@@ -40,6 +42,34 @@ void parallelFor(std::size_t begin, std::size_t end, std::size_t grain,
     parallelFor(begin + total * slice / slices, begin + total * (slice + 1) / slices, grain, body);
     progress(double(slice + 1) / double(slices));
   }
+}
+
+struct BackgroundTasks::State {
+  std::size_t pending;
+  tbb::task_group group;
+  std::deque<Status> results;  // one per task since the last wait, in order; stable addresses
+  Status firstError;
+};
+
+BackgroundTasks::BackgroundTasks(std::size_t pending) : state_(std::make_unique<State>()) {
+  state_->pending = std::max<std::size_t>(1, pending);
+}
+
+BackgroundTasks::~BackgroundTasks() { (void)wait(); }
+
+Status BackgroundTasks::add(std::function<Status()> task) {
+  if (state_->results.size() >= state_->pending) LFCAM_TRY(wait());
+  Status& result = state_->results.emplace_back();
+  state_->group.run([&result, task = std::move(task)] { result = task(); });
+  return {};
+}
+
+Status BackgroundTasks::wait() {
+  state_->group.wait();
+  for (Status& result : state_->results)
+    if (!result && state_->firstError) state_->firstError = std::move(result);
+  state_->results.clear();
+  return state_->firstError;
 }
 
 void setThreadCount(int threads) {

@@ -1,9 +1,7 @@
-// Image files: PNG, JPEG and OpenEXR through io/png_file, io/jpeg_file and io/exr_file (their own
-// libraries), PFM through io/pfm, TIFF through OpenImageIO. Which reader runs is decided by the file's first bytes;
+// Image files: PNG, JPEG, TIFF and OpenEXR through io/png_file, io/jpeg_file, io/tiff_file and
+// io/exr_file (their own libraries), PFM through io/pfm. Which reader runs is decided by the file's first bytes;
 // which writer runs, by the name's extension.
 #include "lfcam/image_io.hpp"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <array>
@@ -20,6 +18,7 @@
 #include "io/pfm.hpp"
 #include "io/png_file.hpp"
 #include "io/srgb.hpp"
+#include "io/tiff_file.hpp"
 #include "lfcam/atomic_file.hpp"
 
 namespace lfcam {
@@ -74,41 +73,8 @@ const char* sampleTypeName(SampleType type) {
   return "?";
 }
 
-// The type lfcam reads a file's samples as: 8 and 16-bit codes as they are, anything else
-// converted to float by OpenImageIO (other integer types scaled to [0, 1]).
-SampleType sampleTypeOf(const OIIO::ImageSpec& spec) {
-  if (spec.format == OIIO::TypeDesc::UINT8) return SampleType::UInt8;
-  if (spec.format == OIIO::TypeDesc::UINT16) return SampleType::UInt16;
-  return SampleType::Float32;
-}
-
-OIIO::TypeDesc typeDescOf(SampleType type) {
-  switch (type) {
-    case SampleType::UInt8: return OIIO::TypeDesc::UINT8;
-    case SampleType::UInt16: return OIIO::TypeDesc::UINT16;
-    case SampleType::Float32: return OIIO::TypeDesc::FLOAT;
-  }
-  return OIIO::TypeDesc::FLOAT;
-}
-
-// Opens an image with OpenImageIO, keeping alpha unassociated (as PNG stores it) so that no
-// channel is silently multiplied or divided.
-Result<std::unique_ptr<OIIO::ImageInput>> openInput(const fs::path& path) {
-  LFCAM_TRY(io::checkReadableFile(path));
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto input = OIIO::ImageInput::open(path.string(), &config);
-  if (!input) {
-    std::string reason = OIIO::geterror();
-    if (reason.empty()) reason = "unknown format";
-    return fileError(ErrorCode::Format, path, "not a readable image: " + reason);
-  }
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    return fileError(ErrorCode::Format, path, "not a readable image: no pixels");
-  if (spec.depth > 1 || spec.deep)
-    return fileError(ErrorCode::Unsupported, path, "volume and deep images are not supported");
-  return input;
+std::size_t bytesPerSample(SampleType type) {
+  return type == SampleType::UInt8 ? 1 : type == SampleType::UInt16 ? 2 : sizeof(float);
 }
 
 // A header that promises far more pixels than the file could hold is refused before allocating.
@@ -135,6 +101,7 @@ Status checkAgainstFileLength(const fs::path& path, Kind kind, int width, int he
 Image planarFromCodes(const unsigned char* buffer, int width, int height, int channels, int alphaChannel,
                       SampleType type) {
   const std::size_t pixels = std::size_t(width) * height;
+  const auto& linearOfCode = io::linearOfSrgb8Codes();
   Image image(width, height, channels);
   for (int c = 0; c < channels; ++c) {
     float* plane = image.plane(c);
@@ -142,7 +109,7 @@ Image planarFromCodes(const unsigned char* buffer, int width, int height, int ch
     if (type == SampleType::UInt8) {
       for (std::size_t i = 0; i < pixels; ++i) {
         const std::uint8_t code = buffer[i * channels + c];
-        plane[i] = alpha ? code / 255.0f : io::linearFromSrgb8(code);
+        plane[i] = alpha ? code / 255.0f : linearOfCode[code];
       }
     } else if (type == SampleType::UInt16) {
       const auto* codes = reinterpret_cast<const std::uint16_t*>(buffer);
@@ -158,34 +125,16 @@ Image planarFromCodes(const unsigned char* buffer, int width, int height, int ch
 // The alpha of a PNG (and of the formats written like it) is its last channel when it has two or four.
 int pngAlphaChannel(int channels) { return channels == 2 || channels == 4 ? channels - 1 : -1; }
 
-// PNG and JPEG go through their own libraries (io/png_file, io/jpeg_file), the rest through OpenImageIO.
-bool readByOwnLibrary(Kind kind) { return kind == Kind::Png || kind == Kind::Jpeg; }
+// The formats read as interleaved samples by their own libraries (EXR and PFM are read as planes).
+bool readAsCodes(Kind kind) { return kind == Kind::Png || kind == Kind::Jpeg || kind == Kind::Tiff; }
 
 Result<io::InterleavedCodes> readCodes(const fs::path& path, Kind kind, bool pixels) {
   const auto checkHeader = [&](const io::InterleavedCodes& header) {
     return checkAgainstFileLength(path, kind, header.width, header.height, header.channels,
-                                  header.type == SampleType::UInt16 ? 2 : 1);
+                                  bytesPerSample(header.type));
   };
+  if (kind == Kind::Tiff) return io::readTiff(path, pixels, checkHeader);
   return kind == Kind::Png ? io::readPng(path, pixels, checkHeader) : io::readJpeg(path, pixels, checkHeader);
-}
-Result<Image> readWithOiio(const fs::path& path, Kind kind) {
-  LFCAM_ASSIGN_OR_RETURN(auto opened, openInput(path));
-  OIIO::ImageInput& input = *opened;
-  const OIIO::ImageSpec spec = input.spec();
-  LFCAM_TRY(checkAgainstFileLength(path, kind, spec.width, spec.height, spec.nchannels, spec.format.size()));
-
-  const SampleType type = sampleTypeOf(spec);
-  const OIIO::TypeDesc readType = typeDescOf(type);
-  const int channels = spec.nchannels;
-  std::vector<unsigned char> buffer(std::size_t(spec.width) * spec.height * channels * readType.size());
-  // Some readers (TIFF, JPEG) report damage as an error but still return true.
-  if (!input.read_image(0, 0, 0, channels, readType, buffer.data()) || input.has_error()) {
-    std::string reason = input.geterror();
-    return fileError(ErrorCode::Format, path, "cannot read pixels: " + (reason.empty() ? "unknown error" : reason));
-  }
-  input.close();
-
-  return planarFromCodes(buffer.data(), spec.width, spec.height, channels, spec.alpha_channel, type);
 }
 
 // What each writable format can hold: its natural sample type and channel counts.
@@ -214,7 +163,7 @@ FormatRules rulesFor(Kind kind) {
 std::vector<unsigned char> encodePixels(const Image& image, SampleType type, int alphaChannel) {
   const int channels = image.channels();
   const std::size_t pixels = image.planeSize();
-  std::vector<unsigned char> buffer(pixels * channels * typeDescOf(type).size());
+  std::vector<unsigned char> buffer(pixels * channels * bytesPerSample(type));
   for (int c = 0; c < channels; ++c) {
     const float* plane = image.plane(c);
     if (type == SampleType::UInt8) {
@@ -232,28 +181,6 @@ std::vector<unsigned char> encodePixels(const Image& image, SampleType type, int
   return buffer;
 }
 
-// TIFF, the one format still written through OpenImageIO.
-Status writeWithOiio(const fs::path& temporary, const fs::path& path, const Image& image, SampleType type,
-                     const ImageWriteOptions& options) {
-  auto output = OIIO::ImageOutput::create(temporary.string());
-  if (!output) return fileError(ErrorCode::Unsupported, path, "cannot write this format: " + OIIO::geterror());
-  OIIO::ImageSpec spec(image.width(), image.height(), image.channels(), typeDescOf(type));
-  spec.channelnames = io::channelNames(image.channels());
-  spec.alpha_channel = image.channels() == 2 || image.channels() == 4 ? image.channels() - 1 : -1;
-  if (spec.alpha_channel >= 0) spec.attribute("oiio:UnassociatedAlpha", 1);
-  spec.attribute("oiio:ColorSpace", type == SampleType::UInt8 ? "sRGB" : "Linear");
-  if (!options.description.empty()) spec.attribute("ImageDescription", options.description);
-  spec.attribute("compression", "zip");
-
-  const std::vector<unsigned char> pixels = encodePixels(image, type, spec.alpha_channel);
-  if (!output->open(temporary.string(), spec) || !output->write_image(typeDescOf(type), pixels.data()) ||
-      !output->close()) {
-    std::string reason = output->geterror();
-    return fileError(ErrorCode::Io, path, "cannot write: " + (reason.empty() ? "unknown error" : reason));
-  }
-  return {};
-}
-
 }  // namespace
 
 Result<Image> readImage(const fs::path& path) {
@@ -264,12 +191,10 @@ Result<Image> readImage(const fs::path& path) {
     return io::readExr(path, [&](const io::ExrHeader& header) {
       return checkAgainstFileLength(path, kind, header.width, header.height, header.channels, sizeof(float));
     });
-  if (readByOwnLibrary(kind)) {
-    LFCAM_ASSIGN_OR_RETURN(auto codes, readCodes(path, kind, true));
-    return planarFromCodes(codes.samples.data(), codes.width, codes.height, codes.channels,
-                           pngAlphaChannel(codes.channels), codes.type);
-  }
-  return readWithOiio(path, kind);
+  if (!readAsCodes(kind)) return fileError(ErrorCode::Format, path, "not a readable image: unknown format");
+  LFCAM_ASSIGN_OR_RETURN(auto codes, readCodes(path, kind, true));
+  return planarFromCodes(codes.samples.data(), codes.width, codes.height, codes.channels,
+                         kind == Kind::Tiff ? codes.alphaChannel : pngAlphaChannel(codes.channels), codes.type);
 }
 
 Result<ImageHeader> readImageHeader(const fs::path& path) {
@@ -280,13 +205,9 @@ Result<ImageHeader> readImageHeader(const fs::path& path) {
     LFCAM_ASSIGN_OR_RETURN(auto header, io::readExrHeader(path));
     return ImageHeader{header.width, header.height, header.channels, SampleType::Float32};
   }
-  if (readByOwnLibrary(kind)) {
-    LFCAM_ASSIGN_OR_RETURN(auto codes, readCodes(path, kind, false));
-    return ImageHeader{codes.width, codes.height, codes.channels, codes.type};
-  }
-  LFCAM_ASSIGN_OR_RETURN(auto input, openInput(path));
-  const OIIO::ImageSpec& spec = input->spec();
-  return ImageHeader{spec.width, spec.height, spec.nchannels, sampleTypeOf(spec)};
+  if (!readAsCodes(kind)) return fileError(ErrorCode::Format, path, "not a readable image: unknown format");
+  LFCAM_ASSIGN_OR_RETURN(auto codes, readCodes(path, kind, false));
+  return ImageHeader{codes.width, codes.height, codes.channels, codes.type};
 }
 
 Result<std::string> readImageDescription(const fs::path& path) {
@@ -300,12 +221,9 @@ Result<std::string> readImageDescription(const fs::path& path) {
     LFCAM_ASSIGN_OR_RETURN(auto header, io::readExrHeader(path));
     return header.description;
   }
-  if (readByOwnLibrary(kind)) {
-    LFCAM_ASSIGN_OR_RETURN(auto codes, readCodes(path, kind, false));
-    return codes.description;
-  }
-  LFCAM_ASSIGN_OR_RETURN(auto input, openInput(path));
-  return std::string(input->spec().get_string_attribute("ImageDescription"));
+  if (!readAsCodes(kind)) return fileError(ErrorCode::Format, path, "not a readable image: unknown format");
+  LFCAM_ASSIGN_OR_RETURN(auto codes, readCodes(path, kind, false));
+  return codes.description;
 }
 
 bool looksLikeImageFile(const fs::path& path) {
@@ -344,17 +262,15 @@ Status writeImage(const fs::path& path, const Image& image, const ImageWriteOpti
   return writeFileAtomically(path, [&](const fs::path& temporary) -> Status {
     if (kind == Kind::Pfm) return io::writePfm(temporary, image, path);
     if (kind == Kind::Exr) return io::writeExr(temporary, path, image, options.description);
-    if (kind == Kind::Png || kind == Kind::Jpeg) {
-      io::InterleavedCodes codes{image.width(),
-                                 image.height(),
-                                 image.channels(),
-                                 type,
-                                 encodePixels(image, type, pngAlphaChannel(image.channels())),
-                                 options.description};
-      return kind == Kind::Png ? io::writePng(temporary, path, codes)
-                               : io::writeJpeg(temporary, path, codes, options.jpegQuality);
-    }
-    return writeWithOiio(temporary, path, image, type, options);
+    io::InterleavedCodes codes{image.width(),
+                               image.height(),
+                               image.channels(),
+                               type,
+                               encodePixels(image, type, pngAlphaChannel(image.channels())),
+                               options.description};
+    if (kind == Kind::Tiff) return io::writeTiff(temporary, path, codes);
+    return kind == Kind::Png ? io::writePng(temporary, path, codes)
+                             : io::writeJpeg(temporary, path, codes, options.jpegQuality);
   });
 }
 

@@ -1,7 +1,7 @@
 // An image file's samples as the file holds them: interleaved 8-bit or 16-bit (native byte
-// order) codes, with the file's description text. The readers and writers that go through the
-// formats' own libraries (io/png_file, io/jpeg_file) exchange this; image_io converts to and from
-// linear planes.
+// order) codes, or floats (TIFF), with the file's description text. The readers and writers that
+// go through the formats' own libraries (io/png_file, io/jpeg_file, io/tiff_file) exchange this;
+// image_io converts to and from linear planes.
 #pragma once
 
 #include <string>
@@ -16,6 +16,7 @@ struct InterleavedCodes {
   SampleType type = SampleType::UInt8;
   std::vector<unsigned char> samples;  // empty when only the header was read
   std::string description;             // the file's description field, if any
+  int alphaChannel = -1;               // TIFF: the channel its extra-sample tag calls alpha, or -1
 };
 
 }  // namespace lfcam::io

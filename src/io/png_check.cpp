@@ -1,11 +1,12 @@
 #include "io/png_check.hpp"
 
-#include <array>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include <zlib.h>
 
 #include "io/io_support.hpp"
 
@@ -14,25 +15,6 @@ namespace lfcam::io {
 namespace fs = std::filesystem;
 
 namespace {
-
-const std::array<std::uint32_t, 256>& crcTable() {
-  static const auto table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t n = 0; n < 256; ++n) {
-      std::uint32_t c = n;
-      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xedb88320u ^ (c >> 1) : c >> 1;
-      t[n] = c;
-    }
-    return t;
-  }();
-  return table;
-}
-
-std::uint32_t updateCrc(std::uint32_t crc, const unsigned char* bytes, std::size_t count) {
-  const auto& table = crcTable();
-  for (std::size_t i = 0; i < count; ++i) crc = table[(crc ^ bytes[i]) & 0xff] ^ (crc >> 8);
-  return crc;
-}
 
 std::uint32_t bigEndian32(const unsigned char* bytes) {
   return std::uint32_t(bytes[0]) << 24 | std::uint32_t(bytes[1]) << 16 | std::uint32_t(bytes[2]) << 8 | bytes[3];
@@ -81,7 +63,7 @@ Status checkPngStructure(const fs::path& path) {
     first = false;
 
     // The CRC covers the type and the data; read the data in pieces to bound memory.
-    std::uint32_t crc = updateCrc(0xffffffffu, head + 4, 4);
+    uLong crc = crc32(0, head + 4, 4);  // zlib's: several bytes a step
     std::uint32_t left = length;
     data.resize(std::min<std::uint32_t>(length, 1u << 20));
     while (left > 0) {
@@ -89,13 +71,13 @@ Status checkPngStructure(const fs::path& path) {
       in.read(reinterpret_cast<char*>(data.data()), piece);
       if (std::uint32_t(in.gcount()) != piece)
         return corrupt("truncated PNG: chunk '" + type + "' needs " + std::to_string(length) + " bytes");
-      crc = updateCrc(crc, data.data(), piece);
+      crc = crc32(crc, data.data(), piece);
       left -= piece;
     }
     unsigned char stored[4];
     in.read(reinterpret_cast<char*>(stored), 4);
     if (in.gcount() != 4) return corrupt("truncated PNG: chunk '" + type + "' has no CRC");
-    if (bigEndian32(stored) != ~crc) return corrupt("corrupt PNG: chunk '" + type + "' fails its CRC check");
+    if (bigEndian32(stored) != crc) return corrupt("corrupt PNG: chunk '" + type + "' fails its CRC check");
     if (type == "IHDR") LFCAM_TRY(checkHeader(data.data(), corrupt));
     if (type == "IDAT") sawData = true;
     if (type == "IEND") break;

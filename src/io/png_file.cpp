@@ -70,6 +70,10 @@ bool decode(std::FILE* file, ErrorSink& sink, InterleavedCodes& out, bool pixels
     return false;
   }
   png_init_io(png, file);
+  // checkPngStructure has verified every chunk's CRC, which also covers the deflate stream that
+  // zlib's Adler-32 would check again: both are skipped here.
+  png_set_crc_action(png, PNG_CRC_QUIET_USE, PNG_CRC_QUIET_USE);
+  png_set_option(png, PNG_IGNORE_ADLER32, PNG_OPTION_ON);
   png_read_info(png, info);
   requestPlainSamples(png, info);
   png_read_update_info(png, info);
@@ -124,7 +128,10 @@ bool encode(const InterleavedCodes& image, Sink& sink, ErrorSink& errors) {
                                         PNG_COLOR_TYPE_RGB_ALPHA};
   const bool sixteen = image.type == SampleType::UInt16;
   png_set_write_fn(png, &sink, writeBytes, flushBytes);
+  // Speed first: the outputs are mostly intermediate (stacks, views, the viewer's answers). zlib level 1
+  // and the Up filter alone instead of libpng's per-row trial of all five (docs/design.md, "Start-up").
   png_set_compression_level(png, 1);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
   png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), sixteen ? 16 : 8,
                kColorTypes[image.channels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);

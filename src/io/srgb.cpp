@@ -29,20 +29,30 @@ namespace io {
 
 namespace {
 
-// A float's top 16 bits: sign, exponent and 7 bits of mantissa, a bucket 1/128 of its value wide.
-// Adjacent sRGB codes lie at least 0.89 % apart above code 10 and 3e-4 apart below it, so a bucket
-// holds at most two codes.
+// Buckets of [0, 1] for srgb8FromLinear (a power of two, so that bucket edges are exact floats):
+// sRGB's steepest slope, 12.92 x 255 codes per unit at 0, puts at most one code boundary in each.
+constexpr int kBuckets = 4096;
+
+// For srgb8CodesOf, a float's top 16 bits: sign, exponent and 7 bits of mantissa, a bucket 1/128 of
+// its value wide. Adjacent sRGB codes lie at least 0.89 % apart above code 10 and 3e-4 apart below
+// it, so a bucket holds at most two codes.
 std::uint32_t bucketOf(float value) { return std::bit_cast<std::uint32_t>(value) >> 16; }
 
 struct Tables {
-  std::array<float, 256> linear;          // code -> linear
-  std::array<float, 255> thresholds;      // linear value halfway (in code space) between k and k+1
-  std::vector<std::uint8_t> firstCodeIn;  // bucket -> the lowest code at or above its start
+  std::array<float, 256> linear;                 // code -> linear
+  std::array<float, 255> thresholds;             // linear value halfway (in code space) between k and k+1
+  std::array<std::uint8_t, kBuckets> firstCode;  // the code of each bucket's lower edge
+  std::vector<std::uint8_t> firstCodeIn;         // bucketOf -> the lowest code at or above its start
   Tables() : firstCodeIn(std::size_t(1) << 16, 255) {
     // The same float as linearFromSrgb(k / 255.0f), so callers computing it themselves agree.
     for (int k = 0; k < 256; ++k) linear[k] = linearFromSrgb(float(k) / 255.0f);
     for (int k = 0; k < 255; ++k) thresholds[k] = float(linearFromSrgbExact((k + 0.5) / 255.0));
+    for (int b = 0; b < kBuckets; ++b) firstCode[b] = codeByBinarySearch(float(b) / kBuckets);
     for (int k = 255; k >= 0; --k) firstCodeIn[bucketOf(linear[k])] = std::uint8_t(k);
+  }
+  // The code is the number of thresholds at or below the value: rounding in code space.
+  std::uint8_t codeByBinarySearch(float value) const {
+    return std::uint8_t(std::upper_bound(thresholds.begin(), thresholds.end(), value) - thresholds.begin());
   }
 };
 
@@ -54,12 +64,20 @@ const Tables& tables() {
 }  // namespace
 
 float linearFromSrgb8(std::uint8_t code) { return tables().linear[code]; }
+const std::array<float, 256>& linearOfSrgb8Codes() { return tables().linear; }
 
 std::uint8_t srgb8FromLinear(float linear) {
   if (!(linear > 0.0f)) return 0;  // also NaN
-  const auto& t = tables().thresholds;
-  // The code is the number of thresholds at or below the value: rounding in code space.
-  return std::uint8_t(std::upper_bound(t.begin(), t.end(), linear) - t.begin());
+  if (linear >= 1.0f) return 255;
+  const Tables& t = tables();
+  int code = t.firstCode[int(linear * kBuckets)];
+  while (code < 255 && t.thresholds[code] <= linear) ++code;
+  return std::uint8_t(code);
+}
+
+std::uint8_t srgb8FromLinearReference(float linear) {
+  if (!(linear > 0.0f)) return 0;
+  return tables().codeByBinarySearch(linear);
 }
 
 bool srgb8CodesOf(std::span<const float> linear, std::uint8_t* codes) {

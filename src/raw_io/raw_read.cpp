@@ -8,12 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "io/io_support.hpp"
+#include "io/tiff_file.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/raw_io.hpp"
 #include "raw_io/libraw_read.hpp"
 #include "raw_io/lytro_container.hpp"
 #include "raw_io/lytro_raw.hpp"
-#include "raw_io/tiff_levels.hpp"
 
 namespace lfcam {
 
@@ -99,7 +99,7 @@ Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOp
   }
   raw.blackLevel = 0;
   raw.whiteLevel = type == SampleType::UInt8 ? 255.0 : type == SampleType::UInt16 ? 65535.0 : 1.0;
-  const TiffLevels tags = readTiffLevels(path);
+  const io::TiffLevels tags = io::readTiffLevels(path);
   if (tags.black) raw.blackLevel = *tags.black;
   if (tags.white) raw.whiteLevel = *tags.white;
   raw.source = "image";

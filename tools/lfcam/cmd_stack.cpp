@@ -10,10 +10,16 @@
 #include "image_output.hpp"
 #include "lfcam/atomic_file.hpp"
 #include "lfcam/focal_stack.hpp"
+#include "lfcam/parallel.hpp"
 #include "progress_bar.hpp"
 #include "render_cli.hpp"
 
 namespace lfcam::cli {
+
+namespace {
+// Slices rendered but not yet written, each one photograph's memory.
+constexpr std::size_t kSlicesWaitingToBeWritten = 4;
+}  // namespace
 
 void addStackCommand(CLI::App& app, Job& job) {
   struct Options {
@@ -59,14 +65,18 @@ void addStackCommand(CLI::App& app, Job& job) {
       ProgressBar bar("focal stack");
       return writeFolderAtomically(options->output, [&](const std::filesystem::path& folder) -> Status {
         nlohmann::json slices = nlohmann::json::array();
+        // Each slice is encoded and written while the next is rendered; a few wait at most.
+        BackgroundTasks writes(kSlicesWaitingToBeWritten);
         LFCAM_TRY(renderPhotos(lightField, camera, slopeValues, [&](int index, double slope, Image&& photo) -> Status {
           const std::string name = sliceName(index);
           nlohmann::json slice{{"file", name}, {"slope", slope}};
           if (optics) slice["alpha"] = optics->alphaFromSlope(slope);
           slices.push_back(slice);
           bar(double(index + 1) / double(slopeValues.size()));
-          return writeImage(folder / name, photo, writeOptions);
+          auto shared = std::make_shared<Image>(std::move(photo));
+          return writes.add([&, shared, name] { return writeImage(folder / name, *shared, writeOptions); });
         }));
+        LFCAM_TRY(writes.wait());
         std::ofstream out(folder / "stack.json");
         out << nlohmann::json{{"slices", slices}}.dump(2) << "\n";
         if (!out) return makeError(ErrorCode::Io, (folder / "stack.json").string() + ": cannot write");
