@@ -24,6 +24,7 @@
 #include "lfcam/photo_settings.hpp"
 #include "lfcam/raw_io.hpp"
 #include "lfcam/synthetic_camera.hpp"
+#include "lfcam/tilted_focus.hpp"
 
 namespace py = pybind11;
 
@@ -186,11 +187,22 @@ void bindPipeline(py::module_& m) {
   m.def(
       "refocus",
       [](const LightField& lf, std::optional<double> slope, std::optional<double> alpha,
-         std::optional<std::array<double, 2>> focusAt, std::optional<double> aperture, const std::string& shape,
-         std::optional<std::array<double, 2>> centre, std::optional<py::array> mask, const std::string& method,
-         int supersampling, std::optional<double> beta) {
-        if (int(slope.has_value()) + int(alpha.has_value()) + int(focusAt.has_value()) != 1)
-          throw LibraryError(ErrorCode::Usage, "refocus: give the focus depth with one of slope, alpha or focus_at");
+         std::optional<std::array<double, 2>> focusAt, std::optional<std::array<ImagePoint, 3>> focusPlane,
+         std::optional<double> aperture, const std::string& shape, std::optional<std::array<double, 2>> centre,
+         std::optional<py::array> mask, const std::string& method, int supersampling, std::optional<double> beta) {
+        if (int(slope.has_value()) + int(alpha.has_value()) + int(focusAt.has_value()) + int(focusPlane.has_value()) !=
+            1)
+          throw LibraryError(ErrorCode::Usage,
+                             "refocus: give the focus depth with one of slope, alpha, focus_at or focus_plane");
+        if (focusPlane) {
+          if (aperture || shape != "circle" || centre || mask || method != "fast" || supersampling != 0 || beta)
+            throw LibraryError(ErrorCode::Usage,
+                               "refocus: focus_plane renders with the full aperture and the fast method only");
+          return interruptible([&] {
+            const FocusPlane plane = valueOrThrow(focusPlaneThroughPoints(lf, *focusPlane));
+            return refocusTilted(lf, plane);
+          });
+        }
         const PhotoSettings settings = photoSettings(aperture, shape, centre, mask, method, supersampling, beta);
         double value = slope.value_or(0.0);
         if (alpha) value = valueOrThrow(slopeFromAlpha(lf, *alpha, "light field"));
@@ -199,11 +211,14 @@ void bindPipeline(py::module_& m) {
         return std::move(photographs(lf, settings, {value}).front());
       },
       py::arg("light_field"), py::arg("slope") = py::none(), py::kw_only(), py::arg("alpha") = py::none(),
-      py::arg("focus_at") = py::none(), py::arg("aperture") = py::none(), py::arg("aperture_shape") = "circle",
-      py::arg("aperture_centre") = py::none(), py::arg("aperture_mask") = py::none(), py::arg("method") = "fast",
-      py::arg("supersampling") = 0, py::arg("beta") = py::none(),
-      "A photograph refocused at a slope (pixels per view step), a relative film depth alpha, or the depth of image "
-      "point focus_at=(x, y); aperture radius and centre in view steps; method 'fast', 'quadrature' or 'fourier'.");
+      py::arg("focus_at") = py::none(), py::arg("focus_plane") = py::none(), py::arg("aperture") = py::none(),
+      py::arg("aperture_shape") = "circle", py::arg("aperture_centre") = py::none(),
+      py::arg("aperture_mask") = py::none(), py::arg("method") = "fast", py::arg("supersampling") = 0,
+      py::arg("beta") = py::none(),
+      "A photograph refocused at a slope (pixels per view step), a relative film depth alpha, the depth of image "
+      "point focus_at=(x, y), or on the tilted plane through three image points focus_plane=((x1, y1), (x2, y2), "
+      "(x3, y3)), each at its sharpest; aperture radius and centre in view steps; method 'fast', 'quadrature' or "
+      "'fourier'.");
   m.def(
       "stack",
       [](const LightField& lf, std::optional<std::vector<double>> slopes, std::optional<std::vector<double>> alphas,

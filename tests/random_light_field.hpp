@@ -23,6 +23,18 @@ inline LightField randomLightField(const LightFieldShape& shape, std::mt19937& r
   return lightField;
 }
 
+// Trial `trial` of a randomised comparison: up to maxViews x maxViews views of up to maxPixels x
+// maxPixels pixels; odd trials in colour, every other pair of trials weighted.
+inline LightField randomTrialLightField(std::mt19937& random, int trial, int maxViews, int maxPixels) {
+  std::uniform_int_distribution<int> views(1, maxViews), pixels(1, maxPixels);
+  const LightFieldShape shape{.nu = views(random),
+                              .nv = views(random),
+                              .ns = pixels(random),
+                              .nt = pixels(random),
+                              .channels = trial % 2 ? 3 : 1};
+  return randomLightField(shape, random, trial % 4 >= 2);
+}
+
 // Largest |fast - reference| relative to max(|reference|, 1e-3); and the pixels where exactly
 // one of the two is zero (no ray in one, some ray in the other) count as a failure.
 inline double worstRelativeError(const Image& fast, const Image& reference) {

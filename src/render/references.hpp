@@ -2,15 +2,25 @@
 // straight from the equations, with no threading and no shortcuts.
 #pragma once
 
+#include <functional>
+
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
 #include "lfcam/result.hpp"
 #include "lfcam/synthetic_camera.hpp"
+#include "lfcam/tilted_focus.hpp"
 
 namespace lfcam {
 
 // refocus (refocus.hpp), per pixel and per view.
 Image refocusReference(const LightField& lightField, double slope);
+
+// The same formula with its own slope at each output pixel (x, y) (pixel indices); a pixel whose
+// slope is not finite is 0.
+Image refocusSlopeFieldReference(const LightField& lightField, const std::function<double(int x, int y)>& slopeAt);
+
+// refocusTilted (tilted_focus.hpp): refocusSlopeFieldReference at the plane's slope at each pixel centre.
+Image refocusTiltedReference(const LightField& lightField, const FocusPlane& plane);
 
 // renderSyntheticPhoto (synthetic_camera.hpp): the geometry per output pixel and per aperture
 // sample, with quadrilinear interpolation of the light field. supersampling = 1 samples the

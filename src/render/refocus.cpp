@@ -7,71 +7,40 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
-#include "lfcam/parallel.hpp"
+#include "render/bilinear_taps.hpp"
 #include "render/references.hpp"
+#include "render/row_blocks.hpp"
 #include "render/shift_and_add.hpp"
 #include "render/shift_and_add_rows.hpp"
 
 namespace lfcam {
 
-namespace {
-
-// Where view (u, v) is sampled for output pixel (x, y): at column x + shiftX and row y + shiftY
-// of the view, in pixel indices (the +0.5 of pixel centres cancels on both sides), with
-// shift = -(view position from the centre) * slope (Equation 6: s' - u' d). The bilinear taps are
-// columns x + floor(shift) and x + floor(shift) + 1 with weights 1 - frac and frac.
-struct AxisShift {
-  int whole = 0;        // floor(shift)
-  double fraction = 0;  // shift - floor(shift), in [0, 1)
-};
-
-AxisShift shiftOf(double shift, int size) {
-  // Beyond size + 1 pixels no tap lands in the view; clamping keeps floor() inside int range.
-  const double limit = size + 2.0;
-  shift = std::clamp(shift, -limit, limit);
-  const double whole = std::floor(shift);
-  return {int(whole), shift - whole};
-}
-
-AxisShift axisShift(double fromCentre, double slope, int size) { return shiftOf(-fromCentre * slope, size); }
-
-bool inside(int index, int size) { return index >= 0 && index < size; }
-
-}  // namespace
-
 // ------------------------------------------------------------------------------------------------
-// Reference: refocus.hpp's formula, term by term.
+// Reference: refocus.hpp's formula, term by term, at any slope per pixel.
 
-Image refocusReference(const LightField& lightField, double slope) {
+Image refocusSlopeFieldReference(const LightField& lightField, const std::function<double(int x, int y)>& slopeAt) {
   const LightFieldShape& shape = lightField.shape();
   Image out(shape.ns, shape.nt, shape.channels);
-  if (lightField.empty() || !std::isfinite(slope)) return out;
+  if (lightField.empty()) return out;
 
   std::vector<double> sum(shape.channels);
   for (int y = 0; y < shape.nt; ++y) {
     for (int x = 0; x < shape.ns; ++x) {
+      const double slope = slopeAt(x, y);
+      if (!std::isfinite(slope)) continue;
       std::fill(sum.begin(), sum.end(), 0.0);
       double weightSum = 0;
       for (int v = 0; v < shape.nv; ++v) {
         const AxisShift sy = axisShift(lightField.vFromCentre(v), slope, shape.nt);
         for (int u = 0; u < shape.nu; ++u) {
           const AxisShift sx = axisShift(lightField.uFromCentre(u), slope, shape.ns);
-          // The four bilinear taps around (x + shiftX, y + shiftY).
-          for (int j = 0; j < 2; ++j) {
-            const int row = y + sy.whole + j;
-            if (!inside(row, shape.nt)) continue;
-            const double wy = j ? sy.fraction : 1 - sy.fraction;
-            for (int i = 0; i < 2; ++i) {
-              const int column = x + sx.whole + i;
-              if (!inside(column, shape.ns)) continue;
-              double w = wy * (i ? sx.fraction : 1 - sx.fraction);
-              if (lightField.hasWeight()) w *= lightField.weightPlane(u, v)[std::size_t(row) * shape.ns + column];
-              weightSum += w;
-              for (int c = 0; c < shape.channels; ++c) sum[c] += w * lightField.at(u, v, column, row, c);
-            }
-          }
+          forEachBilinearTap(lightField, u, v, x, y, sx, sy, [&](int row, int column, double w) {
+            weightSum += w;
+            for (int c = 0; c < shape.channels; ++c) sum[c] += w * lightField.at(u, v, column, row, c);
+          });
         }
       }
       // Normalise by the rays that contributed (section 5.2); no ray, no light.
@@ -79,6 +48,10 @@ Image refocusReference(const LightField& lightField, double slope) {
     }
   }
   return out;
+}
+
+Image refocusReference(const LightField& lightField, double slope) {
+  return refocusSlopeFieldReference(lightField, [slope](int, int) { return slope; });
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -225,19 +198,8 @@ Image runPlan(RefocusPlan& plan) {
     plan.termRowShift.push_back(shiftOf(term.shiftY, shape.nt));
   }
 
-  // Schedule: blocks of output rows whose accumulators (about 128 KiB) stay in L2 while every
-  // view streams through them; each block re-reads one source row per view from memory, so
-  // taller blocks waste less bandwidth. At least 8 blocks, so both cores stay busy to the end.
-  const int planes = shape.channels + (plan.separable ? 0 : 1);
-  int blockRows = std::max(1, 32768 / std::max(1, planes * shape.ns));
-  blockRows = std::clamp(blockRows, 1, std::max(1, (shape.nt + 7) / 8));
-  const std::size_t blocks = (std::size_t(shape.nt) + blockRows - 1) / blockRows;
-  parallelFor(0, blocks, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t block = begin; block < end; ++block) {
-      const int y0 = int(block) * blockRows;
-      refocusRows(plan, y0, std::min(shape.nt, y0 + blockRows), out);
-    }
-  });
+  forEachRowBlock(shape.nt, shape.ns, shape.channels + (plan.separable ? 0 : 1),
+                  [&](int y0, int y1) { refocusRows(plan, y0, y1, out); });
   return out;
 }
 

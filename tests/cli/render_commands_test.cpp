@@ -26,6 +26,8 @@ TEST(CliRender, RefocusWithApertureMethodAndFocusAt) {
       {"--slope", "1.5", "--aperture", "0.5", "--aperture-shape", "square", "--method", "quadrature"},
       {"--alpha", "1.05", "--beta", "1.1"},
       {"--focus-at", "10,12"},
+      {"--focus-plane", "5,5:35,8:20,34"},
+      {"--slope", "0.5", "--tilt", "1", "--tilt-direction", "45"},
   };
   for (const auto& extra : cases) {
     std::vector<std::string> args{"refocus", input, "-o", (dir / "out.png").string()};
@@ -40,6 +42,10 @@ TEST(CliRender, RefocusWithApertureMethodAndFocusAt) {
   // --focus-at prints the slope it chose.
   const auto result = runLfcam({"refocus", input, "--focus-at", "10,12", "-o", (dir / "f.png").string()}, dir.path());
   EXPECT_EQ(result.out.rfind("slope ", 0), 0u) << result.out;
+  // --focus-plane prints the plane it chose.
+  const auto plane =
+      runLfcam({"refocus", input, "--focus-plane", "5,5:35,8:20,34", "-o", (dir / "p.png").string()}, dir.path());
+  EXPECT_EQ(plane.out.rfind("focus plane: slope ", 0), 0u) << plane.out;
 }
 
 TEST(CliRender, ApertureMaskOfOneViewGivesThatView) {
@@ -163,6 +169,13 @@ TEST(CliRender, UsageErrorsExitTwoWithOneLine) {
       {"refocus", input, "--focus-at", "500,500", "-o", out},
       {"refocus", input, "--slope", "1", "--focus-at", "3,3", "-o", out},
       {"refocus", input, "--slope", "1", "--method", "magic", "-o", out},
+      {"refocus", input, "--focus-plane", "5,5:10,10:20,20", "-o", out},  // collinear
+      {"refocus", input, "--focus-plane", "5,5:45,10:20,30", "-o", out},  // outside the 40x40 image
+      {"refocus", input, "--focus-plane", "5,5:10,10", "-o", out},
+      {"refocus", input, "--focus-plane", "5,5:35,8:20,34", "--slope", "1", "-o", out},
+      {"refocus", input, "--focus-plane", "5,5:35,8:20,34", "--aperture", "1", "-o", out},
+      {"refocus", input, "--tilt", "1", "-o", out},
+      {"refocus", input, "--slope", "1", "--tilt-direction", "30", "-o", out},
       {"refocus", input, "--slope", "1", "--aperture-center", "1,1", "-o", out},
       {"refocus", input, "--slope", "1", "--aperture", "0.2", "--aperture-center", "9,9", "-o", out},
       {"stack", input, "-o", (dir / "s").string()},

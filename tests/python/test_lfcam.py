@@ -73,6 +73,15 @@ def test_refocus_at_the_planes_disparity_is_its_texture():
     assert np.abs(blurred[inner] - centre[inner]).mean() > 0.05
 
 
+def test_focus_plane_through_three_points_of_a_fronto_parallel_plane_is_its_refocus():
+    lf = sloped_light_field(disparity=1)
+    tilted = lfcam.refocus(lf, focus_plane=((12, 12), (36, 14), (20, 36))).array[0]
+    inner = (slice(6, -6), slice(6, -6))
+    np.testing.assert_allclose(tilted[inner], lfcam.refocus(lf, 1.0).array[0][inner], atol=1e-2)
+    with pytest.raises(lfcam.UsageError, match="one line"):
+        lfcam.refocus(lf, focus_plane=((5, 5), (10, 10), (20, 20)))
+
+
 def test_depth_finds_the_disparity_and_takes_the_commands_options():
     lf = sloped_light_field(disparity=1)
     result = lfcam.depth(lf, min=-2.0, max=2.0, median_radius=2)

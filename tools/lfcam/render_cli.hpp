@@ -5,7 +5,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -18,6 +20,7 @@
 #include "lfcam/light_field.hpp"
 #include "lfcam/photo_settings.hpp"
 #include "lfcam/result.hpp"
+#include "lfcam/tilted_focus.hpp"
 
 namespace lfcam::cli {
 
@@ -41,6 +44,19 @@ inline Result<std::vector<double>> parseRange(const std::string& text, const std
   return evenlySpaced(a, b, n);
 }
 
+// "X1,Y1:X2,Y2:X3,Y3" -> three image points.
+inline Result<std::array<ImagePoint, 3>> parseFocusPlanePoints(const std::string& text) {
+  std::array<ImagePoint, 3> points{};
+  char end = 0;
+  const int read = std::sscanf(text.c_str(), "%lf,%lf:%lf,%lf:%lf,%lf%c", &points[0][0], &points[0][1], &points[1][0],
+                               &points[1][1], &points[2][0], &points[2][1], &end);
+  const bool finite = std::all_of(points.begin(), points.end(),
+                                  [](const ImagePoint& p) { return std::isfinite(p[0]) && std::isfinite(p[1]); });
+  if (read != 6 || !finite)
+    return makeError(ErrorCode::Usage, "--focus-plane: expected three points as X1,Y1:X2,Y2:X3,Y3, got '" + text + "'");
+  return points;
+}
+
 struct CameraOptions {
   std::optional<double> radius;
   std::string shape = "circle";
@@ -49,6 +65,11 @@ struct CameraOptions {
   std::string method = "fast";
   int supersampling = 0;
   std::optional<double> beta;
+  // The plain photograph: the whole lens, the fast method, the lens plane where it was.
+  bool isFullApertureFast() const {
+    return !radius && shape == "circle" && centre.empty() && mask.empty() && method == "fast" && supersampling == 0 &&
+           !beta;
+  }
 };
 
 inline void addCameraOptions(CLI::App& command, CameraOptions& options) {
