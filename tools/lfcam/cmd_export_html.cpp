@@ -3,9 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/living_picture.hpp"
-#include "progress_bar.hpp"
+#include "living_picture_output.hpp"
 
 namespace lfcam::cli {
 
@@ -28,18 +26,7 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
   command->callback([options, &job] {
     job = [options]() -> Status {
       LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
-      auto make = [&] {
-        ProgressBar bar("making " + options->output);
-        return makeLivingPicture(lightField, options->page, [&](double f) { bar(f); });
-      };
-      LFCAM_ASSIGN_OR_RETURN(const std::string html, make());
-      return writeFileAtomically(options->output, [&](const std::filesystem::path& temporary) -> Status {
-        std::FILE* file = std::fopen(temporary.c_str(), "wb");
-        if (!file) return makeError(ErrorCode::Io, options->output + ": cannot write");
-        const bool written = std::fwrite(html.data(), 1, html.size(), file) == html.size();
-        if (std::fclose(file) != 0 || !written) return makeError(ErrorCode::Io, options->output + ": cannot write");
-        return {};
-      });
+      return writeLivingPictureFile(options->output, lightField, options->page);
     };
   });
 }

@@ -37,6 +37,9 @@ const std::map<std::string, std::string>& examples() {
        "--white ../shared/data/lfm-guv/Radiometry_GUVExperim1.tif "
        "--dark ../shared/data/lfm-guv/DarkFrame_GUVExperim1.tif -o guv.lf.h5"},
       {"calibrate", "lfcam calibrate ../shared/data/lfm-guv/Radiometry_GUVExperim1.tif -o guv-grid.json"},
+      {"batch",
+       "lfcam batch ../shared/data/hci-antinous ../shared/data/lytro-f01-flower -o two-captures "
+       "--steps refocus:0.5,stack:-1:1:5"},
   };
   return table;
 }

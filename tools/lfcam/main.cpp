@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   cli::addExperimentCommand(app, job);
   cli::addDecodeCommand(app, job);
   cli::addCalibrateCommand(app, job);
+  cli::addBatchCommand(app, job);
 
   cli::addExamples(app);
 

@@ -1,5 +1,6 @@
 // A progress bar on stderr for work that takes over a second. Silent until then, and silent when
-// stderr is not a terminal (logs and tests get no carriage-return noise).
+// stderr is not a terminal (logs and tests get no carriage-return noise). Shows the time left,
+// extrapolated from the time so far.
 #pragma once
 
 #include <chrono>
@@ -15,6 +16,15 @@ class ProgressBar {
   ProgressBar& operator=(const ProgressBar&) = delete;
 
   void operator()(double fraction);
+
+  // While one lives, bars made on this thread stay silent: the workers of `lfcam batch`, whose
+  // own bar covers theirs.
+  struct QuietOnThisThread {
+    QuietOnThisThread();
+    ~QuietOnThisThread();
+    QuietOnThisThread(const QuietOnThisThread&) = delete;
+    QuietOnThisThread& operator=(const QuietOnThisThread&) = delete;
+  };
 
  private:
   std::string label_;

@@ -1,0 +1,139 @@
+#include "batch_capture.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "focal_stack_output.hpp"
+#include "lfcam/all_in_focus.hpp"
+#include "lfcam/atomic_file.hpp"
+#include "lfcam/color_map.hpp"
+#include "lfcam/depth.hpp"
+#include "lfcam/image_io.hpp"
+#include "living_picture_output.hpp"
+#include "render_cli.hpp"
+
+namespace lfcam::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Size and latest modification of a file, or of every file in a folder: what says "changed".
+nlohmann::json inputFingerprint(const fs::path& input) {
+  std::uintmax_t bytes = 0;
+  fs::file_time_type latest = fs::file_time_type::min();  // the file clock's epoch may lie after today
+  const auto add = [&](const fs::path& file) {
+    std::error_code ec;
+    bytes += fs::file_size(file, ec);
+    latest = std::max(latest, fs::last_write_time(file, ec));
+  };
+  if (fs::is_directory(input)) {
+    for (const auto& entry : fs::recursive_directory_iterator(input))
+      if (entry.is_regular_file()) add(entry.path());
+  } else {
+    add(input);
+  }
+  return {{"bytes", bytes}, {"modified_ns", std::int64_t(latest.time_since_epoch().count())}};
+}
+
+nlohmann::json doneMarker(const BatchCapture& capture, const std::vector<BatchStep>& steps, const InputOptions& input) {
+  nlohmann::json stepTexts = nlohmann::json::array();
+  for (const BatchStep& step : steps) stepTexts.push_back(step.text);
+  nlohmann::json marker{{"input", capture.input.string()}, {"steps", stepTexts}};
+  marker["fingerprint"] = inputFingerprint(capture.input);
+  if (!input.white.empty()) marker["white"] = inputFingerprint(input.white);
+  return marker;
+}
+
+bool completeAlready(const fs::path& folder, const nlohmann::json& marker, const std::vector<std::string>& outputs) {
+  std::ifstream in(folder / kBatchDoneMarker);
+  if (!in) return false;
+  const nlohmann::json recorded = nlohmann::json::parse(in, nullptr, false);
+  if (recorded != marker) return false;
+  for (const std::string& output : outputs)
+    if (!fs::is_regular_file(folder / output)) return false;
+  return true;
+}
+
+Status runStep(const BatchStep& step, const LightField& lightField, const fs::path& input, const fs::path& folder) {
+  switch (step.kind) {
+    case BatchStep::Kind::Refocus: {
+      LFCAM_ASSIGN_OR_RETURN(auto camera, cameraFrom({}, lightField, input.string()));
+      return renderPhotos(lightField, camera, {step.slope}, [&](int, double, Image&& photo) {
+        return writeImage(folder / step.outputs().front(), photo);
+      });
+    }
+    case BatchStep::Kind::Stack: {
+      LFCAM_ASSIGN_OR_RETURN(auto camera, cameraFrom({}, lightField, input.string()));
+      return writeFocalStack(folder / "stack", lightField, camera, step.slopes, "png", {}, [](double) {});
+    }
+    case BatchStep::Kind::Edof: {
+      LFCAM_ASSIGN_OR_RETURN(auto result, allInFocus(lightField));
+      return writeImage(folder / "all-in-focus.png", result.photo);
+    }
+    case BatchStep::Kind::Depth: {
+      LFCAM_ASSIGN_OR_RETURN(auto depth, estimateDepth(lightField));
+      LFCAM_TRY(writeImage(folder / "depth.pfm", depth.disparity));
+      return writeImage(folder / "depth.png", colorMap(depth.disparity, depth.disparityMin, depth.disparityMax));
+    }
+    case BatchStep::Kind::Page: return writeLivingPictureFile(folder / "page.html", lightField, {});
+  }
+  return {};
+}
+
+Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps, const InputOptions& input,
+                const fs::path& folder, const nlohmann::json& marker) {
+  std::error_code ec;
+  fs::remove(folder / kBatchDoneMarker, ec);  // half-done until every step has written again
+  InputOptions options = input;
+  options.path = capture.input.string();
+  LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options));
+  fs::create_directories(folder, ec);  // only now, so that an unreadable input leaves no folder
+  if (ec) return makeError(ErrorCode::Io, folder.string() + ": cannot create the folder: " + ec.message());
+  for (const BatchStep& step : steps) {
+    const Status status = runStep(step, lightField, capture.input, folder);
+    if (!status) return makeError(status.error().code, step.text + ": " + status.error().message);
+  }
+  return writeFileAtomically(folder / kBatchDoneMarker, [&](const fs::path& temporary) -> Status {
+    std::ofstream out(temporary);
+    out << marker.dump(2) << "\n";
+    if (!out) return makeError(ErrorCode::Io, (folder / kBatchDoneMarker).string() + ": cannot write");
+    return {};
+  });
+}
+
+}  // namespace
+
+BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps,
+                             const InputOptions& input, const fs::path& outputFolder) {
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path folder = outputFolder / capture.name;
+  BatchOutcome outcome;
+  std::vector<std::string> outputs;
+  for (const BatchStep& step : steps)
+    for (const std::string& output : step.outputs()) outputs.push_back(output);
+  for (const std::string& output : outputs) outcome.outputs.push_back((fs::path(capture.name) / output).string());
+  try {
+    const nlohmann::json marker = doneMarker(capture, steps, input);
+    if (completeAlready(folder, marker, outputs)) {
+      outcome.status = BatchOutcome::Status::Skipped;
+    } else if (const Status status = runSteps(capture, steps, input, folder, marker); status) {
+      outcome.status = BatchOutcome::Status::Done;
+    } else {
+      const std::string& message = status.error().message;
+      outcome.error =
+          message.find(capture.input.string()) == std::string::npos ? capture.input.string() + ": " + message : message;
+    }
+  } catch (const std::bad_alloc&) {
+    outcome.error = capture.input.string() + ": out of memory";
+  } catch (const std::exception& e) {
+    outcome.error = capture.input.string() + ": " + e.what();
+  }
+  if (outcome.status == BatchOutcome::Status::Failed) outcome.outputs.clear();
+  outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return outcome;
+}
+
+}  // namespace lfcam::cli

@@ -1,0 +1,180 @@
+#include "batch_plan.hpp"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "focal_stack_output.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "render_cli.hpp"
+
+namespace lfcam::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+Result<BatchStep> parseBatchStep(const std::string& text) {
+  const std::string name = text.substr(0, text.find(':'));
+  const std::string argument = text.find(':') == std::string::npos ? "" : text.substr(text.find(':') + 1);
+  const auto usage = [&](const std::string& form) {
+    return makeError(ErrorCode::Usage, "--steps: '" + text + "': expected " + form);
+  };
+  if (name == "refocus") {
+    double slope = 0;
+    char end = 0;
+    if (std::sscanf(argument.c_str(), "%lf%c", &slope, &end) != 1 || !std::isfinite(slope))
+      return usage("refocus:SLOPE");
+    return BatchStep{.kind = BatchStep::Kind::Refocus, .text = text, .slope = slope};
+  }
+  if (name == "stack") {
+    auto slopes = parseRange(argument, "--steps stack");
+    if (!slopes) return usage("stack:FROM:TO:N (N 1 to 100000)");
+    return BatchStep{.kind = BatchStep::Kind::Stack, .text = text, .slopes = *slopes};
+  }
+  const std::map<std::string, BatchStep::Kind> plain{
+      {"edof", BatchStep::Kind::Edof}, {"depth", BatchStep::Kind::Depth}, {"page", BatchStep::Kind::Page}};
+  const auto found = plain.find(name);
+  if (found == plain.end())
+    return makeError(ErrorCode::Usage,
+                     "--steps: unknown step '" + text + "' (refocus:SLOPE, stack:FROM:TO:N, edof, depth, page)");
+  if (!argument.empty() || text.find(':') != std::string::npos) return usage(name + " without an argument");
+  return BatchStep{.kind = found->second, .text = text};
+}
+
+// "IMG_0001.lf.h5" -> "IMG_0001"; a folder keeps its name.
+std::string captureName(const fs::path& input) {
+  std::string name = input.filename().string();
+  if (name.empty()) name = input.parent_path().filename().string();  // "folder/"
+  if (fs::is_directory(input)) return name;
+  return name.substr(0, std::max<std::size_t>(1, name.find('.')));
+}
+
+bool isGlob(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
+
+Result<std::vector<fs::path>> expandGlob(const std::string& pattern) {
+  glob_t matches{};
+  const int status = ::glob(pattern.c_str(), 0, nullptr, &matches);
+  std::vector<fs::path> paths(matches.gl_pathv, matches.gl_pathv + matches.gl_pathc);
+  ::globfree(&matches);
+  if (status == GLOB_NOMATCH || paths.empty())
+    return makeError(ErrorCode::Usage, pattern + ": no file matches this pattern");
+  if (status != 0) return makeError(ErrorCode::Io, pattern + ": cannot list the files it matches");
+  return paths;
+}
+
+}  // namespace
+
+std::vector<std::string> BatchStep::outputs() const {
+  switch (kind) {
+    case Kind::Refocus: return {"refocus_" + text.substr(text.find(':') + 1) + ".png"};
+    case Kind::Stack: {
+      std::vector<std::string> files{"stack/stack.json"};
+      for (std::size_t k = 0; k < slopes.size(); ++k) files.push_back("stack/" + stackSliceName(int(k), "png"));
+      return files;
+    }
+    case Kind::Edof: return {"all-in-focus.png"};
+    case Kind::Depth: return {"depth.pfm", "depth.png"};
+    case Kind::Page: return {"page.html"};
+  }
+  return {};
+}
+
+Result<std::vector<BatchStep>> parseBatchSteps(const std::vector<std::string>& texts) {
+  std::vector<BatchStep> steps;
+  for (const std::string& text : texts) {
+    LFCAM_ASSIGN_OR_RETURN(auto step, parseBatchStep(text));
+    steps.push_back(std::move(step));
+  }
+  if (steps.empty()) return makeError(ErrorCode::Usage, "--steps: give at least one step");
+  return steps;
+}
+
+Result<std::vector<BatchCapture>> expandBatchInputs(const std::vector<std::string>& inputs,
+                                                    const std::vector<fs::path>& excluded) {
+  std::vector<fs::path> paths;
+  for (const std::string& input : inputs) {
+    if (isGlob(input) && !fs::exists(input)) {
+      LFCAM_ASSIGN_OR_RETURN(auto matches, expandGlob(input));
+      paths.insert(paths.end(), matches.begin(), matches.end());
+    } else if (!fs::exists(input)) {
+      return makeError(ErrorCode::Usage, input + ": no such file or folder");
+    } else if (fs::is_directory(input) && !detectLightFieldFormat(input)) {
+      std::vector<fs::path> entries;
+      for (const auto& entry : fs::directory_iterator(input)) {
+        const bool hidden = entry.path().filename().string().front() == '.';
+        const bool lightFieldFolder = entry.is_directory() && detectLightFieldFormat(entry.path());
+        if (!hidden && (entry.is_regular_file() || lightFieldFolder)) entries.push_back(entry.path());
+      }
+      std::sort(entries.begin(), entries.end());
+      paths.insert(paths.end(), entries.begin(), entries.end());
+    } else {
+      paths.emplace_back(input);
+    }
+  }
+  std::vector<BatchCapture> captures;
+  std::map<std::string, fs::path> byName;
+  for (const fs::path& path : paths) {
+    std::error_code ec;
+    const bool isExcluded = std::any_of(excluded.begin(), excluded.end(),
+                                        [&](const fs::path& other) { return fs::equivalent(path, other, ec); });
+    if (isExcluded) continue;
+    const std::string name = captureName(path);
+    const auto [previous, added] = byName.emplace(name, path);
+    if (!added)
+      return makeError(ErrorCode::Usage, path.string() + ": same output folder '" + name + "' as " +
+                                             previous->second.string() + "; rename one");
+    captures.push_back({path, name});
+  }
+  if (captures.empty()) return makeError(ErrorCode::Usage, "batch: no input");
+  return captures;
+}
+
+Result<BatchSpec> readBatchSpec(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) return makeError(ErrorCode::Usage, file.string() + ": cannot read the spec file");
+  const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+  if (json.is_discarded() || !json.is_object())
+    return makeError(ErrorCode::Usage, file.string() + ": not a JSON object");
+  BatchSpec spec;
+  for (const auto& [key, value] : json.items()) {
+    const auto wrongType = [&, name = key](const char* expected) {
+      return makeError(ErrorCode::Usage, file.string() + ": '" + name + "' must be " + expected);
+    };
+    const auto strings = [&](std::vector<std::string>& into) -> Status {
+      if (value.is_string()) {
+        into.push_back(value.get<std::string>());
+        return {};
+      }
+      if (!value.is_array()) return wrongType("a string or an array of strings");
+      for (const auto& item : value) {
+        if (!item.is_string()) return wrongType("a string or an array of strings");
+        into.push_back(item.get<std::string>());
+      }
+      return {};
+    };
+    if (key == "inputs") {
+      LFCAM_TRY(strings(spec.inputs));
+    } else if (key == "steps") {
+      LFCAM_TRY(strings(spec.steps));
+    } else if (key == "output" || key == "white" || key == "report") {
+      if (!value.is_string()) return wrongType("a string");
+      (key == "output" ? spec.output : key == "white" ? spec.white : spec.report) = value.get<std::string>();
+    } else if (key == "jobs") {
+      if (!value.is_number_integer() || value.get<int>() < 1) return wrongType("a whole number from 1");
+      spec.jobs = value.get<int>();
+    } else {
+      return makeError(ErrorCode::Usage,
+                       file.string() + ": unknown key '" + key + "' (inputs, steps, output, white, jobs, report)");
+    }
+  }
+  return spec;
+}
+
+}  // namespace lfcam::cli
