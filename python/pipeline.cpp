@@ -69,6 +69,7 @@ std::vector<Image> photographs(const LightField& lf, const PhotoSettings& settin
   std::vector<Image> photos;
   interruptible([&] {
     throwIfError(renderPhotos(lf, setup, slopes, [&](int, double, Image&& photo) -> Status {
+      if (cancellationRequested()) return makeError(ErrorCode::Usage, "cancelled");  // no more photographs
       photos.push_back(std::move(photo));
       return {};
     }));

@@ -152,8 +152,8 @@ def test_refocus_is_the_commands_photograph(tmp_path):
 def test_ctrl_c_stops_a_long_call_soon():
     lf = sloped_light_field(size=192, views=9)
     start = time.perf_counter()
-    lfcam.stack(lf, [0.1] * 8)
-    per_photo = (time.perf_counter() - start) / 8
+    lfcam.stack(lf, [0.1] * 16)
+    per_photo = (time.perf_counter() - start) / 16
     count = max(8, int(3.0 / per_photo))  # about 3 s of work, measured in this run
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT))
@@ -166,5 +166,5 @@ def test_ctrl_c_stops_a_long_call_soon():
     finally:
         timer.cancel()
         signal.signal(signal.SIGINT, previous)
-    assert stopped_after < 0.5 * count * per_photo  # it did not run to the end
+    assert stopped_after < 0.75 * count * per_photo  # it did not run to the end (a loaded machine may be slow to stop)
     np.testing.assert_array_equal(lfcam.refocus(lf, 0.1).array, lfcam.stack(lf, [0.1])[0].array)  # usable again
