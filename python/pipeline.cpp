@@ -254,8 +254,8 @@ void bindPipeline(py::module_& m) {
       "The view of a pinhole at (u, v) view steps from the centre, moved along the axis by beta (Equation 7).");
 
   py::class_<DepthMap>(m, "DepthMap", "A disparity map of the aperture centre and its confidence.")
-      .def_property_readonly("disparity", [](DepthMap& d) { return d.disparity.copy(); })
-      .def_property_readonly("confidence", [](DepthMap& d) { return d.confidence.copy(); })
+      .def_readonly("disparity", &DepthMap::disparity)  // a view: kept alive by its DepthMap
+      .def_readonly("confidence", &DepthMap::confidence)
       .def_readonly("disparity_min", &DepthMap::disparityMin)
       .def_readonly("disparity_max", &DepthMap::disparityMax)
       .def_readonly("labels", &DepthMap::labels);
@@ -271,8 +271,8 @@ void bindPipeline(py::module_& m) {
       "Disparity (pixels per view step) of the centre view and its confidence. Every option of `lfcam depth` is "
       "a keyword with '_' for '-' (e.g. defocus_weight=0.5); options= names a JSON options file.");
   py::class_<AllInFocus>(m, "AllInFocus", "An all-in-focus photograph and the slope chosen per pixel.")
-      .def_property_readonly("photo", [](AllInFocus& a) { return a.photo.copy(); })
-      .def_property_readonly("slope", [](AllInFocus& a) { return a.slope.copy(); })
+      .def_readonly("photo", &AllInFocus::photo)  // a view: kept alive by its AllInFocus
+      .def_readonly("slope", &AllInFocus::slope)
       .def_readonly("slopes", &AllInFocus::slopes);
   m.def(
       "edof",
