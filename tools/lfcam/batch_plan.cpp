@@ -143,7 +143,10 @@ Result<BatchSpec> readBatchSpec(const fs::path& file) {
   if (json.is_discarded() || !json.is_object())
     return makeError(ErrorCode::Usage, file.string() + ": not a JSON object");
   BatchSpec spec;
-  for (const auto& [key, value] : json.items()) {
+  for (const auto& entry : json.items()) {
+    // Named references, not a structured binding: clang 14 cannot capture bindings in lambdas.
+    const std::string& key = entry.key();
+    const nlohmann::json& value = entry.value();
     const auto wrongType = [&, name = key](const char* expected) {
       return makeError(ErrorCode::Usage, file.string() + ": '" + name + "' must be " + expected);
     };
