@@ -1,6 +1,7 @@
 // analysis: the transfer function against a direct DFT, the 75% cutoff, SNR and line fits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -28,6 +29,55 @@ TEST(Analysis, TransferFunctionMatchesTheDirectDft) {
     for (std::size_t i = 0; i < fast->pixels().size(); ++i)
       EXPECT_NEAR(fast->pixels()[i], reference->pixels()[i], 1e-4) << w << "x" << h << " at " << i;
     EXPECT_FLOAT_EQ(fast->at(w / 2, h / 2, 0), 1.0f);
+  }
+}
+
+TEST(Analysis, ZeroPaddedTransferFunctionMatchesTheDirectDft) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> value(0, 1);
+  Image image(7, 5, 1);
+  for (float& v : image.pixels()) v = value(random);
+  auto fast = transferFunction(image, 3), reference = transferFunctionReference(image, 3);
+  ASSERT_TRUE(fast && reference);
+  ASSERT_EQ(fast->width(), 21);
+  ASSERT_EQ(fast->height(), 15);
+  for (std::size_t i = 0; i < fast->pixels().size(); ++i) EXPECT_NEAR(fast->pixels()[i], reference->pixels()[i], 1e-4);
+  EXPECT_FALSE(transferFunction(image, 0));
+}
+
+// A Gaussian blur of sigma pixels has |H(f)|^2 = exp(-4 pi^2 sigma^2 |f|^2), whose disc of radius
+// sqrt(ln 4) / (2 pi sigma) holds 75% of the energy.
+Image gaussian(int size, double sigma) {
+  Image image(size, size, 1);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      image.at(x, y, 0) =
+          float(std::exp(-(std::pow(x - size / 2, 2) + std::pow(y - size / 2, 2)) / (2 * sigma * sigma)));
+  return image;
+}
+double gaussianCutoff(double sigma) { return std::sqrt(std::log(4.0)) / (2 * 3.14159265358979 * sigma); }
+
+TEST(Analysis, CutoffOfAGaussianIsReadBetweenTheBins) {
+  // On a 32-pixel photograph the bins are 1/32 = 0.031 cycles per pixel apart; the zero-padded,
+  // interpolated cutoff lands within 1% of the exact one where the bins alone are off by more.
+  double worstBins = 0;
+  for (double sigma : {1.5, 1.8, 2.1, 2.5, 3.0}) {
+    const Image blur = gaussian(32, sigma);
+    auto padded = transferFunction(blur, 8), bins = transferFunction(blur);
+    ASSERT_TRUE(padded && bins);
+    const double exact = gaussianCutoff(sigma);
+    EXPECT_NEAR(cutoffFrequency(*padded) / exact, 1.0, 0.01) << "sigma " << sigma;
+    worstBins = std::max(worstBins, std::abs(cutoffFrequency(*bins) / exact - 1));
+  }
+  EXPECT_GT(worstBins, 0.02);
+  // And it follows the blur continuously: a wider blur, a strictly lower cutoff, in small steps.
+  double previous = 1;
+  for (double sigma = 2.0; sigma <= 2.3; sigma += 0.02) {
+    auto padded = transferFunction(gaussian(32, sigma), 8);
+    ASSERT_TRUE(padded);
+    const double cutoff = cutoffFrequency(*padded);
+    EXPECT_LT(cutoff, previous) << "sigma " << sigma;
+    previous = cutoff;
   }
 }
 

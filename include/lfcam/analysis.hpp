@@ -15,11 +15,16 @@
 namespace lfcam {
 
 // |FFT| of channel 0 with zero frequency moved to the centre ((w/2, h/2)), divided by |H(0)|.
-// Usage error for an empty image or one that sums to zero. FFTW (single precision).
-Result<Image> transferFunction(const Image& photo);
+// With `zeroPadding` P > 1 the photograph is framed by zeros to P times its width and height,
+// so the spectrum (P w x P h) samples the photograph's continuous spectrum P times more finely
+// than its bins. Usage error for an empty image, one that sums to zero, or P outside 1..64.
+// FFTW (single precision).
+Result<Image> transferFunction(const Image& photo, int zeroPadding = 1);
 
 // The cutoff of `energyShare` (0..1] of the energy of a transfer function as returned above,
-// in cycles per pixel; at most sqrt(0.5) (the corner of the spectrum).
+// in cycles per pixel; at most sqrt(0.5) (the corner of the spectrum). The energy within a
+// radius is interpolated linearly between the radii of the spectrum's samples, so the cutoff
+// varies continuously with the photograph; with a zero-padded spectrum it is not tied to bins.
 double cutoffFrequency(const Image& transfer, double energyShare = 0.75);
 
 // Mean of `images` (same size), e.g. the noise-free standard made from many frames.

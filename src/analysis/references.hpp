@@ -7,6 +7,6 @@
 namespace lfcam {
 
 // transferFunction (analysis.hpp) by a direct float64 DFT (O(w^2 h^2)).
-Result<Image> transferFunctionReference(const Image& photo);
+Result<Image> transferFunctionReference(const Image& photo, int zeroPadding = 1);
 
 }  // namespace lfcam

@@ -18,9 +18,11 @@ namespace {
 
 using fftw::plannerMutex;  // FFTW's planner is not thread-safe.
 
-Status checkPhoto(const Image& photo) {
+Status checkPhoto(const Image& photo, int zeroPadding) {
   if (photo.empty() || photo.width() < 1 || photo.height() < 1)
     return makeError(ErrorCode::Usage, "transfer function: empty photograph");
+  if (zeroPadding < 1 || zeroPadding > 64)
+    return makeError(ErrorCode::Usage, "transfer function: zero padding must be 1 to 64");
   return {};
 }
 
@@ -36,9 +38,9 @@ Result<Image> normalisedShifted(int w, int h, const std::function<double(int, in
 
 }  // namespace
 
-Result<Image> transferFunction(const Image& photo) {
-  LFCAM_TRY(checkPhoto(photo));
-  const int w = photo.width(), h = photo.height(), half = w / 2 + 1;
+Result<Image> transferFunction(const Image& photo, int zeroPadding) {
+  LFCAM_TRY(checkPhoto(photo, zeroPadding));
+  const int w = photo.width() * zeroPadding, h = photo.height() * zeroPadding, half = w / 2 + 1;
   using Buffer = std::unique_ptr<float, decltype(&fftwf_free)>;
   using Spectrum = std::unique_ptr<fftwf_complex, decltype(&fftwf_free)>;
   Buffer in(static_cast<float*>(fftwf_malloc(sizeof(float) * std::size_t(w) * h)), fftwf_free);
@@ -50,7 +52,11 @@ Result<Image> transferFunction(const Image& photo) {
     plan = fftwf_plan_dft_r2c_2d(h, w, in.get(), out.get(), FFTW_ESTIMATE);
   }
   if (!plan) return makeError(ErrorCode::Resource, "transfer function: FFTW could not plan");
-  std::copy(photo.plane(0), photo.plane(0) + photo.planeSize(), in.get());
+  // The photograph in the frame's top-left corner: where it sits changes only the phase.
+  std::fill(in.get(), in.get() + std::size_t(w) * h, 0.0f);
+  for (int y = 0; y < photo.height(); ++y)
+    std::copy(photo.plane(0) + std::size_t(y) * photo.width(), photo.plane(0) + std::size_t(y + 1) * photo.width(),
+              in.get() + std::size_t(y) * w);
   fftwf_execute(plan);
   {
     std::lock_guard lock(plannerMutex());
@@ -68,13 +74,13 @@ Result<Image> transferFunction(const Image& photo) {
   return normalisedShifted(w, h, magnitude);
 }
 
-Result<Image> transferFunctionReference(const Image& photo) {
-  LFCAM_TRY(checkPhoto(photo));
-  const int w = photo.width(), h = photo.height();
+Result<Image> transferFunctionReference(const Image& photo, int zeroPadding) {
+  LFCAM_TRY(checkPhoto(photo, zeroPadding));
+  const int w = photo.width() * zeroPadding, h = photo.height() * zeroPadding;
   auto magnitude = [&](int kx, int ky) {
     std::complex<double> sum = 0;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
+    for (int y = 0; y < photo.height(); ++y)
+      for (int x = 0; x < photo.width(); ++x) {
         const double phase = -2 * std::numbers::pi * (double(kx) * x / w + double(ky) * y / h);
         sum += double(photo.at(x, y, 0)) * std::polar(1.0, phase);
       }
@@ -97,12 +103,20 @@ double cutoffFrequency(const Image& transfer, double energyShare) {
     }
   if (!(total > 0)) return 0;
   std::sort(samples.begin(), samples.end());
-  double sum = 0;
+  // The energy within radius r, as a continuous curve: linear between the radii of the samples,
+  // frequencies at one radius entering together (so the answer does not depend on their order).
+  const double target = energyShare * total;
+  double sum = 0, previousRadius = 0, previousSum = 0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     sum += samples[i].second;
-    // Frequencies at one radius enter together, so the answer does not depend on their order.
-    if (sum >= energyShare * total && (i + 1 == samples.size() || samples[i + 1].first > samples[i].first))
-      return samples[i].first;
+    if (i + 1 < samples.size() && samples[i + 1].first == samples[i].first) continue;
+    if (sum >= target) {
+      const double step = sum - previousSum;
+      const double t = step > 0 ? (target - previousSum) / step : 1.0;
+      return previousRadius + std::clamp(t, 0.0, 1.0) * (samples[i].first - previousRadius);
+    }
+    previousRadius = samples[i].first;
+    previousSum = sum;
   }
   return samples.back().first;
 }

@@ -9,7 +9,7 @@
 namespace lfcam::experiments {
 
 Result<double> cutoffOf(const Image& photo) {
-  LFCAM_ASSIGN_OR_RETURN(auto transfer, transferFunction(photo));
+  LFCAM_ASSIGN_OR_RETURN(auto transfer, transferFunction(photo, kCutoffZeroPadding));
   return cutoffFrequency(transfer, 0.75);
 }
 

@@ -84,7 +84,10 @@ struct BestFocus {
 // by how tightly the point's light is gathered, then within +-0.5 pixel per view step of it the
 // slope of highest 75%-energy cutoff, once by quadrature and once by shift-and-add of the views.
 Result<BestFocus> refocusToSharpest(const LightField& lightField);
-// The 75%-energy cutoff of a point-source photograph (cycles per pixel).
+// The 75%-energy cutoff of a point-source photograph (cycles per pixel), read on its spectrum
+// zero-padded kCutoffZeroPadding times, so that it is not stepped by the photograph's few bins
+// (a 40-pixel photograph's bins are 0.025 cycles per pixel apart).
+constexpr int kCutoffZeroPadding = 8;
 Result<double> cutoffOf(const Image& photo);
 
 // ---- reports ----------------------------------------------------------------------------------

@@ -60,7 +60,8 @@ Status runRefocusLimit(const std::filesystem::path& folder, const ExperimentOpti
                            traceCapture(pinhole, conventionalCamera(plenoptic, stop), conventionalSamples, traces));
     LFCAM_ASSIGN_OR_RETURN(auto photo, conventionalPhoto(conventional, false, 1));
     LFCAM_ASSIGN_OR_RETURN(auto transfer, transferFunction(photo));
-    cutoffs.push_back(cutoffFrequency(transfer, 0.75));
+    LFCAM_ASSIGN_OR_RETURN(auto cutoff, cutoffOf(photo));
+    cutoffs.push_back(cutoff);
     photos.push_back(std::move(photo));
     transfers.push_back(std::move(transfer));
     progress();
