@@ -3,6 +3,7 @@
 // capture's outputs are the same bytes whichever way it runs.
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,12 +77,23 @@ void bindBatch(py::module_& m) {
       py::arg("inputs"), py::arg("output"), py::arg("steps"), py::arg("white"), py::arg("report"));
   m.def(
       "_batch_run_local",
-      [](const BatchPlan& plan, int jobs) {
-        const auto outcomes =
-            interruptible([&] { return valueOrThrow(runBatchCaptures(plan, jobs > 0 ? jobs : defaultBatchJobs())); });
+      [](const BatchPlan& plan, int jobs, std::optional<py::function> progress) {
+        const std::size_t total = plan.captures.size();
+        const auto report = [&](double fraction) {  // on the batch's thread: takes the GIL for the callback
+          const py::gil_scoped_acquire acquire;
+          try {
+            (*progress)(std::size_t(fraction * double(total) + 0.5), total);
+          } catch (py::error_already_set& e) {  // as Python does for a callback's error it cannot raise
+            e.discard_as_unraisable("lfcam.batch.run(progress=...)");
+          }
+        };
+        const auto outcomes = interruptible([&] {
+          return valueOrThrow(runBatchCaptures(plan, jobs > 0 ? jobs : defaultBatchJobs(),
+                                               progress ? ProgressCallback(report) : ProgressCallback()));
+        });
         return finish(plan, outcomes);
       },
-      py::arg("plan"), py::arg("jobs"));
+      py::arg("plan"), py::arg("jobs"), py::arg("progress"));
   m.def(
       "_batch_capture",
       [](const std::string& input, const std::string& name, const std::vector<std::string>& stepTexts,

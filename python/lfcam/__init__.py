@@ -15,7 +15,15 @@ with the command line's one-line messages.
 """
 from ._lfcam import (AllInFocus, DepthMap, Error, Image, LensletGrid, LightField, UsageError, calibrate, decode,
                      depth, edof, observer, read, read_image, refocus, score, simulate, stack, write, write_image)
-from . import batch
+
+
+def __getattr__(name):
+    # lfcam.batch on first use, not at import: `python3 -m lfcam.batch` then runs it once, as __main__.
+    if name == "batch":
+        import importlib
+        return importlib.import_module(".batch", __name__)
+    raise AttributeError(f"module 'lfcam' has no attribute '{name}'")
+
 
 __all__ = ["AllInFocus", "DepthMap", "Error", "Image", "LensletGrid", "LightField", "UsageError", "batch",
            "calibrate", "decode", "depth", "edof", "observer", "read", "read_image", "refocus", "score", "simulate",

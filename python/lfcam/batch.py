@@ -53,7 +53,7 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
     jobs: captures at once on this machine (default: half the cores, 1 to 4); not used with `client`.
     report: the report's file (default: OUTDIR/batch-report.json).
     client: a distributed.Client or a scheduler address ("tcp://HOST:8786"): one Dask task per capture.
-    progress: called as progress(finished, total) as captures finish (with `client`).
+    progress: called as progress(finished, total) as captures finish.
 
     Raises lfcam.UsageError for a bad request (before any work), lfcam.Error when the scheduler cannot
     be reached, and lfcam.batch.BatchError (an lfcam.Error carrying .report) when any capture failed,
@@ -66,7 +66,7 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
     plan = _lfcam._batch_plan([os.fspath(i) for i in inputs], os.fspath(output), list(steps),
                               os.fspath(white) if white else "", os.fspath(report) if report else "")
     if client is None:
-        text, failure = _lfcam._batch_run_local(plan, jobs or 0)
+        text, failure = _lfcam._batch_run_local(plan, jobs or 0, progress)
     else:
         text, failure = _run_on_dask(plan, client, progress)
     result = json.loads(text)

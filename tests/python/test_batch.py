@@ -33,8 +33,10 @@ def test_python_batch_is_the_commands_batch(tmp_path):
     cli = lfcam_command("batch", inputs, "-o", tmp_path / "cli", "--steps", ",".join(STEPS), "--jobs", 2)
     assert cli.returncode == 1 and "lfcam: batch: failed: " in cli.stderr and "broken.lf.h5" in cli.stderr
 
+    finished = []
     with pytest.raises(lfcam.batch.BatchError, match="1 of 4 captures failed") as failed:
-        lfcam.batch.run(str(inputs), tmp_path / "py", STEPS, jobs=2)
+        lfcam.batch.run(str(inputs), tmp_path / "py", STEPS, jobs=2, progress=lambda k, n: finished.append((k, n)))
+    assert finished[-1] == (4, 4) and finished == sorted(finished)
     report = failed.value.report
     assert (report["done"], report["skipped"], report["failed"]) == (3, 0, 1)
     broken = [c for c in report["captures"] if c["status"] == "failed"]
