@@ -15,8 +15,9 @@ from batch_captures import STEPS, files_below, write_captures, without_times
 LFCAM = os.environ.get("LFCAM_EXECUTABLE", "")
 
 
-def lfcam_command(*arguments):
-    return subprocess.run([LFCAM, *map(str, arguments)], capture_output=True, text=True)
+def lfcam_command(*arguments, env=None):
+    return subprocess.run([LFCAM, *map(str, arguments)], capture_output=True, text=True,
+                          env=None if env is None else {**os.environ, **env})
 
 
 def one_error_line(result, code):
@@ -100,6 +101,9 @@ def test_an_unreachable_scheduler_is_one_line_within_seconds(tmp_path):
     assert time.monotonic() - start < lfcam.batch.CONNECT_TIMEOUT + 15  # python3 and Dask start too
     assert "unknown address scheme" in one_error_line(
         lfcam_command("batch", tmp_path / "in", "-o", tmp_path / "out", "--steps", "edof", "--dask", "bogus://x"), 2)
+    no_python = lfcam_command("batch", tmp_path / "in", "-o", tmp_path / "out", "--steps", "edof", "--dask", address,
+                              env={"LFCAM_PYTHON": "/no/such/python3"})
+    assert "cannot run /no/such/python3" in one_error_line(no_python, 1)
     assert not (tmp_path / "out").exists()
 
 
