@@ -19,6 +19,7 @@
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
 //   --development-only  the table without antinous, for choosing settings (it is held out)
+//   --write DIR         also each scene's map, truth and centre view: DIR/<scene>.pfm, -truth.pfm, -centre.png
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -167,7 +168,20 @@ void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam
 // Every scene's HCI scores with today's defaults (disparity_scores.hpp; 15-pixel border; bumpiness
 // on the planes of the ground truth): the development scenes, on which defaults are chosen, then
 // HCI antinous, held out: never used to choose a parameter.
-void printScores(const lfcam::DepthOptions& options, bool heldOut) {
+// With `folder` not empty, each scene's disparity, truth and centre view are written there.
+void printScores(const lfcam::DepthOptions& options, bool heldOut, const std::string& folder) {
+  auto write = [&](const std::string& scene, const lfcam::Image& disparity, const lfcam::Image& truth,
+                   const lfcam::LightField& lightField) {
+    if (folder.empty()) return;
+    std::string name = scene.substr(0, scene.find(" ("));
+    for (char& c : name)
+      if (c == ' ' || c == ',') c = '-';
+    const lfcam::Image centre = lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2);
+    for (const auto& [file, image] : {std::pair{name + ".pfm", &disparity}, std::pair{name + "-truth.pfm", &truth},
+                                      std::pair{name + "-centre.png", &centre}})
+      if (auto written = lfcam::writeImage(folder + "/" + file, *image); !written)
+        std::fprintf(stderr, "depth_bench: %s\n", written.error().message.c_str());
+  };
   std::printf("%-28s %8s %8s %9s %9s %7s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100", "bumpiness", "seconds");
   for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes()) {
     const auto start = std::chrono::steady_clock::now();
@@ -177,14 +191,17 @@ void printScores(const lfcam::DepthOptions& options, bool heldOut) {
     auto depth = lfcam::estimateDepth(scene.lightField, sceneOptions);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (depth) printRow(scene.name, *depth, scene.disparity, seconds);
+    if (depth) write(scene.name, depth->disparity, scene.disparity, scene.lightField);
   }
   if (!heldOut) return;
   auto truth = lfcam::readImage(kFolder + "/gt_disp_lowres.pfm");
   if (!truth) return (void)std::printf("hci-antinous (held out): not found in %s\n", kFolder.c_str());
   const auto start = std::chrono::steady_clock::now();
-  auto depth = lfcam::estimateDepth(antinous(), options);
+  const lfcam::LightField& lightField = antinous();
+  auto depth = lfcam::estimateDepth(lightField, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (depth) printRow("hci-antinous (held out)", *depth, *truth, seconds);
+  if (depth) write("hci-antinous", depth->disparity, *truth, lightField);
 }
 
 }  // namespace
@@ -193,11 +210,14 @@ int main(int argc, char** argv) {
   // The table's own flags, taken out before the benchmark library reads the rest.
   lfcam::DepthOptions options;
   bool heldOut = true;
+  std::string folder;
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string argument = argv[i];
     if (argument == "--development-only") {
       heldOut = false;
+    } else if (argument == "--write" && i + 1 < argc) {
+      folder = argv[++i];
     } else if (argument == "--options" && i + 1 < argc) {
       if (auto read = lfcam::readDepthOptions(argv[++i], options); !read)
         return std::fprintf(stderr, "depth_bench: %s\n", read.error().message.c_str()), 2;
@@ -206,7 +226,7 @@ int main(int argc, char** argv) {
     }
   }
   argc = kept;
-  printScores(options, heldOut);
+  printScores(options, heldOut, folder);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -9,6 +9,8 @@ namespace py = pybind11;
 namespace lfcam::python {
 
 void bindPipeline(py::module_& module);
+void bindSimulate(py::module_& module);
+void bindBatch(py::module_& module);
 
 void registerErrors(py::module_& m) {
   static py::exception<LibraryError> error(m, "Error", PyExc_RuntimeError);
@@ -29,4 +31,6 @@ PYBIND11_MODULE(_lfcam, m) {
   lfcam::python::registerErrors(m);
   lfcam::python::bindArrays(m);
   lfcam::python::bindPipeline(m);
+  lfcam::python::bindSimulate(m);
+  lfcam::python::bindBatch(m);
 }

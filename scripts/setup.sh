@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   python3              # tests/module_includes: the check of module boundaries
   python3-dev pybind11-dev python3-numpy python3-pytest  # the Python package (python/) and its tests
+  python3-dask python3-distributed  # lfcam batch --dask / lfcam.batch.run(client=): one task per capture on a Dask cluster
   python3-h5py         # tests/h5py: the native .lf.h5 as Python users read it
   clang-format-14      # tests/format: the check of the one style (.clang-format)
   ccache               # repeat builds (scripts/build.sh, build-san) reuse earlier compiles

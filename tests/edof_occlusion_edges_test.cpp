@@ -92,6 +92,32 @@ TEST(OcclusionEdges, FattenedBackgroundReturnsToTheBackground) {
   EXPECT_EQ(same, fattened);
 }
 
+// A bar 2 px wide (disparity 1) of another colour than the background (-1): every one of its
+// pixels lies within the band of a jump, so none votes for it; the background's voters, of
+// another colour, must not take it over by their faint likeness (without the floor of one full
+// vote they did).
+TEST(OcclusionEdges, ThinBarOfItsOwnColourKeepsItsDisparity) {
+  const int size = 48, x0 = 23, x1 = 25;
+  Image guide(size, size, 3);
+  std::vector<float> map(std::size_t(size) * size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const bool bar = x >= x0 && x < x1;
+      const float colour[3] = {bar ? 0.8f : 0.35f, bar ? 0.3f : 0.45f, bar ? 0.2f : 0.5f};
+      for (int c = 0; c < 3; ++c) guide.at(x, y, c) = colour[c];
+      map[std::size_t(y) * size + x] = bar ? 1.0f : -1.0f;
+    }
+  const std::vector<float> before = map;
+  reclaimOcclusionEdges(guide, 3, map.data());
+  EXPECT_EQ(map, before);
+  // A bar of the background's colour is taken back: it is the fattening the step is for.
+  for (int y = 0; y < size; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int c = 0; c < 3; ++c) guide.at(x, y, c) = guide.at(0, y, c);
+  reclaimOcclusionEdges(guide, 3, map.data());
+  for (float v : map) ASSERT_EQ(v, -1.0f);
+}
+
 // On the layered planes (textured cards over a cloudy background), through estimateDepth: fewer
 // bad pixels overall and on the background beside nearer cards (within 3 px of a pixel nearer by
 // more than 0.2 in the truth).

@@ -21,4 +21,8 @@ Status writeFileAtomically(const std::filesystem::path& destination,
 Status writeFolderAtomically(const std::filesystem::path& destination,
                              const std::function<Status(const std::filesystem::path&)>& write);
 
+// Removes the temporaries a killed writer left directly in `folder` (a batch redoing a capture
+// whose worker died). Only for a folder no other writer is using.
+void removeStaleTemporaries(const std::filesystem::path& folder);
+
 }  // namespace lfcam

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "lfcam/image.hpp"
@@ -15,6 +16,8 @@ namespace lfcam {
 
 // n values evenly spaced from first to last inclusive (n = 1: first alone).
 std::vector<double> evenlySpaced(double first, double last, int n);
+// "FIRST:LAST:COUNT" (count 1 to 100000) -> evenlySpaced; a Usage error naming `option` otherwise.
+Result<std::vector<double>> parseEvenlySpaced(const std::string& text, const std::string& option);
 
 // One photograph of `camera` per slope (the camera's own slope is replaced), handed to `sink` in
 // order as it is made, so that a stack of any depth needs the memory of one photograph. Stops at

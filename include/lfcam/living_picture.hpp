@@ -6,6 +6,7 @@
 // src/viewer/assets/living.html, embedded in the binary; the data replaces its placeholder.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 #include "lfcam/light_field.hpp"
@@ -26,5 +27,9 @@ struct LivingPictureOptions {
 // stack) plus the JPEG encoding.
 Result<std::string> makeLivingPicture(const LightField& lightField, const LivingPictureOptions& options = {},
                                       const ProgressCallback& progress = {});
+
+// The page written to `output` atomically (`lfcam export-html`, the page step of `lfcam batch`).
+Status writeLivingPicture(const std::filesystem::path& output, const LightField& lightField,
+                          const LivingPictureOptions& options = {}, const ProgressCallback& progress = {});
 
 }  // namespace lfcam

@@ -7,12 +7,24 @@ The same C++ library as the `lfcam` command, with its names and defaults:
     photo = lfcam.refocus(lf, 0.5, aperture=2)            # an Image
     pixels = photo.array                                  # numpy, (channels, height, width), no copy
 
+lfcam.simulate writes a simulated capture as `lfcam simulate` does; lfcam.batch.run applies steps to
+many captures, on this machine or on a Dask cluster (`lfcam batch`, docs/batch.md).
+
 Errors raise lfcam.UsageError (a wrong argument) or lfcam.Error (a file or input that fails),
 with the command line's one-line messages.
 """
 from ._lfcam import (AllInFocus, DepthMap, Error, Image, LensletGrid, LightField, UsageError, calibrate, decode,
-                     depth, edof, observer, read, read_image, refocus, score, stack, write, write_image)
+                     depth, edof, observer, read, read_image, refocus, score, simulate, stack, write, write_image)
 
-__all__ = ["AllInFocus", "DepthMap", "Error", "Image", "LensletGrid", "LightField", "UsageError", "calibrate",
-           "decode", "depth", "edof", "observer", "read", "read_image", "refocus", "score", "stack", "write",
-           "write_image"]
+
+def __getattr__(name):
+    # lfcam.batch on first use, not at import: `python3 -m lfcam.batch` then runs it once, as __main__.
+    if name == "batch":
+        import importlib
+        return importlib.import_module(".batch", __name__)
+    raise AttributeError(f"module 'lfcam' has no attribute '{name}'")
+
+
+__all__ = ["AllInFocus", "DepthMap", "Error", "Image", "LensletGrid", "LightField", "UsageError", "batch",
+           "calibrate", "decode", "depth", "edof", "observer", "read", "read_image", "refocus", "score", "simulate",
+           "stack", "write", "write_image"]

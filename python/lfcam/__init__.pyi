@@ -5,6 +5,8 @@ from typing import Optional, Sequence, Union
 import numpy as np
 import numpy.typing as npt
 
+from . import batch as batch
+
 _Path = Union[str, PathLike[str]]
 _Array = npt.ArrayLike
 
@@ -93,3 +95,8 @@ def depth(light_field: LightField, *, options: Optional[_Path] = None, **knobs: 
 def edof(light_field: LightField, *, depth: Optional[_Array] = None, min: Optional[float] = None,
          max: Optional[float] = None, step: float = 0.0) -> AllInFocus: ...
 def score(estimate: _Array, truth: _Array, *, mask: Optional[_Array] = None, border: int = 15) -> dict[str, float]: ...
+def simulate(scene: str, output: _Path, *, f_number: Optional[float] = None, image_f_number: Optional[float] = None,
+             focus_mm: Optional[float] = None, size: Optional[int] = None, pixels_per_lens: Optional[float] = None,
+             hexagonal: bool = False, samples: int = 16, seed: Optional[int] = None, exposure: Optional[float] = None,
+             conventional: bool = False, noise: Optional[bool] = None, raw_format: str = "png",
+             container: Optional[str] = None, white: bool = True, ground_truth: bool = True) -> None: ...

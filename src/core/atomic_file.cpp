@@ -4,7 +4,9 @@
 
 #include <atomic>
 #include <string>
+#include <string_view>
 #include <system_error>
+#include <vector>
 
 namespace lfcam {
 
@@ -14,11 +16,13 @@ namespace {
 
 // A hidden sibling of `destination` that keeps its full name (and so its extension), unique to
 // this process and call.
+constexpr std::string_view kTemporaryPrefix = ".lfcam-tmp-";
+
 fs::path temporarySibling(const fs::path& destination) {
   static std::atomic<unsigned> counter{0};
   fs::path folder = destination.parent_path();
-  std::string name = ".lfcam-tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
-                     destination.filename().string();
+  std::string name = std::string(kTemporaryPrefix) + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+                     "-" + destination.filename().string();
   return folder.empty() ? fs::path(name) : folder / name;
 }
 
@@ -86,6 +90,14 @@ Status writeFolderAtomically(const fs::path& destination, const std::function<St
   }
   cleanUp();
   return {};
+}
+
+void removeStaleTemporaries(const fs::path& folder) {
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (const auto& entry : fs::directory_iterator(folder, ec))
+    if (entry.path().filename().string().starts_with(kTemporaryPrefix)) stale.push_back(entry.path());
+  for (const fs::path& path : stale) fs::remove_all(path, ec);
 }
 
 }  // namespace lfcam

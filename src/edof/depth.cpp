@@ -347,23 +347,23 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
 }
 
 // Weighted median of the disparity over a (2 r + 1)^2 window, each neighbour weighted by its
-// likeness to the pixel in the guide, exp(-(I_p - I_q)^2 / (2 sigma^2)): removes isolated
-// mistakes and pulls occlusion edges back onto the intensity edges (Ma et al. 2013).
-void weightedMedian(const float* guide, int ns, int nt, int radius, float sigma, float* disparity) {
+// likeness to the pixel in the guide (sRGB colour), exp(-|I_p - I_q|^2 / (2 sigma^2)): removes
+// isolated mistakes and pulls occlusion edges back onto the colour edges (Ma et al. 2013). In
+// colour, not luminance, so that a thin structure of another hue but the same brightness as what
+// lies behind it keeps its own disparity.
+void weightedMedian(const Image& guide, int radius, float sigma, float* disparity) {
+  const int ns = guide.width(), nt = guide.height(), channels = guide.channels();
   const std::vector<float> input(disparity, disparity + std::size_t(ns) * nt);
-  // The weights from a table of |difference| in steps of 1/1024 (an exp per neighbour would cost
-  // more than the selection).
-  constexpr int kSteps = 1024;
+  // The weights from a table of the squared colour distance in steps of 1/4096 (an exp per
+  // neighbour would cost more than the selection); beyond 1 the weight is exp(-1 / (2 sigma^2)).
+  constexpr int kSteps = 4096;
   std::vector<float> table(kSteps + 1);
-  for (int i = 0; i <= kSteps; ++i) {
-    const float difference = float(i) / kSteps;
-    table[i] = std::exp(-difference * difference / (2 * sigma * sigma));
-  }
+  for (int i = 0; i <= kSteps; ++i) table[i] = std::exp(-(float(i) / kSteps) / (2 * sigma * sigma));
   parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
     std::vector<std::pair<float, float>> window;
     for (std::size_t y = begin; y < end; ++y)
       for (int x = 0; x < ns; ++x) {
-        const float centre = guide[y * ns + x];
+        const std::size_t p = y * ns + x;
         window.clear();
         float total = 0;
         for (int dy = -radius; dy <= radius; ++dy) {
@@ -373,14 +373,18 @@ void weightedMedian(const float* guide, int ns, int nt, int radius, float sigma,
             const int xx = x + dx;
             if (xx < 0 || xx >= ns) continue;
             const std::size_t q = std::size_t(yy) * ns + xx;
-            float difference = std::abs(guide[q] - centre);
-            if (!(difference < 1.0f)) difference = 1.0f;  // also NaN
-            const float weight = table[int(difference * kSteps + 0.5f)];
+            float squares = 0;
+            for (int c = 0; c < channels; ++c) {
+              const float difference = guide.plane(c)[q] - guide.plane(c)[p];
+              squares += difference * difference;
+            }
+            if (!(squares < 1.0f)) squares = 1.0f;  // also NaN
+            const float weight = table[int(squares * kSteps + 0.5f)];
             window.emplace_back(input[q], weight);
             total += weight;
           }
         }
-        disparity[y * ns + x] = edof::weightedMedianSelect(window, total);
+        disparity[p] = edof::weightedMedianSelect(window, total);
       }
   });
 }
@@ -390,9 +394,9 @@ void weightedMedian(const float* guide, int ns, int nt, int radius, float sigma,
 // texture) over the cost left there (high where no disparity makes the views agree, as at
 // occlusions), both relative to their means; the fast global smoother guided by the centre view
 // in colour, so that edges of hue separate surfaces as well as edges of brightness.
-void fillUncertain(const LightField& lightField, const std::vector<float>& curvature,
-                   const std::vector<float>& residual, const DepthOptions& options, float* disparity) {
-  const std::size_t n = lightField.shape().viewPixels();
+void fillUncertain(const Image& guide, const std::vector<float>& curvature, const std::vector<float>& residual,
+                   const DepthOptions& options, float* disparity) {
+  const std::size_t n = std::size_t(guide.width()) * guide.height();
   double meanCurvature = 0, meanResidual = 0;
   for (std::size_t p = 0; p < n; ++p) meanCurvature += curvature[p], meanResidual += std::max(residual[p], 0.0f);
   meanCurvature = std::max(meanCurvature / double(n), 1e-20);
@@ -400,9 +404,7 @@ void fillUncertain(const LightField& lightField, const std::vector<float>& curva
   std::vector<float> confidence(n);
   for (std::size_t p = 0; p < n; ++p)
     confidence[p] = float(curvature[p] / meanCurvature / (std::max(residual[p], 0.0f) / meanResidual + 0.5));
-  Image guide = lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2);
-  for (float& v : guide.pixels()) v = srgbFromLinear(std::max(v, 0.0f));
-  edof::globalSmooth(guide.plane(0), guide.channels(), lightField.ns(), lightField.nt(), confidence.data(), disparity,
+  edof::globalSmooth(guide.plane(0), guide.channels(), guide.width(), guide.height(), confidence.data(), disparity,
                      float(options.fillLambda), float(std::max(options.fillSigma, 1e-6)), /*iterations=*/3);
 }
 
@@ -524,13 +526,15 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     for (std::size_t p = 0; p < n; ++p)
       result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
   }
-  // 6. Cleanup: the edge-aware fill, occlusion edges, the weighted median.
+  // 6. Cleanup: the edge-aware fill, occlusion edges, the weighted median, each guided by the
+  // centre view's sRGB colours.
+  Image colors = lightField.subApertureImage(referenceU, referenceV);
+  for (float& v : colors.pixels()) v = srgbFromLinear(std::max(v, 0.0f));
   if (options.fillLambda > 0 && options.refineSteps > 0)
-    fillUncertain(lightField, curvature, residual, options, result.disparity.plane(0));
-  edof::reclaimOcclusionEdges(lightField, options.occlusionBand, result.disparity.plane(0));  // occlusion_edges.cpp
+    fillUncertain(colors, curvature, residual, options, result.disparity.plane(0));
+  edof::reclaimOcclusionEdges(colors, options.occlusionBand, result.disparity.plane(0));  // occlusion_edges.cpp
   if (options.medianRadius > 0)
-    weightedMedian(guide.plane(0), ns, nt, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
-                   result.disparity.plane(0));
+    weightedMedian(colors, options.medianRadius, float(std::max(options.medianSigma, 1e-6)), result.disparity.plane(0));
   // 7. Confidence.
   for (std::size_t p = 0; p < n; ++p) {
     const int chosen = std::clamp(int(std::lround(label[p])), 0, labels - 1);

@@ -65,9 +65,8 @@ float weightedMedianSelect(std::vector<std::pair<float, float>>& window, float t
 std::vector<int> jumpDistance(const float* disparity, int width, int height, float jump, int cap);
 // Pixels within `band` of a jump of the map (width x height of `guide`, an sRGB colour image) move
 // to a farther surface when its pixels beyond the band outweigh their own surface's by colour
-// likeness: the weighted median of those. The LightField form guides by its centre view.
+// likeness: the weighted median of those, with at least one full vote (a thin structure keeps its own).
 void reclaimOcclusionEdges(const Image& guide, int band, float* disparity);
-void reclaimOcclusionEdges(const LightField& lightField, int band, float* disparity);
 
 // Semi-global optimisation (Hirschmueller 2008) of a cost volume stored pixel-major:
 // cost[(y * width + x) * labels + l]. Sums, over 8 path directions, the path costs

@@ -16,7 +16,6 @@
 #include <cstdlib>
 
 #include "edof/edof_internal.hpp"
-#include "lfcam/image_io.hpp"
 #include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
@@ -30,6 +29,10 @@ constexpr float kJump = 0.5f;
 // the Euclidean distance of sRGB colours.
 constexpr int kVoterRadius = 10;
 constexpr float kSigma = 0.05f;
+// The farther surface must gather at least the vote of one voter of its very colour: a structure
+// thinner than the band (a bar, a rail) has no voters of its own, and without this floor the
+// faint likeness of voters of another colour took it (thin bars 12.0 -> 9.8 % BadPix(0.07)).
+constexpr float kMinimumVotes = 1.0f;
 
 }  // namespace
 
@@ -97,15 +100,10 @@ void reclaimOcclusionEdges(const Image& guide, int band, float* disparity) {
               farther.emplace_back(input[q], weight);
             }
           }
-        if (fartherWeight > own && fartherWeight > 0) disparity[p] = weightedMedianSelect(farther, fartherWeight);
+        if (fartherWeight > own && fartherWeight > kMinimumVotes)
+          disparity[p] = weightedMedianSelect(farther, fartherWeight);
       }
   });
-}
-
-void reclaimOcclusionEdges(const LightField& lightField, int band, float* disparity) {
-  Image guide = lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2);
-  for (float& v : guide.pixels()) v = srgbFromLinear(std::max(v, 0.0f));
-  reclaimOcclusionEdges(guide, band, disparity);
 }
 
 }  // namespace lfcam::edof

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/bilinear.hpp"
@@ -14,6 +15,16 @@ std::vector<double> evenlySpaced(double first, double last, int n) {
   std::vector<double> values;
   for (int i = 0; i < n; ++i) values.push_back(n == 1 ? first : first + (last - first) * i / double(n - 1));
   return values;
+}
+
+Result<std::vector<double>> parseEvenlySpaced(const std::string& text, const std::string& option) {
+  double first = 0, last = 0;
+  int n = 0;
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%lf:%lf:%d%c", &first, &last, &n, &end) != 3 || !std::isfinite(first) ||
+      !std::isfinite(last) || n < 1 || n > 100000)
+    return makeError(ErrorCode::Usage, option + ": expected FIRST:LAST:COUNT (count 1 to 100000), got '" + text + "'");
+  return evenlySpaced(first, last, n);
 }
 
 Status renderFocalStack(const LightField& lightField, const std::vector<double>& slopes, const SyntheticCamera& camera,

@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include <nlohmann/json.hpp>
 
 #include "lfcam/all_in_focus.hpp"
+#include "lfcam/atomic_file.hpp"
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/synthetic_camera.hpp"
 #include "viewer/image_encode.hpp"
@@ -96,6 +98,18 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   if (at == std::string::npos) return makeError(ErrorCode::Format, "export-html: the page template has no data slot");
   html.replace(at, placeholder.size(), escaped);
   return html;
+}
+
+Status writeLivingPicture(const std::filesystem::path& output, const LightField& lightField,
+                          const LivingPictureOptions& options, const ProgressCallback& progress) {
+  LFCAM_ASSIGN_OR_RETURN(const std::string html, makeLivingPicture(lightField, options, progress));
+  return writeFileAtomically(output, [&](const std::filesystem::path& temporary) -> Status {
+    std::FILE* file = std::fopen(temporary.c_str(), "wb");
+    if (!file) return makeError(ErrorCode::Io, output.string() + ": cannot write");
+    const bool written = std::fwrite(html.data(), 1, html.size(), file) == html.size();
+    if (std::fclose(file) != 0 || !written) return makeError(ErrorCode::Io, output.string() + ": cannot write");
+    return {};
+  });
 }
 
 }  // namespace lfcam

@@ -3,7 +3,8 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "living_picture_output.hpp"
+#include "lfcam/living_picture.hpp"
+#include "progress_bar.hpp"
 
 namespace lfcam::cli {
 
@@ -26,7 +27,8 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
   command->callback([options, &job] {
     job = [options]() -> Status {
       LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
-      return writeLivingPictureFile(options->output, lightField, options->page);
+      ProgressBar bar("making " + options->output);
+      return writeLivingPicture(options->output, lightField, options->page, [&](double f) { bar(f); });
     };
   });
 }

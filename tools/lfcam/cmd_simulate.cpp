@@ -6,6 +6,7 @@
 #include "lfcam/raw_io.hpp"
 #include "lfcam/scene.hpp"
 #include "lfcam/simulate.hpp"
+#include "lfcam/simulate_setup.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {
@@ -62,38 +63,18 @@ void addSimulateCommand(CLI::App& app, Job& job) {
   command->callback([options, &job] {
     job = [options]() -> Status {
       const Options& o = *options;
-      const bool builtin = isBuiltinSceneName(o.scene) && !std::filesystem::exists(o.scene);
-      CameraModel camera = CameraModel::paperPrototype();
-      Scene scene;
-      if (!builtin) {
-        LFCAM_ASSIGN_OR_RETURN(auto loaded, loadScene(o.scene));
-        scene = std::move(loaded);
-        camera = scene.camera;
-      }
-      // Flags over the scene's camera.
-      if (o.focusMm) camera.mainLens.focusDistanceMm = *o.focusMm;
-      if (o.fNumber) camera.mainLens.fNumber = *o.fNumber;
-      if (o.size) camera.sensor.width = camera.sensor.height = *o.size;
-      if (o.conventional) camera.microlenses.reset();
-      if (camera.microlenses) {
-        if (o.pixelsPerLens) {
-          const double fNumber = camera.microlenses->fNumber();
-          camera.microlenses->pitchMm = *o.pixelsPerLens * camera.sensor.pixelPitchMm;
-          camera.microlenses->focalLengthMm = fNumber * camera.microlenses->pitchMm;
-        }
-        if (o.hexagonal) camera.microlenses->packing = Packing::Hexagonal;
-        if (o.size) camera.microlenses->columns = camera.microlenses->rows = 0;
-      }
-      if (o.seed) camera.sensor.seed = *o.seed;
-      if (o.exposure) camera.sensor.exposure = *o.exposure;
-      if (!o.noise.empty()) camera.sensor.noise = o.noise == "on";
-      LFCAM_TRY(camera.validate("--focus-mm/--f-number/--size"));
-      if (o.imageFNumber) camera.mainLens.setImageSideFNumber(*o.imageFNumber);
-      if (builtin) {
-        LFCAM_ASSIGN_OR_RETURN(auto made, builtinScene(o.scene, camera));
-        scene = std::move(made);
-      }
-      scene.camera = camera;
+      std::optional<bool> noise;
+      if (!o.noise.empty()) noise = o.noise == "on";
+      LFCAM_ASSIGN_OR_RETURN(auto scene, simulationScene(o.scene, {.fNumber = o.fNumber,
+                                                                   .imageFNumber = o.imageFNumber,
+                                                                   .focusMm = o.focusMm,
+                                                                   .size = o.size,
+                                                                   .pixelsPerLens = o.pixelsPerLens,
+                                                                   .hexagonal = o.hexagonal,
+                                                                   .conventional = o.conventional,
+                                                                   .seed = o.seed,
+                                                                   .exposure = o.exposure,
+                                                                   .noise = noise}));
       SimulationOptions simulation;
       simulation.samplesPerPixel = o.samples;
       CaptureOutputs outputs;
@@ -101,7 +82,7 @@ void addSimulateCommand(CLI::App& app, Job& job) {
       outputs.groundTruth = !o.noGroundTruth;
       outputs.rawExtension = "." + o.rawFormat;
       ProgressBar bar("simulating " + o.scene);
-      LFCAM_TRY(writeSimulation(o.output, scene, camera, simulation, outputs, [&](double f) { bar(f); }));
+      LFCAM_TRY(writeSimulation(o.output, scene, scene.camera, simulation, outputs, [&](double f) { bar(f); }));
       if (o.container.empty()) return {};
       return writeSimulationContainers(o.output,
                                        o.container == "lfp" ? LytroStyle::FirstGeneration : LytroStyle::Illum);

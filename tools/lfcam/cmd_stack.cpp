@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "focal_stack_output.hpp"
 #include "image_output.hpp"
 #include "lfcam/focal_stack.hpp"
+#include "lfcam/focal_stack_output.hpp"
 #include "progress_bar.hpp"
 #include "render_cli.hpp"
 
@@ -34,8 +34,8 @@ void addStackCommand(CLI::App& app, Job& job) {
     job = [options]() -> Status {
       if (options->slopes.empty() == options->alphas.empty())
         return makeError(ErrorCode::Usage, "stack: give the depths with --slopes or --alphas");
-      LFCAM_ASSIGN_OR_RETURN(auto values, parseRange(options->slopes.empty() ? options->alphas : options->slopes,
-                                                     options->slopes.empty() ? "--alphas" : "--slopes"));
+      LFCAM_ASSIGN_OR_RETURN(auto values, parseEvenlySpaced(options->slopes.empty() ? options->alphas : options->slopes,
+                                                            options->slopes.empty() ? "--alphas" : "--slopes"));
       LFCAM_ASSIGN_OR_RETURN(auto writeOptions, imageWriteOptionsFor(std::filesystem::path(options->output) /
                                                                          stackSliceName(0, options->extension),
                                                                      options->depth));

@@ -6,15 +6,8 @@
 #include <cstdio>
 
 namespace lfcam::cli {
-namespace {
-thread_local bool quietThread = false;
-}  // namespace
-
 ProgressBar::ProgressBar(std::string label)
-    : label_(std::move(label)), start_(std::chrono::steady_clock::now()), enabled_(::isatty(2) == 1 && !quietThread) {}
-
-ProgressBar::QuietOnThisThread::QuietOnThisThread() { quietThread = true; }
-ProgressBar::QuietOnThisThread::~QuietOnThisThread() { quietThread = false; }
+    : label_(std::move(label)), start_(std::chrono::steady_clock::now()), enabled_(::isatty(2) == 1) {}
 
 ProgressBar::~ProgressBar() {
   if (shown_) std::fprintf(stderr, "\r%-80s\r", "");

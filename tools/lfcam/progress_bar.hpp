@@ -17,15 +17,6 @@ class ProgressBar {
 
   void operator()(double fraction);
 
-  // While one lives, bars made on this thread stay silent: the workers of `lfcam batch`, whose
-  // own bar covers theirs.
-  struct QuietOnThisThread {
-    QuietOnThisThread();
-    ~QuietOnThisThread();
-    QuietOnThisThread(const QuietOnThisThread&) = delete;
-    QuietOnThisThread& operator=(const QuietOnThisThread&) = delete;
-  };
-
  private:
   std::string label_;
   std::chrono::steady_clock::time_point start_;

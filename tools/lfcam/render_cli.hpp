@@ -33,17 +33,6 @@ inline Result<std::pair<double, double>> parsePair(const std::string& text, cons
   return std::pair{a, b};
 }
 
-// "A:B:N" -> N values evenly spaced from A to B inclusive.
-inline Result<std::vector<double>> parseRange(const std::string& text, const std::string& option) {
-  double a = 0, b = 0;
-  int n = 0;
-  char end = 0;
-  if (std::sscanf(text.c_str(), "%lf:%lf:%d%c", &a, &b, &n, &end) != 3 || !std::isfinite(a) || !std::isfinite(b) ||
-      n < 1 || n > 100000)
-    return makeError(ErrorCode::Usage, option + ": expected FIRST:LAST:COUNT (count 1 to 100000), got '" + text + "'");
-  return evenlySpaced(a, b, n);
-}
-
 // "X1,Y1:X2,Y2:X3,Y3" -> three image points.
 inline Result<std::array<ImagePoint, 3>> parseFocusPlanePoints(const std::string& text) {
   std::array<ImagePoint, 3> points{};

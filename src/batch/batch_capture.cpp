@@ -1,4 +1,4 @@
-#include "batch_capture.hpp"
+#include "lfcam/batch_capture.hpp"
 
 #include <chrono>
 #include <fstream>
@@ -6,16 +6,19 @@
 
 #include <nlohmann/json.hpp>
 
-#include "focal_stack_output.hpp"
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/atomic_file.hpp"
 #include "lfcam/color_map.hpp"
+#include "lfcam/decode_files.hpp"
 #include "lfcam/depth.hpp"
+#include "lfcam/focal_stack_output.hpp"
 #include "lfcam/image_io.hpp"
-#include "living_picture_output.hpp"
-#include "render_cli.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/living_picture.hpp"
+#include "lfcam/parallel.hpp"
+#include "lfcam/photo_settings.hpp"
 
-namespace lfcam::cli {
+namespace lfcam {
 namespace fs = std::filesystem;
 
 namespace {
@@ -38,12 +41,12 @@ nlohmann::json inputFingerprint(const fs::path& input) {
   return {{"bytes", bytes}, {"modified_ns", std::int64_t(latest.time_since_epoch().count())}};
 }
 
-nlohmann::json doneMarker(const BatchCapture& capture, const std::vector<BatchStep>& steps, const InputOptions& input) {
+nlohmann::json doneMarker(const BatchCapture& capture, const std::vector<BatchStep>& steps, const fs::path& white) {
   nlohmann::json stepTexts = nlohmann::json::array();
   for (const BatchStep& step : steps) stepTexts.push_back(step.text);
-  nlohmann::json marker{{"input", capture.input.string()}, {"steps", stepTexts}};
+  nlohmann::json marker{{"steps", stepTexts}};
   marker["fingerprint"] = inputFingerprint(capture.input);
-  if (!input.white.empty()) marker["white"] = inputFingerprint(input.white);
+  if (!white.empty()) marker["white"] = inputFingerprint(white);
   return marker;
 }
 
@@ -60,13 +63,13 @@ bool completeAlready(const fs::path& folder, const nlohmann::json& marker, const
 Status runStep(const BatchStep& step, const LightField& lightField, const fs::path& input, const fs::path& folder) {
   switch (step.kind) {
     case BatchStep::Kind::Refocus: {
-      LFCAM_ASSIGN_OR_RETURN(auto camera, cameraFrom({}, lightField, input.string()));
+      LFCAM_ASSIGN_OR_RETURN(auto camera, photoSetup({}, lightField, input.string()));
       return renderPhotos(lightField, camera, {step.slope}, [&](int, double, Image&& photo) {
         return writeImage(folder / step.outputs().front(), photo);
       });
     }
     case BatchStep::Kind::Stack: {
-      LFCAM_ASSIGN_OR_RETURN(auto camera, cameraFrom({}, lightField, input.string()));
+      LFCAM_ASSIGN_OR_RETURN(auto camera, photoSetup({}, lightField, input.string()));
       return writeFocalStack(folder / "stack", lightField, camera, step.slopes, "png", {}, [](double) {});
     }
     case BatchStep::Kind::Edof: {
@@ -78,23 +81,29 @@ Status runStep(const BatchStep& step, const LightField& lightField, const fs::pa
       LFCAM_TRY(writeImage(folder / "depth.pfm", depth.disparity));
       return writeImage(folder / "depth.png", colorMap(depth.disparity, depth.disparityMin, depth.disparityMax));
     }
-    case BatchStep::Kind::Page: return writeLivingPictureFile(folder / "page.html", lightField, {});
+    case BatchStep::Kind::Page: return writeLivingPicture(folder / "page.html", lightField);
   }
   return {};
 }
 
-Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps, const InputOptions& input,
+Result<LightField> loadCapture(const fs::path& input, const fs::path& white) {
+  if (white.empty()) return readLightField(input);
+  return decodeRawFiles({.raw = input.string(), .white = white.string()});
+}
+
+Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps, const fs::path& white,
                 const fs::path& folder, const nlohmann::json& marker) {
   std::error_code ec;
   fs::remove(folder / kBatchDoneMarker, ec);  // half-done until every step has written again
-  InputOptions options = input;
-  options.path = capture.input.string();
-  LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options));
+  removeStaleTemporaries(folder);             // of a run killed mid-write
+  LFCAM_ASSIGN_OR_RETURN(auto lightField, loadCapture(capture.input, white));
   fs::create_directories(folder, ec);  // only now, so that an unreadable input leaves no folder
   if (ec) return makeError(ErrorCode::Io, folder.string() + ": cannot create the folder: " + ec.message());
   for (const BatchStep& step : steps) {
     const Status status = runStep(step, lightField, capture.input, folder);
     if (!status) return makeError(status.error().code, step.text + ": " + status.error().message);
+    // A cancelled step's outputs are meaningless (parallel.hpp): no marker, so a rerun redoes them.
+    if (cancellationRequested()) return makeError(ErrorCode::Io, "cancelled");
   }
   return writeFileAtomically(folder / kBatchDoneMarker, [&](const fs::path& temporary) -> Status {
     std::ofstream out(temporary);
@@ -106,8 +115,8 @@ Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps
 
 }  // namespace
 
-BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps,
-                             const InputOptions& input, const fs::path& outputFolder) {
+BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps, const fs::path& white,
+                             const fs::path& outputFolder) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path folder = outputFolder / capture.name;
   BatchOutcome outcome;
@@ -116,10 +125,10 @@ BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<Batc
     for (const std::string& output : step.outputs()) outputs.push_back(output);
   for (const std::string& output : outputs) outcome.outputs.push_back((fs::path(capture.name) / output).string());
   try {
-    const nlohmann::json marker = doneMarker(capture, steps, input);
+    const nlohmann::json marker = doneMarker(capture, steps, white);
     if (completeAlready(folder, marker, outputs)) {
       outcome.status = BatchOutcome::Status::Skipped;
-    } else if (const Status status = runSteps(capture, steps, input, folder, marker); status) {
+    } else if (const Status status = runSteps(capture, steps, white, folder, marker); status) {
       outcome.status = BatchOutcome::Status::Done;
     } else {
       const std::string& message = status.error().message;
@@ -136,4 +145,4 @@ BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<Batc
   return outcome;
 }
 
-}  // namespace lfcam::cli
+}  // namespace lfcam

@@ -1,4 +1,4 @@
-#include "batch_plan.hpp"
+#include "lfcam/batch_plan.hpp"
 
 #include <glob.h>
 
@@ -11,11 +11,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "focal_stack_output.hpp"
+#include "lfcam/focal_stack.hpp"
+#include "lfcam/focal_stack_output.hpp"
 #include "lfcam/light_field_io.hpp"
-#include "render_cli.hpp"
 
-namespace lfcam::cli {
+namespace lfcam {
 namespace fs = std::filesystem;
 
 namespace {
@@ -34,7 +34,7 @@ Result<BatchStep> parseBatchStep(const std::string& text) {
     return BatchStep{.kind = BatchStep::Kind::Refocus, .text = text, .slope = slope};
   }
   if (name == "stack") {
-    auto slopes = parseRange(argument, "--steps stack");
+    auto slopes = parseEvenlySpaced(argument, "--steps stack");
     if (!slopes) return usage("stack:FROM:TO:N (N 1 to 100000)");
     return BatchStep{.kind = BatchStep::Kind::Stack, .text = text, .slopes = *slopes};
   }
@@ -166,18 +166,35 @@ Result<BatchSpec> readBatchSpec(const fs::path& file) {
       LFCAM_TRY(strings(spec.inputs));
     } else if (key == "steps") {
       LFCAM_TRY(strings(spec.steps));
-    } else if (key == "output" || key == "white" || key == "report") {
+    } else if (key == "output" || key == "white" || key == "report" || key == "dask") {
       if (!value.is_string()) return wrongType("a string");
-      (key == "output" ? spec.output : key == "white" ? spec.white : spec.report) = value.get<std::string>();
+      (key == "output"  ? spec.output
+       : key == "white" ? spec.white
+       : key == "dask"  ? spec.dask
+                        : spec.report) = value.get<std::string>();
     } else if (key == "jobs") {
       if (!value.is_number_integer() || value.get<int>() < 1) return wrongType("a whole number from 1");
       spec.jobs = value.get<int>();
     } else {
-      return makeError(ErrorCode::Usage,
-                       file.string() + ": unknown key '" + key + "' (inputs, steps, output, white, jobs, report)");
+      return makeError(ErrorCode::Usage, file.string() + ": unknown key '" + key +
+                                             "' (inputs, steps, output, white, jobs, dask, report)");
     }
   }
   return spec;
 }
 
-}  // namespace lfcam::cli
+Result<BatchPlan> planBatch(const BatchRequest& request) {
+  if (request.output.empty()) return makeError(ErrorCode::Usage, "batch: give the output folder with -o");
+  if (request.inputs.empty()) return makeError(ErrorCode::Usage, "batch: give at least one INPUT");
+  BatchPlan plan{.output = request.output, .white = request.white};
+  LFCAM_ASSIGN_OR_RETURN(plan.steps, parseBatchSteps(request.steps));
+  if (!request.white.empty() && !fs::is_regular_file(request.white))
+    return makeError(ErrorCode::Usage, request.white + ": --white: no such file");
+  std::vector<fs::path> excluded{plan.output};
+  if (!request.white.empty()) excluded.emplace_back(request.white);
+  LFCAM_ASSIGN_OR_RETURN(plan.captures, expandBatchInputs(request.inputs, excluded));
+  plan.report = request.report.empty() ? plan.output / "batch-report.json" : fs::path(request.report);
+  return plan;
+}
+
+}  // namespace lfcam

@@ -1,4 +1,4 @@
-#include "focal_stack_output.hpp"
+#include "lfcam/focal_stack_output.hpp"
 
 #include <cstdio>
 #include <fstream>
@@ -9,7 +9,7 @@
 #include "lfcam/atomic_file.hpp"
 #include "lfcam/parallel.hpp"
 
-namespace lfcam::cli {
+namespace lfcam {
 
 namespace {
 // Slices rendered but not yet written, each one photograph's memory.
@@ -47,4 +47,4 @@ Status writeFocalStack(const std::filesystem::path& folder, const LightField& li
   });
 }
 
-}  // namespace lfcam::cli
+}  // namespace lfcam

@@ -1,6 +1,6 @@
-// What `lfcam batch` is asked to do, checked before any work: the steps applied to every capture,
-// the captures the INPUT arguments stand for (globs expanded, folders of inputs listed), and the
-// spec file that may stand for the flags.
+// What a batch (`lfcam batch`, lfcam.batch in Python) is asked to do, checked before any work: the
+// steps applied to every capture, the captures the INPUT arguments stand for (globs expanded,
+// folders of inputs listed), and the spec file that may stand for the flags.
 #pragma once
 
 #include <filesystem>
@@ -10,7 +10,7 @@
 
 #include "lfcam/result.hpp"
 
-namespace lfcam::cli {
+namespace lfcam {
 
 // One step and the files it writes under the capture's output folder.
 struct BatchStep {
@@ -38,10 +38,24 @@ Result<std::vector<BatchCapture>> expandBatchInputs(const std::vector<std::strin
 // The flags a spec file may stand for; those absent stay empty.
 struct BatchSpec {
   std::vector<std::string> inputs, steps;
-  std::optional<std::string> output, white, report;
+  std::optional<std::string> output, white, report, dask;
   std::optional<int> jobs;
 };
 // A JSON object of those keys; an unknown key or wrong type is a Usage error naming the file and the key.
 Result<BatchSpec> readBatchSpec(const std::filesystem::path& file);
 
-}  // namespace lfcam::cli
+// A whole batch as given (flags or spec already merged), and as checked and expanded.
+struct BatchRequest {
+  std::vector<std::string> inputs, steps;
+  std::string output, white, report;  // report empty: OUTDIR/batch-report.json
+};
+struct BatchPlan {
+  std::vector<BatchCapture> captures;
+  std::vector<BatchStep> steps;
+  std::filesystem::path output, white, report;
+};
+// Usage errors for a missing output, input or step, an unknown step, a white image that is not a
+// file, a glob that matches nothing; the white image and OUTDIR are never taken as captures.
+Result<BatchPlan> planBatch(const BatchRequest& request);
+
+}  // namespace lfcam

@@ -12,7 +12,7 @@
 #include "lfcam/photo_settings.hpp"
 #include "lfcam/result.hpp"
 
-namespace lfcam::cli {
+namespace lfcam {
 
 // "slice_007.png" for index 7 and extension "png".
 std::string stackSliceName(int index, const std::string& extension);
@@ -22,4 +22,4 @@ Status writeFocalStack(const std::filesystem::path& folder, const LightField& li
                        const std::vector<double>& slopes, const std::string& extension,
                        const ImageWriteOptions& writeOptions, const std::function<void(double)>& progress);
 
-}  // namespace lfcam::cli
+}  // namespace lfcam

@@ -1,0 +1,117 @@
+// The C++ side of lfcam.batch (python/lfcam/batch.py): the plan, the single-machine run, one capture
+// (what each Dask task calls) and the report, all the library's batch code (batch_run.hpp), so a
+// capture's outputs are the same bytes whichever way it runs.
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "errors.hpp"
+#include "interruptible.hpp"
+#include "lfcam/batch_run.hpp"
+
+namespace py = pybind11;
+
+namespace lfcam::python {
+
+namespace {
+
+py::dict outcomeToDict(const BatchOutcome& outcome) {
+  py::dict d;
+  d["status"] = batchStatusName(outcome.status);
+  d["outputs"] = outcome.outputs;
+  d["seconds"] = outcome.seconds;
+  d["error"] = outcome.error.empty() ? py::object(py::none()) : py::object(py::str(outcome.error));
+  return d;
+}
+
+BatchOutcome outcomeFromDict(const py::dict& d) {
+  BatchOutcome outcome;
+  const std::string status = d["status"].cast<std::string>();
+  outcome.status = status == "done"      ? BatchOutcome::Status::Done
+                   : status == "skipped" ? BatchOutcome::Status::Skipped
+                                         : BatchOutcome::Status::Failed;
+  outcome.outputs = d["outputs"].cast<std::vector<std::string>>();
+  outcome.seconds = d["seconds"].cast<double>();
+  if (!d["error"].is_none()) outcome.error = d["error"].cast<std::string>();
+  return outcome;
+}
+
+// The report's JSON text and, when a capture failed, the one-line message (None otherwise).
+py::tuple finish(const BatchPlan& plan, const std::vector<BatchOutcome>& outcomes) {
+  const std::string report = valueOrThrow(writeBatchReport(plan, outcomes));
+  const Status status = batchStatus(plan, outcomes);
+  return py::make_tuple(report, status ? py::object(py::none()) : py::object(py::str(status.error().message)));
+}
+
+}  // namespace
+
+void bindBatch(py::module_& m) {
+  py::class_<BatchPlan>(m, "_BatchPlan", "A checked batch: its captures, steps, output folder, white image, report.")
+      .def_property_readonly("captures",
+                             [](const BatchPlan& plan) {
+                               std::vector<std::pair<std::string, std::string>> captures;
+                               for (const BatchCapture& c : plan.captures) captures.emplace_back(c.input, c.name);
+                               return captures;
+                             })
+      .def_property_readonly("steps",
+                             [](const BatchPlan& plan) {
+                               std::vector<std::string> texts;
+                               for (const BatchStep& step : plan.steps) texts.push_back(step.text);
+                               return texts;
+                             })
+      .def_property_readonly("output", [](const BatchPlan& plan) { return plan.output.string(); })
+      .def_property_readonly("white", [](const BatchPlan& plan) { return plan.white.string(); })
+      .def_property_readonly("report", [](const BatchPlan& plan) { return plan.report.string(); });
+  m.def(
+      "_batch_plan",
+      [](std::vector<std::string> inputs, std::string output, std::vector<std::string> steps, std::string white,
+         std::string report) {
+        return valueOrThrow(planBatch({.inputs = std::move(inputs),
+                                       .steps = std::move(steps),
+                                       .output = std::move(output),
+                                       .white = std::move(white),
+                                       .report = std::move(report)}));
+      },
+      py::arg("inputs"), py::arg("output"), py::arg("steps"), py::arg("white"), py::arg("report"));
+  m.def(
+      "_batch_run_local",
+      [](const BatchPlan& plan, int jobs, std::optional<py::function> progress) {
+        const std::size_t total = plan.captures.size();
+        const auto report = [&](double fraction) {  // on the batch's thread: takes the GIL for the callback
+          const py::gil_scoped_acquire acquire;
+          try {
+            (*progress)(std::size_t(fraction * double(total) + 0.5), total);
+          } catch (py::error_already_set& e) {  // as Python does for a callback's error it cannot raise
+            e.discard_as_unraisable("lfcam.batch.run(progress=...)");
+          }
+        };
+        const auto outcomes = interruptible([&] {
+          return valueOrThrow(runBatchCaptures(plan, jobs > 0 ? jobs : defaultBatchJobs(),
+                                               progress ? ProgressCallback(report) : ProgressCallback()));
+        });
+        return finish(plan, outcomes);
+      },
+      py::arg("plan"), py::arg("jobs"), py::arg("progress"));
+  m.def(
+      "_batch_capture",
+      [](const std::string& input, const std::string& name, const std::vector<std::string>& stepTexts,
+         const std::string& white, const std::string& output) {
+        const std::vector<BatchStep> steps = valueOrThrow(parseBatchSteps(stepTexts));
+        const BatchOutcome outcome =
+            interruptible([&] { return runBatchCapture({.input = input, .name = name}, steps, white, output); });
+        return outcomeToDict(outcome);
+      },
+      py::arg("input"), py::arg("name"), py::arg("steps"), py::arg("white"), py::arg("output"));
+  m.def(
+      "_batch_finish",
+      [](const BatchPlan& plan, const std::vector<py::dict>& dicts) {
+        std::vector<BatchOutcome> outcomes;
+        for (const py::dict& d : dicts) outcomes.push_back(outcomeFromDict(d));
+        return finish(plan, outcomes);
+      },
+      py::arg("plan"), py::arg("outcomes"));
+}
+
+}  // namespace lfcam::python
