@@ -25,6 +25,7 @@
 #include "lfcam/raw_io.hpp"
 #include "lfcam/synthetic_camera.hpp"
 #include "lfcam/tilted_focus.hpp"
+#include "lfcam/upsampled_refocus.hpp"
 
 namespace py = pybind11;
 
@@ -190,11 +191,18 @@ void bindPipeline(py::module_& m) {
       [](const LightField& lf, std::optional<double> slope, std::optional<double> alpha,
          std::optional<std::array<double, 2>> focusAt, std::optional<std::array<ImagePoint, 3>> focusPlane,
          std::optional<double> aperture, const std::string& shape, std::optional<std::array<double, 2>> centre,
-         std::optional<py::array> mask, const std::string& method, int supersampling, std::optional<double> beta) {
+         std::optional<py::array> mask, const std::string& method, int supersampling, std::optional<double> beta,
+         int upsample) {
         if (int(slope.has_value()) + int(alpha.has_value()) + int(focusAt.has_value()) + int(focusPlane.has_value()) !=
             1)
           throw LibraryError(ErrorCode::Usage,
                              "refocus: give the focus depth with one of slope, alpha, focus_at or focus_plane");
+        const bool fullApertureFast =
+            !aperture && shape == "circle" && !centre && !mask && method == "fast" && supersampling == 0 && !beta;
+        if (upsample != 1 && (focusPlane || !fullApertureFast))
+          throw LibraryError(ErrorCode::Usage,
+                             "refocus: upsample renders a fronto-parallel focus with the full aperture and the fast "
+                             "method only");
         if (focusPlane) {
           if (aperture || shape != "circle" || centre || mask || method != "fast" || supersampling != 0 || beta)
             throw LibraryError(ErrorCode::Usage,
@@ -209,17 +217,18 @@ void bindPipeline(py::module_& m) {
         if (alpha) value = valueOrThrow(slopeFromAlpha(lf, *alpha, "light field"));
         if (focusAt)
           value = interruptible([&] { return valueOrThrow(slopeAtPixel(lf, (*focusAt)[0], (*focusAt)[1])); });
+        if (upsample != 1) return interruptible([&] { return valueOrThrow(refocusUpsampled(lf, value, upsample)); });
         return std::move(photographs(lf, settings, {value}).front());
       },
       py::arg("light_field"), py::arg("slope") = py::none(), py::kw_only(), py::arg("alpha") = py::none(),
       py::arg("focus_at") = py::none(), py::arg("focus_plane") = py::none(), py::arg("aperture") = py::none(),
       py::arg("aperture_shape") = "circle", py::arg("aperture_centre") = py::none(),
       py::arg("aperture_mask") = py::none(), py::arg("method") = "fast", py::arg("supersampling") = 0,
-      py::arg("beta") = py::none(),
+      py::arg("beta") = py::none(), py::arg("upsample") = 1,
       "A photograph refocused at a slope (pixels per view step), a relative film depth alpha, the depth of image "
       "point focus_at=(x, y), or on the tilted plane through three image points focus_plane=((x1, y1), (x2, y2), "
       "(x3, y3)), each at its sharpest; aperture radius and centre in view steps; method 'fast', 'quadrature' or "
-      "'fourier'.");
+      "'fourier'; upsample=K (2 or 3) renders on a grid K times finer, each view's samples placed where they land.");
   m.def(
       "stack",
       [](const LightField& lf, std::optional<std::vector<double>> slopes, std::optional<std::vector<double>> alphas,

@@ -25,6 +25,9 @@ Image refocusSlopeFieldReference(const LightField& lightField, const std::functi
 // refocusTilted (tilted_focus.hpp): refocusSlopeFieldReference at the plane's slope at each pixel centre.
 Image refocusTiltedReference(const LightField& lightField, const FocusPlane& plane);
 
+// refocusUpsampled (upsampled_refocus.hpp): every sample of every view splatted on the fine grid.
+Result<Image> refocusUpsampledReference(const LightField& lightField, double slope, int factor);
+
 // renderSyntheticPhoto (synthetic_camera.hpp): the geometry per output pixel and per aperture
 // sample, with quadrilinear interpolation of the light field. supersampling = 1 samples the
 // aperture at the views (what Fast computes), more samples between them (what Quadrature computes).

@@ -175,16 +175,7 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
   }
 
   // Divide by the weight of the rays that arrived (section 5.2).
-  std::vector<float> weightRow(ns);
-  for (int y = y0; y < y1; ++y) {
-    const float* weight = weightRow.data();
-    if (weighted) {
-      weight = accumulatorRow(channels, y);
-    } else {
-      for (int x = 0; x < ns; ++x) weightRow[x] = plan.columnWeight[x] * plan.rowWeight[y];
-    }
-    for (int c = 0; c < channels; ++c) normaliseRow(out.row(y, c), accumulatorRow(c, y), weight, ns);
-  }
+  normaliseBlock(out, y0, y1, weighted, accumulatorRow, plan.columnWeight, plan.rowWeight);
 }
 
 }  // namespace

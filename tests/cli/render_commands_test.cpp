@@ -48,6 +48,21 @@ TEST(CliRender, RefocusWithApertureMethodAndFocusAt) {
   EXPECT_EQ(plane.out.rfind("focus plane: slope ", 0), 0u) << plane.out;
 }
 
+TEST(CliRender, RefocusUpsampledIsKTimesLarger) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  for (int factor : {1, 2, 3}) {
+    const fs::path out = dir / ("up" + std::to_string(factor) + ".png");
+    const auto result = runLfcam(
+        {"refocus", input, "--slope", "0.5", "--upsample", std::to_string(factor), "-o", out.string()}, dir.path());
+    ASSERT_EQ(result.exitStatus, 0) << result.err;
+    auto photo = readImage(out);
+    ASSERT_TRUE(photo) << photo.error().message;
+    EXPECT_EQ(photo->width(), 40 * factor);
+    EXPECT_EQ(photo->height(), 40 * factor);
+  }
+}
+
 TEST(CliRender, ApertureMaskOfOneViewGivesThatView) {
   test::TempDir dir;
   const std::string input = test::makeSynthLightField(dir, 5, 40).string();
@@ -175,6 +190,10 @@ TEST(CliRender, UsageErrorsExitTwoWithOneLine) {
       {"refocus", input, "--focus-plane", "5,5:35,8:20,34", "--slope", "1", "-o", out},
       {"refocus", input, "--focus-plane", "5,5:35,8:20,34", "--aperture", "1", "-o", out},
       {"refocus", input, "--tilt", "1", "-o", out},
+      {"refocus", input, "--slope", "1", "--upsample", "5", "-o", out},
+      {"refocus", input, "--slope", "1", "--upsample", "0", "-o", out},
+      {"refocus", input, "--slope", "1", "--upsample", "2", "--aperture", "1", "-o", out},
+      {"refocus", input, "--slope", "1", "--upsample", "2", "--tilt", "1", "-o", out},
       {"refocus", input, "--slope", "1", "--tilt-direction", "30", "-o", out},
       {"refocus", input, "--slope", "1", "--aperture-center", "1,1", "-o", out},
       {"refocus", input, "--slope", "1", "--aperture", "0.2", "--aperture-center", "9,9", "-o", out},

@@ -73,6 +73,18 @@ def test_refocus_at_the_planes_disparity_is_its_texture():
     assert np.abs(blurred[inner] - centre[inner]).mean() > 0.05
 
 
+def test_upsample_renders_on_a_finer_grid_and_repeats_pixels_on_the_microlens_plane():
+    lf = sloped_light_field(disparity=1)
+    fine = lfcam.refocus(lf, 0.5, upsample=2).array
+    assert fine.shape[1:] == (2 * lf.samples.shape[3], 2 * lf.samples.shape[4])
+    plain = lfcam.refocus(lf, 0.0).array
+    repeated = np.repeat(np.repeat(plain, 2, axis=1), 2, axis=2)
+    np.testing.assert_allclose(lfcam.refocus(lf, 0.0, upsample=2).array, repeated, atol=1e-5)
+    for bad in ({"upsample": 5}, {"upsample": 2, "aperture": 1}):
+        with pytest.raises(lfcam.UsageError):
+            lfcam.refocus(lf, 0.5, **bad)
+
+
 def test_focus_plane_through_three_points_of_a_fronto_parallel_plane_is_its_refocus():
     lf = sloped_light_field(disparity=1)
     tilted = lfcam.refocus(lf, focus_plane=((12, 12), (36, 14), (20, 36))).array[0]

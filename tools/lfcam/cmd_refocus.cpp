@@ -1,7 +1,8 @@
 // lfcam refocus INPUT (--slope D | --alpha A | --focus-at X,Y) -o OUT: a photograph focused after
 // the fact (Equation 6), through any synthetic aperture and lens plane (Equation 5); or focused on
 // a tilted plane (tilted_focus.hpp): --focus-plane X1,Y1:X2,Y2:X3,Y3, or --tilt T [--tilt-direction
-// DEG] about the --slope or --alpha at the image centre.
+// DEG] about the --slope or --alpha at the image centre; --upsample K renders it on a grid K times
+// finer (upsampled_refocus.hpp).
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -11,6 +12,7 @@
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/synthetic_camera.hpp"
 #include "lfcam/tilted_focus.hpp"
+#include "lfcam/upsampled_refocus.hpp"
 #include "render_cli.hpp"
 
 namespace lfcam::cli {
@@ -22,6 +24,7 @@ void addRefocusCommand(CLI::App& app, Job& job) {
     std::string focusAt, focusPlane;
     std::optional<double> tilt;
     double tiltDirection = 0;
+    int upsample = 1;
     CameraOptions camera;
     std::string output, depth;
   };
@@ -46,6 +49,9 @@ void addRefocusCommand(CLI::App& app, Job& job) {
       ->add_option("--tilt-direction", options->tiltDirection,
                    "direction in which the slope grows, degrees (0: to the right, 90: down; default 0)")
       ->needs(tilt);
+  command->add_option("--upsample", options->upsample,
+                      "render on a grid K times finer (K = 2 or 3; 1: off, the default), each view's samples "
+                      "placed where they land: detail finer than the microlenses away from their plane");
   slope->excludes(alpha);
   focusAt->excludes(slope)->excludes(alpha);
   focusPlane->excludes(slope)->excludes(alpha)->excludes(focusAt)->excludes(tilt);
@@ -63,6 +69,13 @@ void addRefocusCommand(CLI::App& app, Job& job) {
         return makeError(ErrorCode::Usage,
                          "refocus: a tilted plane of focus is rendered with the full aperture and the fast method "
                          "only (no --aperture*, --method, --supersampling or --beta)");
+      if (options->upsample < 1 || options->upsample > kMaxUpsampleFactor)
+        return makeError(ErrorCode::Usage, "--upsample: expected 1 to " + std::to_string(kMaxUpsampleFactor) +
+                                               ", got " + std::to_string(options->upsample));
+      if (options->upsample > 1 && (tilted || !options->camera.isFullApertureFast()))
+        return makeError(ErrorCode::Usage,
+                         "refocus: --upsample renders a fronto-parallel focus with the full aperture and the fast "
+                         "method only (no --tilt, --focus-plane, --aperture*, --method, --supersampling or --beta)");
       std::array<ImagePoint, 3> planePoints{};
       if (!options->focusPlane.empty()) {
         LFCAM_ASSIGN_OR_RETURN(planePoints, parseFocusPlanePoints(options->focusPlane));
@@ -95,6 +108,10 @@ void addRefocusCommand(CLI::App& app, Job& job) {
       if (options->tilt) {
         const FocusPlane plane = focusPlaneFromTilt(lightField, slopeValue, *options->tilt, options->tiltDirection);
         return writeImage(options->output, refocusTilted(lightField, plane), writeOptions);
+      }
+      if (options->upsample > 1) {
+        LFCAM_ASSIGN_OR_RETURN(auto photo, refocusUpsampled(lightField, slopeValue, options->upsample));
+        return writeImage(options->output, photo, writeOptions);
       }
       return renderPhotos(lightField, camera, {slopeValue},
                           [&](int, double, Image&& photo) { return writeImage(options->output, photo, writeOptions); });
