@@ -26,6 +26,11 @@ Result<std::string> dataUrl(const Image& image, int quality) {
   return "data:image/jpeg;base64," + base64Encode(jpeg);
 }
 
+// The small aperture: a third of the lens's radius in views, at least one view step.
+double smallApertureRadius(const LightField& lightField) {
+  return std::max(1.0, (std::min(lightField.nu(), lightField.nv()) - 1) / 6.0);
+}
+
 }  // namespace
 
 Result<std::string> makeLivingPicture(const LightField& lightField, const LivingPictureOptions& options,
@@ -59,15 +64,23 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   LFCAM_ASSIGN_OR_RETURN(auto allInFocusUrl, dataUrl(composite.photo, options.jpegQuality));
   data["allInFocus"] = allInFocusUrl;
 
-  nlohmann::json slices = nlohmann::json::array();
-  LFCAM_TRY(renderFocalStack(lightField, slopes, SyntheticCamera{}, RenderOptions{},
-                             [&](int i, double slope, Image&& photo) -> Status {
-                               LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(photo, options.jpegQuality));
-                               slices.push_back({{"slope", slope}, {"image", url}});
-                               report(0.4 + 0.4 * (i + 1) / double(slopes.size()));
-                               return {};
-                             }));
-  data["slices"] = std::move(slices);
+  // The focal stack through the full aperture and, when asked, through a small one (more depth of
+  // field, as stopping a lens down gives).
+  const int stacks = options.smallAperture ? 2 : 1;
+  for (int stack = 0; stack < stacks; ++stack) {
+    SyntheticCamera camera;
+    if (stack == 1) camera.aperture = Aperture::circle(smallApertureRadius(lightField));
+    nlohmann::json slices = nlohmann::json::array();
+    LFCAM_TRY(renderFocalStack(lightField, slopes, camera, RenderOptions{},
+                               [&](int i, double slope, Image&& photo) -> Status {
+                                 LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(photo, options.jpegQuality));
+                                 slices.push_back({{"slope", slope}, {"image", url}});
+                                 report(0.4 + 0.4 * (stack * slopes.size() + i + 1) / double(stacks * slopes.size()));
+                                 return {};
+                               }));
+    data[stack == 0 ? "slices" : "smallApertureSlices"] = std::move(slices);
+  }
+  if (options.smallAperture) data["smallApertureRadius"] = smallApertureRadius(lightField);
 
   // Pinhole viewpoints on a circle at 80% of the lens radius (Figure 7's multi-perspective
   // views when the circle leaves the lens's corners).
