@@ -12,6 +12,7 @@
 
 #include "lfcam/light_field.hpp"
 #include "lfcam/progress.hpp"
+#include "lfcam/raw_io.hpp"
 #include "lfcam/result.hpp"
 
 namespace lfcam {
@@ -33,5 +34,14 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
 // The page written to `output` atomically (`lfcam export-html`, the page step of `lfcam batch`).
 Status writeLivingPicture(const std::filesystem::path& output, const LightField& lightField,
                           const LivingPictureOptions& options = {}, const ProgressCallback& progress = {});
+
+// Lytro's living pictures, back: the page over a processed container's own refocus stack
+// (raw_io.hpp, readLytroRefocusStack), its JPEG slices as stored. A click focuses where the
+// container's depth map says, blending the two slices whose lambdas lie around it; without a depth
+// map, the slider alone. No viewpoints or all-in-focus: the containers hold none as JPEGs. Usage
+// error for fewer than 2 or more than 255 slices.
+Result<std::string> makeLytroLivingPicture(const LytroRefocusStack& stack, const std::string& title);
+Status writeLytroLivingPicture(const std::filesystem::path& output, const LytroRefocusStack& stack,
+                               const std::string& title);
 
 }  // namespace lfcam

@@ -1,4 +1,5 @@
-// Browser test of `lfcam view`, `lfcam export-html` and the page of `lfcam demo`: Debian's chromium,
+// Browser test of `lfcam view`, `lfcam export-html` (of light fields and of Lytro containers) and
+// the page of `lfcam demo`: Debian's chromium,
 // driven by playwright-core, clicks a near and a far point and checks that the photograph changes
 // and that the clicked region becomes sharper. Screenshots go to the output folder.
 //
@@ -307,6 +308,49 @@ async function testDemo(context) {
   await page.close();
 }
 
+// Lytro's living pictures: `lfcam export-html` of a processed container focuses where the
+// container's depth map says, on its own slices, blended between the two around that lambda.
+async function testLytroPage(context, name, container) {
+  const html = path.join(outDir, `${name}.html`);
+  execFileSync(lfcam, ['export-html', container, '-o', html]);
+  const page = await context.newPage();
+  await page.goto(`file://${path.resolve(html)}`);
+  await page.waitForFunction(() => window.lfcamLiving && document.getElementById('photo').complete);
+  const info = await page.evaluate(() => ({ width: window.lfcamLiving.data.width, height: window.lfcamLiving.data.height,
+                                            positions: window.lfcamLiving.data.positions, slices: window.lfcamLiving.data.slices.length }));
+  check(info.positions && info.positions.length === info.width * info.height,
+        `${name}: ${info.slices} stored slices and a ${info.width}x${info.height} depth map`);
+  // The nearest and the farthest cells of the depth map (away from the border).
+  // and the one lying most nearly halfway between two slices.
+  let lo = null, hi = null, between = null;
+  for (let y = 1; y < info.height - 1; y++) for (let x = 1; x < info.width - 1; x++) {
+    const p = info.positions[y * info.width + x];
+    if (!lo || p < lo.p) lo = { x, y, p };
+    if (!hi || p > hi.p) hi = { x, y, p };
+    if (!between || Math.abs(p % 1 - 0.5) < Math.abs(between.p % 1 - 0.5)) between = { x, y, p };
+  }
+  check(hi.p - lo.p >= 1, `${name}: the depth map spans slices ${lo.p.toFixed(2)} to ${hi.p.toFixed(2)}`);
+  const sharp = {};
+  for (const [label, cell] of [['far', lo], ['near', hi], ['between', between]]) {
+    const at = await screenPoint(page, cell.x, cell.y, info);
+    await page.mouse.click(at.x, at.y);
+    await page.waitForFunction(() => window.lfcamLiving.idle() && document.getElementById('photo').complete);
+    const shown = await page.evaluate(() => window.lfcamLiving.current() + window.lfcamLiving.blend());
+    check(Math.abs(shown - cell.p) < 1e-3, `${name}: a click on the ${label} cell shows slice position ${shown.toFixed(3)} (its depth says ${cell.p.toFixed(3)})`);
+    await page.screenshot({ path: path.join(outDir, `${name}-${label}.png`) });
+    if (label !== 'between') {
+      const natural = await page.evaluate(() => [document.getElementById('photo').naturalWidth, document.getElementById('photo').naturalHeight]);
+      const inPhoto = (c) => [Math.floor((c.x + 0.5) / info.width * natural[0]), Math.floor((c.y + 0.5) / info.height * natural[1])];
+      sharp[label] = { near: await sharpness(page, ...inPhoto(hi)), far: await sharpness(page, ...inPhoto(lo)) };
+    }
+  }
+  check(sharp.near.near > 1.2 * sharp.far.near,
+    `${name}: the near cell's region is sharper focused there (${sharp.near.near.toFixed(0)}) than far (${sharp.far.near.toFixed(0)})`);
+  const opacity = await page.evaluate(() => Number(document.getElementById('blend').style.opacity));
+  check(Math.abs(opacity - between.p % 1) < 1e-3, `${name}: between two slices the next is laid over by ${opacity.toFixed(3)}`);
+  await page.close();
+}
+
 const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'lfcam-chromium-'));
 const context = await chromium.launchPersistentContext(userDataDir, {
   executablePath: '/usr/bin/chromium',
@@ -331,6 +375,14 @@ try {
     await testExport(context, 'antinous', antinous, hciTruth);
   } else {
     console.log(`skip hci-antinous: ${antinous || 'no shared data folder given'} is absent`);
+  }
+  // Lytro containers, when the shared data is there.
+  const lytro = sharedData && path.join(sharedData, 'lytro-lfp');
+  if (lytro && fs.existsSync(path.join(lytro, 'IMG_0001-stk.lfp'))) {
+    await testLytroPage(context, 'lytro-f01-stack', path.join(lytro, 'IMG_0001-stk.lfp'));
+    await testLytroPage(context, 'lytro-illum', path.join(lytro, 'demo.LFP'));
+  } else {
+    console.log(`skip Lytro containers: ${lytro || 'no shared data folder given'} is absent`);
   }
 } catch (error) {
   console.log(`FAIL ${error.stack || error}`);
