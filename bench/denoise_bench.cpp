@@ -30,10 +30,14 @@
 namespace lfcam {
 namespace {
 
-// 1 on the card's interior pixels.
-Image maskOf(const test::Card& card, int width, int height) {
+// 1 on the card's interior pixels (indexed in the `cardWidth` columns of the ideal depth; the
+// decoded capture's (s, t) start at the same microlens and may stop one short).
+Image maskOf(const test::Card& card, int cardWidth, int width, int height) {
   Image mask(width, height, 1);
-  for (std::size_t i : card.interior) mask.pixels()[i] = 1.0f;
+  for (std::size_t i : card.interior) {
+    const int x = int(i % std::size_t(cardWidth)), y = int(i / std::size_t(cardWidth));
+    if (x < width && y < height) mask.at(x, y, 0) = 1.0f;
+  }
   return mask;
 }
 
@@ -58,16 +62,17 @@ double snr(const Image& frame, const Image& standard, const Image& mask) {
   return signalToNoise(frame, standard, &mask)->snr;
 }
 
-void measure(double exposure) {
-  CameraModel camera = test::peopleCamera();
+void measure(double exposure, int microlenses) {
+  CameraModel camera = test::peopleCamera(microlenses);
   camera.sensor.exposure = exposure;
   const Scene scene = *builtinScene("people", camera);
-  auto traced = experiments::traceCapture(scene, camera, 16);
+  auto traced = experiments::traceCapture(scene, camera, 64);
   if (!traced) throw std::runtime_error(traced.error().message);
   auto clean = experiments::captureLightField(*traced, false, 0);
   auto noisy = experiments::captureLightField(*traced, true, 7);
   if (!clean || !noisy) throw std::runtime_error("capture failed");
-  const std::vector<test::Card> cards = test::sceneCards(scene, *idealDepth(scene, camera), *clean->metadata.optics);
+  const Image depth = *idealDepth(scene, camera);
+  const std::vector<test::Card> cards = test::sceneCards(scene, depth, *clean->metadata.optics);
   DenoiseOptions options;
   options.slopeMin = INFINITY, options.slopeMax = -INFINITY;
   for (const test::Card& card : cards)
@@ -80,24 +85,31 @@ void measure(double exposure) {
   std::printf("\nexposure %.2f (%d x %d views of %d x %d), passband %.2f:%.2f, bandwidth %.2f\n", exposure, clean->nu(),
               clean->nv(), clean->ns(), clean->nt(), options.slopeMin, options.slopeMax, options.bandwidth);
   std::printf(
-      "| card | disparity | centre view SNR before | after | gain | sharpness kept | refocused SNR before | after "
-      "| gain | sharpness kept |\n|---|---|---|---|---|---|---|---|---|---|\n");
+      "| card | disparity | refocused / centre sharpness | centre view SNR before | after | noise rms before | after | "
+      "sharpness kept | "
+      "refocused SNR before | after | noise rms before | after | sharpness kept |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   const Image centreClean = centreView(*clean), centreNoisy = centreView(*noisy);
   const Image centreCleanFiltered = centreView(*cleanFiltered), centreNoisyFiltered = centreView(*noisyFiltered);
   for (const test::Card& card : cards) {
-    const Image mask = maskOf(card, clean->ns(), clean->nt());
+    const Image mask = maskOf(card, depth.width(), clean->ns(), clean->nt());
     const Image photoClean = refocus(*clean, card.disparity), photoNoisy = refocus(*noisy, card.disparity);
     const Image photoCleanFiltered = refocus(*cleanFiltered, card.disparity);
     const Image photoNoisyFiltered = refocus(*noisyFiltered, card.disparity);
-    const double viewBefore = snr(centreNoisy, centreClean, mask);
-    const double viewAfter = snr(centreNoisyFiltered, centreClean, mask);
-    const double photoBefore = snr(photoNoisy, photoClean, mask);
-    const double photoAfter = snr(photoNoisyFiltered, photoClean, mask);
-    const double viewSharpness = gradientEnergy(centreCleanFiltered, mask) / gradientEnergy(centreClean, mask);
-    const double photoSharpness = gradientEnergy(photoCleanFiltered, mask) / gradientEnergy(photoClean, mask);
-    std::printf("| %s | %+.2f | %.1f | %.1f | %.2fx | %.1f %% | %.1f | %.1f | %.2fx | %.1f %% |\n", card.name.c_str(),
-                card.disparity, viewBefore, viewAfter, viewAfter / viewBefore, 100 * viewSharpness, photoBefore,
-                photoAfter, photoAfter / photoBefore, 100 * photoSharpness);
+    // SNR against the noise-free capture, and the noise alone (the filter is linear: the filtered
+    // noisy capture minus the filtered noise-free one).
+    auto row = [&](const Image& noisyBefore, const Image& cleanBefore, const Image& noisyAfter,
+                   const Image& cleanAfter) {
+      const double sharpness = gradientEnergy(cleanAfter, mask) / gradientEnergy(cleanBefore, mask);
+      std::printf(" %.1f | %.1f | %.4f | %.4f | %.1f %% |", snr(noisyBefore, cleanBefore, mask),
+                  snr(noisyAfter, cleanBefore, mask), signalToNoise(noisyBefore, cleanBefore, &mask)->noise,
+                  signalToNoise(noisyAfter, cleanAfter, &mask)->noise, 100 * sharpness);
+    };
+    std::printf("| %s | %+.2f | %.1f %% |", card.name.c_str(), card.disparity,
+                100 * gradientEnergy(photoClean, mask) / gradientEnergy(centreClean, mask));
+    row(centreNoisy, centreClean, centreNoisyFiltered, centreCleanFiltered);
+    row(photoNoisy, photoClean, photoNoisyFiltered, photoCleanFiltered);
+    std::printf("\n");
   }
 }
 
@@ -116,13 +128,16 @@ BENCHMARK(BM_Denoise)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(
 
 int main(int argc, char** argv) {
   std::vector<double> exposures;
-  for (int i = 1; i + 1 < argc; ++i)
+  int microlenses = 80;
+  for (int i = 1; i + 1 < argc; ++i) {
     if (std::strcmp(argv[i], "--exposure") == 0) exposures.push_back(std::atof(argv[i + 1]));
+    if (std::strcmp(argv[i], "--microlenses") == 0) microlenses = std::atoi(argv[i + 1]);
+  }
   if (exposures.empty()) exposures = {1.0, 0.1};
-  for (double exposure : exposures) lfcam::measure(exposure);
+  for (double exposure : exposures) lfcam::measure(exposure, microlenses);
   std::vector<char*> rest;
   for (int i = 0; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--exposure") == 0) {
+    if (std::strcmp(argv[i], "--exposure") == 0 || std::strcmp(argv[i], "--microlenses") == 0) {
       ++i;
       continue;
     }

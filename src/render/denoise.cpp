@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <numbers>
 #include <vector>
 
@@ -103,13 +104,14 @@ double mirroredPassband(const DenoiseOptions& sheared, double fs, double ft, dou
 
 }  // namespace denoise_detail
 
+namespace {
+
 // Per channel: each view's 2D spectrum, sheared so that the passband's middle slope stands still,
 // mirrored angularly (the views' sequence then wraps round without a jump, so a surface's energy
 // stays on its plane instead of leaking across the angular spectrum); the angular DFT of every
 // spatial frequency; the passband; and back.
-Result<LightField> denoise(const LightField& lightField, const DenoiseOptions& options) {
+LightField filterSamples(const LightField& lightField, const DenoiseOptions& options) {
   using namespace denoise_detail;
-  LFCAM_TRY(checkOptions(lightField, options));
   const LightFieldShape& shape = lightField.shape();
   const DenoisePadding padding = paddingFor(shape, options);
   const DenoiseOptions sheared = shearedPassband(options, padding);
@@ -134,7 +136,7 @@ Result<LightField> denoise(const LightField& lightField, const DenoiseOptions& o
       static_cast<fftwf_complex*>(fftwf_malloc(sizeof(fftwf_complex) * slots * frequencies)));
   FftwBuffer<float> real(static_cast<float*>(fftwf_malloc(sizeof(float) * std::size_t(Ns) * Nt)));
   FftwBuffer<fftwf_complex> plane(static_cast<fftwf_complex*>(fftwf_malloc(sizeof(fftwf_complex) * frequencies)));
-  if (!spectrum || !real || !plane) return makeError(ErrorCode::Io, "denoise: out of memory for the 4D spectrum");
+  if (!spectrum || !real || !plane) throw std::bad_alloc();
   fftwf_plan spatialForward, spatialInverse, angularForward, angularInverse;
   {
     std::lock_guard lock(fftw::plannerMutex());
@@ -163,11 +165,6 @@ Result<LightField> denoise(const LightField& lightField, const DenoiseOptions& o
   };
 
   LightField out(shape);
-  out.metadata = lightField.metadata;
-  if (lightField.hasWeight()) {
-    out.enableWeight();
-    std::copy(lightField.weights().begin(), lightField.weights().end(), out.weights().begin());
-  }
   auto slotOf = [&](int u, int v) { return spectrum.get() + (std::size_t(v) * Mu + u) * frequencies; };
   for (int c = 0; c < shape.channels; ++c) {
     for (int v = 0; v < shape.nv; ++v)
@@ -211,8 +208,6 @@ Result<LightField> denoise(const LightField& lightField, const DenoiseOptions& o
   return out;
 }
 
-namespace {
-
 // In place, the DFT along one axis of a [Mv][Mu][Nt][Ns] array (sign -1 forward, +1 inverse), term
 // by term in float64, on the lines whose other indices pass `keep`.
 template <class Keep>
@@ -233,11 +228,8 @@ void dftAlongAxis(std::vector<std::complex<double>>& data, const int (&size)[4],
   }
 }
 
-}  // namespace
-
-Result<LightField> denoiseReference(const LightField& lightField, const DenoiseOptions& options) {
+LightField filterSamplesReference(const LightField& lightField, const DenoiseOptions& options) {
   using namespace denoise_detail;
-  LFCAM_TRY(checkOptions(lightField, options));
   const LightFieldShape& shape = lightField.shape();
   const DenoisePadding padding = paddingFor(shape, options);
   const DenoiseOptions sheared = shearedPassband(options, padding);
@@ -300,6 +292,54 @@ Result<LightField> denoiseReference(const LightField& lightField, const DenoiseO
                 float(frame[index(v, u, t + padding.margin, s + padding.margin)].real() / double(count));
   }
   return out;
+}
+
+// With a weight, the normalised convolution filter(weight x samples) / filter(weight), so that
+// samples the aperture cut off (weight 0) neither darken nor blur their neighbours; where the
+// filtered weight is under 5 % the sample is kept as it was.
+Result<LightField> filterWeighted(const LightField& lightField, const DenoiseOptions& options,
+                                  LightField (*filter)(const LightField&, const DenoiseOptions&)) {
+  LFCAM_TRY(checkOptions(lightField, options));
+  LightField out;
+  if (!lightField.hasWeight()) {
+    out = filter(lightField, options);
+  } else {
+    const LightFieldShape& shape = lightField.shape();
+    LightField weighted(shape, Pages::Ordinary), weight({shape.nu, shape.nv, shape.ns, shape.nt, 1}, Pages::Ordinary);
+    for (int v = 0; v < shape.nv; ++v)
+      for (int u = 0; u < shape.nu; ++u) {
+        const float* w = lightField.weightPlane(u, v);
+        std::copy_n(w, shape.viewPixels(), weight.plane(u, v, 0));
+        for (int c = 0; c < shape.channels; ++c)
+          for (std::size_t i = 0; i < shape.viewPixels(); ++i)
+            weighted.plane(u, v, c)[i] = lightField.plane(u, v, c)[i] * w[i];
+      }
+    out = filter(weighted, options);
+    const LightField filteredWeight = filter(weight, options);
+    for (int v = 0; v < shape.nv; ++v)
+      for (int u = 0; u < shape.nu; ++u) {
+        const float* w = filteredWeight.plane(u, v, 0);
+        for (int c = 0; c < shape.channels; ++c) {
+          float* target = out.plane(u, v, c);
+          const float* source = lightField.plane(u, v, c);
+          for (std::size_t i = 0; i < shape.viewPixels(); ++i) target[i] = w[i] > 0.05f ? target[i] / w[i] : source[i];
+        }
+      }
+    out.enableWeight();
+    std::copy(lightField.weights().begin(), lightField.weights().end(), out.weights().begin());
+  }
+  out.metadata = lightField.metadata;
+  return out;
+}
+
+}  // namespace
+
+Result<LightField> denoise(const LightField& lightField, const DenoiseOptions& options) {
+  return filterWeighted(lightField, options, filterSamples);
+}
+
+Result<LightField> denoiseReference(const LightField& lightField, const DenoiseOptions& options) {
+  return filterWeighted(lightField, options, filterSamplesReference);
 }
 
 }  // namespace lfcam
