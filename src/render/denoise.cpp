@@ -20,23 +20,42 @@
 
 namespace lfcam {
 
-double denoisePassband(const DenoiseOptions& options, double fs, double ft, double fu, double fv) {
-  // The segment from a = slopeMin (fs, ft) to a + (dx, dy) = slopeMax (fs, ft), and its copies one
-  // cycle per view step apart: the nearest copy gives the distance.
+namespace {
+
+// Beyond this many standard deviations from the passband's segment the passband is taken as 0
+// (exp(-18) < 2e-8): it bounds the copies of the segment worth measuring.
+constexpr double kReach = 6;
+
+// The squared distance from (fu, fv) to the segment from a = slopeMin (fs, ft) to slopeMax (fs, ft)
+// or to its copies one cycle per view step apart, when under (kReach bandwidths)^2; else infinity.
+double squaredDistanceToSlopes(const DenoiseOptions& options, double fs, double ft, double fu, double fv) {
   const double ax = options.slopeMin * fs, ay = options.slopeMin * ft;
   const double dx = options.slopeMax * fs - ax, dy = options.slopeMax * ft - ay;
-  const double length2 = dx * dx + dy * dy;
-  const double extent = std::max({std::abs(ax), std::abs(ay), std::abs(ax + dx), std::abs(ay + dy)});
-  const int reach = int(std::ceil(extent)) + 1;
+  const double length2 = dx * dx + dy * dy, reach = kReach * options.bandwidth;
+  // The copies k whose bounding box, widened by `reach`, holds the point.
+  const int kx0 = int(std::ceil(std::min(ax, ax + dx) - reach - fu)),
+            kx1 = int(std::floor(std::max(ax, ax + dx) + reach - fu));
+  const int ky0 = int(std::ceil(std::min(ay, ay + dy) - reach - fv)),
+            ky1 = int(std::floor(std::max(ay, ay + dy) + reach - fv));
   double nearest = std::numeric_limits<double>::infinity();
-  for (int ky = -reach; ky <= reach; ++ky)
-    for (int kx = -reach; kx <= reach; ++kx) {
+  for (int ky = ky0; ky <= ky1; ++ky)
+    for (int kx = kx0; kx <= kx1; ++kx) {
       const double px = fu + kx - ax, py = fv + ky - ay;
       const double along = length2 > 0 ? std::clamp((px * dx + py * dy) / length2, 0.0, 1.0) : 0.0;
       const double ex = px - along * dx, ey = py - along * dy;
       nearest = std::min(nearest, ex * ex + ey * ey);
     }
-  return std::exp(-nearest / (2 * options.bandwidth * options.bandwidth));
+  return nearest <= reach * reach ? nearest : std::numeric_limits<double>::infinity();
+}
+
+double gaussian(double squaredDistance, double bandwidth) {
+  return std::isfinite(squaredDistance) ? std::exp(-squaredDistance / (2 * bandwidth * bandwidth)) : 0.0;
+}
+
+}  // namespace
+
+double denoisePassband(const DenoiseOptions& options, double fs, double ft, double fu, double fv) {
+  return gaussian(squaredDistanceToSlopes(options, fs, ft, fu, fv), options.bandwidth);
 }
 
 DenoiseOptions defaultDenoiseOptions(const LightField& lightField) {
@@ -99,7 +118,9 @@ DenoiseOptions shearedPassband(const DenoiseOptions& options, const DenoisePaddi
 }
 
 double mirroredPassband(const DenoiseOptions& sheared, double fs, double ft, double fu, double fv) {
-  return std::max(denoisePassband(sheared, fs, ft, fu, fv), denoisePassband(sheared, fs, -ft, fu, fv));
+  return gaussian(
+      std::min(squaredDistanceToSlopes(sheared, fs, ft, fu, fv), squaredDistanceToSlopes(sheared, fs, -ft, fu, fv)),
+      sheared.bandwidth);
 }
 
 }  // namespace denoise_detail
