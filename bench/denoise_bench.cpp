@@ -6,10 +6,13 @@
 // inside it:
 //   - SNR (mean over rms error against the noise-free capture) of the centre view and of the photo
 //     refocused at the card's disparity, before and after the filter;
+//   - the noise alone: rms of noisy minus noise-free, before; of filtered noisy minus filtered
+//     noise-free, after (the filter is linear);
 //   - sharpness: gradient energy of the noise-free capture's centre view and photo, filtered over
-//     unfiltered (noise would count as detail on the noisy ones).
-// Run: build/bench/denoise_bench [--exposure E] (default: 1 and 0.1, a ten times shorter exposure);
-// then the filter's time on one noisy capture.
+//     unfiltered (noise would count as detail on the noisy ones); and, first, the refocused photo's
+//     over the centre view's: how much of the centre view's detail the views share.
+// Run: build/bench/denoise_bench [--exposure E] [--microlenses N] (default: exposures 1 and 0.1, a
+// ten times shorter one; 80 microlenses across); then the filter's time on one noisy capture.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
