@@ -12,6 +12,8 @@
 //   BM_RefocusThreads     refocus of the antinous field on 1 and on 2 threads: the scaling.
 //   BM_RefocusPages       refocus of the antinous field on huge pages (as LightField allocates it)
 //                         and of a copy on 4 KiB pages (ratio = time / huge-page time, alternately).
+//   BM_RefocusUpsampled   refocus on a grid K = 2, 3 times finer (upsampled_refocus.hpp) of the
+//                         antinous field (ratio = its time / the plain refocus's, alternately).
 //   BM_RefocusReference   the float64 oracle against the fast kernel on a smaller field
 //                         (ratio = reference time / fast time).
 //
@@ -33,6 +35,7 @@
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/refocus.hpp"
+#include "lfcam/upsampled_refocus.hpp"
 #include "render/references.hpp"
 
 namespace {
@@ -169,6 +172,29 @@ double secondsPerRun(benchmark::State& state, const Work& work) {
   }
   return seconds / double(state.iterations());
 }
+
+// Argument K: refocusUpsampled at factor K (upsampled_refocus.hpp) against the plain refocus of
+// the antinous field at the same slope, timed one after the other in each iteration; ratio is the
+// median of upsampled time / plain time (goal for K = 2: at most 4, the viewer's budget).
+void BM_RefocusUpsampled(benchmark::State& state) {
+  const LightField& lightField = antinous();
+  const int factor = int(state.range(0));
+  std::vector<double> ratios;
+  for (auto _ : state) {
+    auto start = std::chrono::steady_clock::now();
+    lfcam::Image plain = lfcam::refocus(lightField, 0.63);
+    const double plainSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    benchmark::DoNotOptimize(plain.pixels().data());
+    start = std::chrono::steady_clock::now();
+    auto fine = lfcam::refocusUpsampled(lightField, 0.63, factor);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    benchmark::DoNotOptimize(fine->pixels().data());
+    state.SetIterationTime(seconds);
+    ratios.push_back(seconds / plainSeconds);
+  }
+  state.counters["ratio"] = lfcam::medianOf(ratios);
+}
+BENCHMARK(BM_RefocusUpsampled)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseManualTime();
 
 // A copy of the antinous field on 4 KiB pages: made while the process refuses transparent huge
 // pages, which overrides the allocator's advice.

@@ -19,6 +19,7 @@
 #include "lfcam/depth_knobs.hpp"
 #include "lfcam/disparity_scores.hpp"
 #include "lfcam/focal_stack.hpp"
+#include "lfcam/focus_spread.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/lenslet_grid.hpp"
 #include "lfcam/light_field_io.hpp"
@@ -26,6 +27,7 @@
 #include "lfcam/raw_io.hpp"
 #include "lfcam/synthetic_camera.hpp"
 #include "lfcam/tilted_focus.hpp"
+#include "lfcam/upsampled_refocus.hpp"
 
 namespace py = pybind11;
 
@@ -191,11 +193,32 @@ void bindPipeline(py::module_& m) {
       [](const LightField& lf, std::optional<double> slope, std::optional<double> alpha,
          std::optional<std::array<double, 2>> focusAt, std::optional<std::array<ImagePoint, 3>> focusPlane,
          std::optional<double> aperture, const std::string& shape, std::optional<std::array<double, 2>> centre,
-         std::optional<py::array> mask, const std::string& method, int supersampling, std::optional<double> beta) {
-        if (int(slope.has_value()) + int(alpha.has_value()) + int(focusAt.has_value()) + int(focusPlane.has_value()) !=
+         std::optional<py::array> mask, const std::string& method, int supersampling, std::optional<double> beta,
+         int upsample, std::optional<std::array<double, 2>> focusRange, std::optional<py::array> depth) {
+        if (int(slope.has_value()) + int(alpha.has_value()) + int(focusAt.has_value()) + int(focusPlane.has_value()) +
+                int(focusRange.has_value()) !=
             1)
           throw LibraryError(ErrorCode::Usage,
-                             "refocus: give the focus depth with one of slope, alpha, focus_at or focus_plane");
+                             "refocus: give the focus depth with one of slope, alpha, focus_at, "
+                             "focus_plane or focus_range");
+        const bool fullApertureFast =
+            !aperture && shape == "circle" && !centre && !mask && method == "fast" && supersampling == 0 && !beta;
+        if (depth && !focusRange) throw LibraryError(ErrorCode::Usage, "refocus: depth goes with focus_range");
+        if (focusRange) {
+          if (!fullApertureFast || upsample != 1)
+            throw LibraryError(ErrorCode::Usage,
+                               "refocus: focus_range renders with the full aperture and the fast method only");
+          std::optional<Image> disparity;
+          if (depth) disparity = imageFromArray(*depth, "depth");
+          return interruptible([&] {
+            if (!disparity) disparity = std::move(valueOrThrow(estimateDepth(lf)).disparity);
+            return valueOrThrow(refocusSpread(lf, *disparity, (*focusRange)[1], (*focusRange)[0]));
+          });
+        }
+        if (upsample != 1 && (focusPlane || !fullApertureFast))
+          throw LibraryError(ErrorCode::Usage,
+                             "refocus: upsample renders a fronto-parallel focus with the full aperture and the fast "
+                             "method only");
         if (focusPlane) {
           if (aperture || shape != "circle" || centre || mask || method != "fast" || supersampling != 0 || beta)
             throw LibraryError(ErrorCode::Usage,
@@ -210,17 +233,21 @@ void bindPipeline(py::module_& m) {
         if (alpha) value = valueOrThrow(slopeFromAlpha(lf, *alpha, "light field"));
         if (focusAt)
           value = interruptible([&] { return valueOrThrow(slopeAtPixel(lf, (*focusAt)[0], (*focusAt)[1])); });
+        if (upsample != 1) return interruptible([&] { return valueOrThrow(refocusUpsampled(lf, value, upsample)); });
         return std::move(photographs(lf, settings, {value}).front());
       },
       py::arg("light_field"), py::arg("slope") = py::none(), py::kw_only(), py::arg("alpha") = py::none(),
       py::arg("focus_at") = py::none(), py::arg("focus_plane") = py::none(), py::arg("aperture") = py::none(),
       py::arg("aperture_shape") = "circle", py::arg("aperture_centre") = py::none(),
       py::arg("aperture_mask") = py::none(), py::arg("method") = "fast", py::arg("supersampling") = 0,
-      py::arg("beta") = py::none(),
+      py::arg("beta") = py::none(), py::arg("upsample") = 1, py::arg("focus_range") = py::none(),
+      py::arg("depth") = py::none(),
       "A photograph refocused at a slope (pixels per view step), a relative film depth alpha, the depth of image "
       "point focus_at=(x, y), or on the tilted plane through three image points focus_plane=((x1, y1), (x2, y2), "
       "(x3, y3)), each at its sharpest; aperture radius and centre in view steps; method 'fast', 'quadrature' or "
-      "'fourier'.");
+      "'fourier'; upsample=K (2 or 3) renders on a grid K times finer, each view's samples placed where they land; "
+      "focus_range=(near, far) in slopes keeps everything between them in focus, on the disparity map depth (e.g. "
+      "depth(...).disparity.array) or one estimated on the way.");
   m.def(
       "stack",
       [](const LightField& lf, std::optional<std::vector<double>> slopes, std::optional<std::vector<double>> alphas,

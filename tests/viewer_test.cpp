@@ -91,6 +91,19 @@ TEST(ViewerRoutes, ServesTheEmbeddedPageAndNothingElse) {
   EXPECT_EQ(answerRequest(session(), {"DELETE", "/", {}}).status, 405);
 }
 
+TEST(ViewerRoutes, ServePageAnswersItsPageAndNothingElse) {
+  const auto answer = servePage("<html>one page</html>");
+  for (const char* path : {"/", "/index.html"}) {
+    const ViewerAnswer page = answer({"GET", path, {}});
+    EXPECT_EQ(page.status, 200) << path;
+    EXPECT_EQ(page.body, "<html>one page</html>");
+    EXPECT_EQ(page.contentType.rfind("text/html", 0), 0u);
+  }
+  for (const char* path : {"/viewer.js", "/../etc/passwd", "", "/index.htm"})
+    EXPECT_EQ(answer({"GET", path, {}}).status, 404) << path;
+  EXPECT_EQ(answer({"POST", "/", {}}).status, 405);
+}
+
 TEST(ViewerRoutes, RefusesBadParameters) {
   using P = std::multimap<std::string, std::string>;
   for (const P& params : std::vector<P>{{{"slope", "abc"}},

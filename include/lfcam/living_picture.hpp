@@ -1,7 +1,8 @@
 // The "living picture" of `lfcam export-html`: one self-contained HTML file that refocuses where
-// it is clicked with no server. It holds a focal stack (JPEG, base64 data: URLs), the index of
-// the sharpest slice of every pixel (from the all-in-focus labelling, all_in_focus.hpp: the
-// focus measure regularised across pixels), the all-in-focus photograph, and a viewpoint sweep
+// it is clicked with no server. It holds a focal stack (JPEG, base64 data: URLs) through the full
+// aperture and one through a small aperture, the index of the sharpest slice of every pixel (from
+// the all-in-focus labelling, all_in_focus.hpp: the focus measure regularised across pixels), the
+// all-in-focus photograph, and a viewpoint sweep
 // (pinhole views around a circle on the lens, observe() of synthetic_camera.hpp). The page is
 // src/viewer/assets/living.html, embedded in the binary; the data replaces its placeholder.
 #pragma once
@@ -11,6 +12,7 @@
 
 #include "lfcam/light_field.hpp"
 #include "lfcam/progress.hpp"
+#include "lfcam/raw_io.hpp"
 #include "lfcam/result.hpp"
 
 namespace lfcam {
@@ -19,17 +21,27 @@ struct LivingPictureOptions {
   int maxSlices = 24;    // focal stack depth (the all-in-focus step grows to fit)
   int sweepFrames = 24;  // viewpoints around the lens
   int jpegQuality = 85;
+  bool smallAperture = true;  // a second focal stack through a small aperture (a page control)
   std::string title = "lfcam living picture";
 };
 
 // The page's HTML. Usage error for an empty light field or options out of range.
-// Cost: about 2 maxSlices + 64 refocus times (all-in-focus with its focus measure, then the
-// stack) plus the JPEG encoding.
+// Cost: about 3 maxSlices + 64 refocus times (all-in-focus with its focus measure, then the
+// stacks) plus the JPEG encoding.
 Result<std::string> makeLivingPicture(const LightField& lightField, const LivingPictureOptions& options = {},
                                       const ProgressCallback& progress = {});
 
 // The page written to `output` atomically (`lfcam export-html`, the page step of `lfcam batch`).
 Status writeLivingPicture(const std::filesystem::path& output, const LightField& lightField,
                           const LivingPictureOptions& options = {}, const ProgressCallback& progress = {});
+
+// Lytro's living pictures, back: the page over a processed container's own refocus stack
+// (raw_io.hpp, readLytroRefocusStack), its JPEG slices as stored. A click focuses where the
+// container's depth map says, blending the two slices whose lambdas lie around it; without a depth
+// map, the slider alone. No viewpoints or all-in-focus: the containers hold none as JPEGs. Usage
+// error for fewer than 2 or more than 255 slices.
+Result<std::string> makeLytroLivingPicture(const LytroRefocusStack& stack, const std::string& title);
+Status writeLytroLivingPicture(const std::filesystem::path& output, const LytroRefocusStack& stack,
+                               const std::string& title);
 
 }  // namespace lfcam

@@ -13,11 +13,14 @@
 // Errors name the file in one line; nothing is printed.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "lfcam/image.hpp"
 #include "lfcam/raw_image.hpp"
 #include "lfcam/result.hpp"
 
@@ -36,6 +39,21 @@ Result<RawImage> readRaw(const std::filesystem::path& path, const RawReadOptions
 
 // "RGGB", "BGGR", "GRBG", "GBRG", "mono" (any case).
 std::optional<ColorFilter> parseColorFilterName(std::string_view name);
+
+// A processed Lytro container's refocus stack (first-generation `*-stk.lfp`, Illum pictures): the
+// JPEG slices as stored, each with the focus (lambda) it was made at, by increasing lambda, and the
+// container's depth map in lambda (empty when it holds none), row by row as the slices. Format
+// error when it holds fewer than two JPEG slices with a lambda (e.g. H.264 stacks: `lfcam extract`
+// writes those out).
+struct LytroRefocusSlice {
+  double lambda = 0;
+  std::vector<std::uint8_t> jpeg;
+};
+struct LytroRefocusStack {
+  std::vector<LytroRefocusSlice> slices;
+  Image depth;
+};
+Result<LytroRefocusStack> readLytroRefocusStack(const std::filesystem::path& path);
 
 enum class LytroStyle { FirstGeneration, Illum };  // .lfp (F01) or .lfr (Illum)
 

@@ -22,6 +22,8 @@ struct ViewerServerOptions {
 class ViewerServer {
  public:
   explicit ViewerServer(ViewerSession& session);
+  // Any answering function in place of answerRequest (e.g. one fixed page: servePage below).
+  explicit ViewerServer(std::function<ViewerAnswer(const ViewerRequest&)> answer);
   ~ViewerServer();
   // Binds the socket (Io error when the address is taken or invalid).
   Status bind(const ViewerServerOptions& options);
@@ -34,5 +36,9 @@ class ViewerServer {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// Answers GET / and /index.html with `html` (HEAD too), 404 any other path, 405 other methods:
+// a living picture (living_picture.hpp) served as it is.
+std::function<ViewerAnswer(const ViewerRequest&)> servePage(std::string html);
 
 }  // namespace lfcam

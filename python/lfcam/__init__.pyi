@@ -85,7 +85,8 @@ def refocus(light_field: LightField, slope: Optional[float] = None, *, alpha: Op
             focus_at: Optional[tuple[float, float]] = None, aperture: Optional[float] = None,
             aperture_shape: str = "circle", aperture_centre: Optional[tuple[float, float]] = None,
             aperture_mask: Optional[_Array] = None, method: str = "fast", supersampling: int = 0,
-            beta: Optional[float] = None) -> Image: ...
+            beta: Optional[float] = None, upsample: int = 1, focus_range: Optional[tuple[float, float]] = None,
+            depth: Optional[_Array] = None) -> Image: ...
 def stack(light_field: LightField, slopes: Optional[Sequence[float]] = None, *,
           alphas: Optional[Sequence[float]] = None, aperture: Optional[float] = None, aperture_shape: str = "circle",
           aperture_centre: Optional[tuple[float, float]] = None, aperture_mask: Optional[_Array] = None,

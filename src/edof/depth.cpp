@@ -57,8 +57,8 @@ std::vector<StarView> starViews(const LightField& lightField, int referenceU, in
 }
 
 // accumulator += (sample - reference)^2
-LFCAM_EDOF_CLONES void accumulateSquaredDifference(const float* __restrict sample, const float* __restrict reference,
-                                                   float* __restrict accumulator, int count) {
+LFCAM_CLONES void accumulateSquaredDifference(const float* __restrict sample, const float* __restrict reference,
+                                              float* __restrict accumulator, int count) {
   for (int x = 0; x < count; ++x) {
     const float difference = sample[x] - reference[x];
     accumulator[x] += difference * difference;

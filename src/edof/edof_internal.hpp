@@ -7,15 +7,9 @@
 #include <vector>
 
 #include "core/box_filter.hpp"
+#include "core/target_clones.hpp"
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
-
-// Hot loops compiled for AVX2 and for baseline x86-64, the one to run picked at load time.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define LFCAM_EDOF_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define LFCAM_EDOF_CLONES
-#endif
 
 namespace lfcam::edof {
 

@@ -61,8 +61,8 @@ constexpr int kSmallRadius = 8;
 
 // Row y of the mean over rows [y - r, y + r] (clipped) of `in`, times `weight` per pixel when it
 // is given (the guided filter's I p without a plane of its own).
-LFCAM_EDOF_CLONES void columnMeanRow(const float* __restrict in, const float* __restrict weight, int width, int height,
-                                     int y, int radius, float* __restrict target) {
+LFCAM_CLONES void columnMeanRow(const float* __restrict in, const float* __restrict weight, int width, int height,
+                                int y, int radius, float* __restrict target) {
   const int y0 = std::max(0, y - radius), y1 = std::min(height, y + radius + 1);
   std::fill(target, target + width, 0.0f);
   for (int yy = y0; yy < y1; ++yy) {
@@ -79,7 +79,7 @@ LFCAM_EDOF_CLONES void columnMeanRow(const float* __restrict in, const float* __
 }
 
 // The mean over [x - r, x + r] (clipped) of one row: the interior as 2 r + 1 vectorised passes.
-LFCAM_EDOF_CLONES void rowMean(const float* __restrict row, int width, int radius, float* __restrict target) {
+LFCAM_CLONES void rowMean(const float* __restrict row, int width, int radius, float* __restrict target) {
   auto clipped = [&](int x) {
     const int x0 = std::max(0, x - radius), x1 = std::min(width, x + radius + 1);
     float sum = 0;

@@ -10,10 +10,10 @@ namespace lfcam::edof {
 
 namespace {
 
-// Schedule: the label loop vectorises (LFCAM_EDOF_CLONES).
+// Schedule: the label loop vectorises (LFCAM_CLONES).
 // One step of a path: cur = Lr(p, .) from prev = Lr(p - r, .); sum += cur.
-LFCAM_EDOF_CLONES void pathStep(const float* __restrict cost, const float* __restrict prev, float* __restrict cur,
-                                float* __restrict sum, int labels, float p1, float p2) {
+LFCAM_CLONES void pathStep(const float* __restrict cost, const float* __restrict prev, float* __restrict cur,
+                           float* __restrict sum, int labels, float p1, float p2) {
   float minPrev = prev[0];
   for (int l = 1; l < labels; ++l) minPrev = std::min(minPrev, prev[l]);
   const float jump = minPrev + p2;
@@ -31,8 +31,7 @@ LFCAM_EDOF_CLONES void pathStep(const float* __restrict cost, const float* __res
   for (int l = 0; l < labels; ++l) sum[l] += cur[l];
 }
 
-LFCAM_EDOF_CLONES void startPath(const float* __restrict cost, float* __restrict cur, float* __restrict sum,
-                                 int labels) {
+LFCAM_CLONES void startPath(const float* __restrict cost, float* __restrict cur, float* __restrict sum, int labels) {
   for (int l = 0; l < labels; ++l) {
     cur[l] = cost[l];
     sum[l] += cost[l];

@@ -11,8 +11,8 @@ namespace {
 
 // The clones stay in this file: a declaration with target_clones elsewhere would make every
 // includer emit its own resolver.
-LFCAM_EDOF_CLONES void shiftedRow(const float* __restrict plane, int ns, int nt, int y, double shiftX, double shiftY,
-                                  int pad, float* __restrict padded, float* __restrict out) {
+LFCAM_CLONES void shiftedRow(const float* __restrict plane, int ns, int nt, int y, double shiftX, double shiftY,
+                             int pad, float* __restrict padded, float* __restrict out) {
   const double rowPosition = y + shiftY;
   const double rowFloor = std::floor(rowPosition);
   const float fy = float(rowPosition - rowFloor);

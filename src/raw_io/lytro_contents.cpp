@@ -2,6 +2,7 @@
 #include "raw_io/lytro_contents.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -207,6 +208,43 @@ LytroContents describeLytroContainer(const LytroContainer& container) {
   return contents;
 }
 
+std::optional<Image> floatMap(const LytroItem& item) {
+  const std::vector<std::uint8_t>& bytes = item.section->payload;
+  const std::size_t pixels = std::size_t(std::max(item.width, 0)) * std::size_t(std::max(item.height, 0));
+  if (item.width <= 0 || item.height <= 0 || checkedProduct({pixels, 4}) != std::uint64_t(bytes.size()))
+    return std::nullopt;
+  Image map(item.width, item.height, 1);
+  for (std::size_t k = 0; k < pixels; ++k) {
+    const std::uint32_t bits = std::uint32_t(bytes[4 * k]) | std::uint32_t(bytes[4 * k + 1]) << 8 |
+                               std::uint32_t(bytes[4 * k + 2]) << 16 | std::uint32_t(bytes[4 * k + 3]) << 24;
+    float v;
+    std::memcpy(&v, &bits, 4);
+    map.pixels()[k] = v;
+  }
+  return map;
+}
+
+Result<LytroRefocusStack> readLytroRefocusStack(const std::filesystem::path& path) {
+  LFCAM_ASSIGN_OR_RETURN(auto container, readLytroContainer(path));
+  const LytroContents contents = describeLytroContainer(container);
+  LytroRefocusStack stack;
+  for (const LytroItem& item : contents.items) {
+    if (item.kind == LytroItemKind::Jpeg && item.lambda && std::isfinite(*item.lambda))
+      stack.slices.push_back({*item.lambda, item.section->payload});
+    if (item.kind == LytroItemKind::DepthMap && stack.depth.empty())
+      if (auto map = floatMap(item)) stack.depth = std::move(*map);
+  }
+  if (stack.slices.size() < 2)
+    return makeError(ErrorCode::Format, path.string() + ": no refocus stack of JPEG slices in this Lytro container (" +
+                                            std::to_string(stack.slices.size()) +
+                                            " found; a raw frame needs --white; `lfcam extract` lists what it holds)");
+  std::sort(stack.slices.begin(), stack.slices.end(),
+            [](const LytroRefocusSlice& a, const LytroRefocusSlice& b) { return a.lambda < b.lambda; });
+  for (float v : stack.depth.pixels())
+    if (!std::isfinite(v)) return makeError(ErrorCode::Format, path.string() + ": the depth map has non-finite values");
+  return stack;
+}
+
 Status extractLytroContainer(const LytroContainer& container, const std::filesystem::path& folder,
                              const std::string& where) {
   const LytroContents contents = describeLytroContainer(container);
@@ -254,23 +292,15 @@ Status extractLytroContainer(const LytroContainer& container, const std::filesys
         }
         case LytroItemKind::DepthMap:
         case LytroItemKind::ConfidenceMap: {
-          const std::size_t pixels = std::size_t(std::max(item.width, 0)) * std::size_t(std::max(item.height, 0));
-          if (item.width <= 0 || item.height <= 0 || checkedProduct({pixels, 4}) != std::uint64_t(bytes.size())) {
+          const std::optional<Image> map = floatMap(item);
+          if (!map) {
             // Size unknown or not float32: keep the bytes.
             LFCAM_TRY(writeBytes(dir / (item.file + ".bin"), bytes.data(), bytes.size()));
             files.push_back(item.file + ".bin");
             break;
           }
-          Image map(item.width, item.height, 1);
-          for (std::size_t k = 0; k < pixels; ++k) {
-            const std::uint32_t bits = std::uint32_t(bytes[4 * k]) | std::uint32_t(bytes[4 * k + 1]) << 8 |
-                                       std::uint32_t(bytes[4 * k + 2]) << 16 | std::uint32_t(bytes[4 * k + 3]) << 24;
-            float v;
-            std::memcpy(&v, &bits, 4);
-            map.pixels()[k] = v;
-          }
-          LFCAM_TRY(writeImage(dir / (item.file + ".pfm"), map));
-          LFCAM_TRY(writeImage(dir / (item.file + ".png"), colorMap(map)));
+          LFCAM_TRY(writeImage(dir / (item.file + ".pfm"), *map));
+          LFCAM_TRY(writeImage(dir / (item.file + ".png"), colorMap(*map)));
           files.push_back(item.file + ".pfm");
           files.push_back(item.file + ".png");
           break;

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lfcam/image.hpp"
 #include "lfcam/result.hpp"
 #include "raw_io/lytro_container.hpp"
 
@@ -43,6 +44,10 @@ struct LytroContents {
 };
 
 LytroContents describeLytroContainer(const LytroContainer& container);
+
+// A depth or confidence map's float32 samples, when the table of contents gives its size and the
+// section holds exactly that many.
+std::optional<Image> floatMap(const LytroItem& item);
 
 // Writes every item into `folder` (atomically): JPEG slices and H.264 streams as they are,
 // depth and confidence maps as PFM plus a Turbo-coloured PNG, the table of contents and frame

@@ -17,11 +17,17 @@ namespace lfcam {
 Image refocusReference(const LightField& lightField, double slope);
 
 // The same formula with its own slope at each output pixel (x, y) (pixel indices); a pixel whose
-// slope is not finite is 0.
-Image refocusSlopeFieldReference(const LightField& lightField, const std::function<double(int x, int y)>& slopeAt);
+// slope is not finite is 0. With `keep`, only the taps (column, row) of view (u, v) for which
+// keep(u, v, row, column, x, y) holds count for pixel (x, y).
+using KeepTap = std::function<bool(int u, int v, int row, int column, int x, int y)>;
+Image refocusSlopeFieldReference(const LightField& lightField, const std::function<double(int x, int y)>& slopeAt,
+                                 const KeepTap& keep = {});
 
 // refocusTilted (tilted_focus.hpp): refocusSlopeFieldReference at the plane's slope at each pixel centre.
 Image refocusTiltedReference(const LightField& lightField, const FocusPlane& plane);
+
+// refocusUpsampled (upsampled_refocus.hpp): every sample of every view splatted on the fine grid.
+Result<Image> refocusUpsampledReference(const LightField& lightField, double slope, int factor);
 
 // renderSyntheticPhoto (synthetic_camera.hpp): the geometry per output pixel and per aperture
 // sample, with quadrilinear interpolation of the light field. supersampling = 1 samples the

@@ -21,7 +21,8 @@ namespace lfcam {
 // ------------------------------------------------------------------------------------------------
 // Reference: refocus.hpp's formula, term by term, at any slope per pixel.
 
-Image refocusSlopeFieldReference(const LightField& lightField, const std::function<double(int x, int y)>& slopeAt) {
+Image refocusSlopeFieldReference(const LightField& lightField, const std::function<double(int x, int y)>& slopeAt,
+                                 const KeepTap& keep) {
   const LightFieldShape& shape = lightField.shape();
   Image out(shape.ns, shape.nt, shape.channels);
   if (lightField.empty()) return out;
@@ -38,6 +39,7 @@ Image refocusSlopeFieldReference(const LightField& lightField, const std::functi
         for (int u = 0; u < shape.nu; ++u) {
           const AxisShift sx = axisShift(lightField.uFromCentre(u), slope, shape.ns);
           forEachBilinearTap(lightField, u, v, x, y, sx, sy, [&](int row, int column, double w) {
+            if (keep && !keep(u, v, row, column, x, y)) return;
             weightSum += w;
             for (int c = 0; c < shape.channels; ++c) sum[c] += w * lightField.at(u, v, column, row, c);
           });
@@ -173,16 +175,7 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
   }
 
   // Divide by the weight of the rays that arrived (section 5.2).
-  std::vector<float> weightRow(ns);
-  for (int y = y0; y < y1; ++y) {
-    const float* weight = weightRow.data();
-    if (weighted) {
-      weight = accumulatorRow(channels, y);
-    } else {
-      for (int x = 0; x < ns; ++x) weightRow[x] = plan.columnWeight[x] * plan.rowWeight[y];
-    }
-    for (int c = 0; c < channels; ++c) normaliseRow(out.row(y, c), accumulatorRow(c, y), weight, ns);
-  }
+  normaliseBlock(out, y0, y1, weighted, accumulatorRow, plan.columnWeight, plan.rowWeight);
 }
 
 }  // namespace

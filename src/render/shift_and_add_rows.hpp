@@ -3,6 +3,10 @@
 // Internal to the library.
 #pragma once
 
+#include <vector>
+
+#include "lfcam/image.hpp"
+
 namespace lfcam {
 
 // One view's contribution to one output row, at a constant shift: for every output column x in
@@ -45,5 +49,24 @@ void multiplyRows(float* out, const float* a, const float* b, int count);
 
 // out[i] = sum[i] / weight[i], or 0 where weight[i] <= 0 (no ray arrived).
 void normaliseRow(float* out, const float* sum, const float* weight, int count);
+
+// Rows [y0, y1) of `out` from a block's accumulators: channel c's row y is accumulatorRow(c, y)
+// divided by the weight that arrived, accumulated as one more plane (accumulatorRow(channels, y))
+// when `accumulated`, else separable: columnWeight[x] * rowWeight[y].
+template <class AccumulatorRow>
+void normaliseBlock(Image& out, int y0, int y1, bool accumulated, const AccumulatorRow& accumulatorRow,
+                    const std::vector<float>& columnWeight, const std::vector<float>& rowWeight) {
+  const int width = out.width(), channels = out.channels();
+  std::vector<float> weightRow(accumulated ? 0 : width);
+  for (int y = y0; y < y1; ++y) {
+    const float* weight = weightRow.data();
+    if (accumulated) {
+      weight = accumulatorRow(channels, y);
+    } else {
+      for (int x = 0; x < width; ++x) weightRow[x] = columnWeight[x] * rowWeight[y];
+    }
+    for (int c = 0; c < channels; ++c) normaliseRow(out.row(y, c), accumulatorRow(c, y), weight, width);
+  }
+}
 
 }  // namespace lfcam

@@ -1,17 +1,14 @@
-// Tilted focus (tilted_focus.hpp): the plane from three points or a tilt, the fast per-pixel
-// slope-field kernel, and its float64 oracle.
+// Tilted focus (tilted_focus.hpp): the plane from three points or a tilt, rendered by the slope-field
+// kernel (slope_field_rows.hpp), and its float64 oracle.
 #include "lfcam/tilted_focus.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
-#include <vector>
 
-#include "render/bilinear_taps.hpp"
 #include "render/references.hpp"
-#include "render/row_blocks.hpp"
-#include "render/shift_and_add_rows.hpp"
+#include "render/slope_field_rows.hpp"
 
 namespace lfcam {
 
@@ -25,46 +22,6 @@ FocusPlane centredPlane(const LightField& lightField) {
 }
 
 std::string pointText(const ImagePoint& point) { return std::to_string(point[0]) + "," + std::to_string(point[1]); }
-
-// Output rows [y0, y1): each view in turn adds its four bilinear taps at every pixel's own shift
-// into float32 accumulators that stay in cache while the views stream through (the order of
-// refocus.cpp's fast kernel; only the shift is per pixel here, so its bilinear coefficients are).
-void refocusTiltedRows(const LightField& lightField, const FocusPlane& plane, int y0, int y1, Image& out) {
-  const int ns = lightField.ns(), nt = lightField.nt(), channels = lightField.channels();
-  const int rows = y1 - y0;
-  // One (rows x ns) plane per channel, then one for the weight sum.
-  std::vector<float> accumulator(std::size_t(channels + 1) * rows * ns, 0.0f);
-  auto accumulatorRow = [&](int plane, int y) {
-    return accumulator.data() + (std::size_t(plane) * rows + (y - y0)) * ns;
-  };
-  std::vector<const float*> viewPlanes(channels);
-  for (int v = 0; v < lightField.nv(); ++v) {
-    const double vc = lightField.vFromCentre(v);
-    for (int u = 0; u < lightField.nu(); ++u) {
-      const double uc = lightField.uFromCentre(u);
-      for (int c = 0; c < channels; ++c) viewPlanes[c] = lightField.plane(u, v, c);
-      for (int y = y0; y < y1; ++y) {
-        float* weightRow = accumulatorRow(channels, y);
-        for (int x = 0; x < ns; ++x) {
-          const double slope = plane.slopeAt(x + 0.5, y + 0.5);
-          if (!std::isfinite(slope)) continue;
-          forEachBilinearTap(lightField, u, v, x, y, axisShift(uc, slope, ns), axisShift(vc, slope, nt),
-                             [&](int row, int column, double w) {
-                               const float tapWeight = float(w);
-                               const std::size_t at = std::size_t(row) * ns + column;
-                               weightRow[x] += tapWeight;
-                               for (int c = 0; c < channels; ++c)
-                                 accumulatorRow(c, y)[x] += tapWeight * viewPlanes[c][at];
-                             });
-        }
-      }
-    }
-  }
-  // Divide by the weight of the rays that arrived (section 5.2).
-  for (int y = y0; y < y1; ++y)
-    for (int c = 0; c < channels; ++c)
-      normaliseRow(out.row(y, c), accumulatorRow(c, y), accumulatorRow(channels, y), ns);
-}
 
 }  // namespace
 
@@ -107,12 +64,7 @@ FocusPlane focusPlaneFromTilt(const LightField& lightField, double slope, double
 }
 
 Image refocusTilted(const LightField& lightField, const FocusPlane& plane) {
-  const LightFieldShape& shape = lightField.shape();
-  Image out(shape.ns, shape.nt, shape.channels);
-  if (lightField.empty()) return out;
-  forEachRowBlock(shape.nt, shape.ns, shape.channels + 1,
-                  [&](int y0, int y1) { refocusTiltedRows(lightField, plane, y0, y1, out); });
-  return out;
+  return refocusSlopeField(lightField, [&plane](int x, int y) { return plane.slopeAt(x + 0.5, y + 0.5); });
 }
 
 Image refocusTiltedReference(const LightField& lightField, const FocusPlane& plane) {

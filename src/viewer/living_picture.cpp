@@ -1,4 +1,5 @@
-// makeLivingPicture: focal stack, per-pixel sharpest slice and viewpoint sweep in one HTML page.
+// makeLivingPicture: focal stack, per-pixel sharpest slice and viewpoint sweep in one HTML page;
+// makeLytroLivingPicture: the same page over a Lytro container's own stored slices and depth map.
 #include "lfcam/living_picture.hpp"
 
 #include <algorithm>
@@ -26,6 +27,42 @@ Result<std::string> dataUrl(const Image& image, int quality) {
   return "data:image/jpeg;base64," + base64Encode(jpeg);
 }
 
+// The page template with `data` in its slot: JSON inside a <script> element, '<' escaped so that
+// no "</script>" can close it early.
+Result<std::string> pageWithData(const nlohmann::json& data) {
+  const viewer::Asset* page = viewer::findAsset("living.html");
+  if (!page) return makeError(ErrorCode::Format, "export-html: the page template is missing from the build");
+  std::string json = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  std::string escaped;
+  escaped.reserve(json.size());
+  for (char c : json) {
+    if (c == '<')
+      escaped += "\\u003c";
+    else
+      escaped += c;
+  }
+  std::string html(page->bytes);
+  const auto at = html.find(placeholder);
+  if (at == std::string::npos) return makeError(ErrorCode::Format, "export-html: the page template has no data slot");
+  html.replace(at, placeholder.size(), escaped);
+  return html;
+}
+
+Status writePage(const std::filesystem::path& output, const std::string& html) {
+  return writeFileAtomically(output, [&](const std::filesystem::path& temporary) -> Status {
+    std::FILE* file = std::fopen(temporary.c_str(), "wb");
+    if (!file) return makeError(ErrorCode::Io, output.string() + ": cannot write");
+    const bool written = std::fwrite(html.data(), 1, html.size(), file) == html.size();
+    if (std::fclose(file) != 0 || !written) return makeError(ErrorCode::Io, output.string() + ": cannot write");
+    return {};
+  });
+}
+
+// The small aperture: a third of the lens's radius in views, at least one view step.
+double smallApertureRadius(const LightField& lightField) {
+  return std::max(1.0, (std::min(lightField.nu(), lightField.nv()) - 1) / 6.0);
+}
+
 }  // namespace
 
 Result<std::string> makeLivingPicture(const LightField& lightField, const LivingPictureOptions& options,
@@ -34,8 +71,6 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   if (options.maxSlices < 2 || options.maxSlices > 255 || options.sweepFrames < 1 || options.sweepFrames > 360 ||
       options.jpegQuality < 1 || options.jpegQuality > 100)
     return makeError(ErrorCode::Usage, "export-html: slices must be in 2..255, frames in 1..360, quality in 1..100");
-  const viewer::Asset* page = viewer::findAsset("living.html");
-  if (!page) return makeError(ErrorCode::Format, "export-html: the page template is missing from the build");
   auto report = [&](double fraction) {
     if (progress) progress(fraction);
   };
@@ -59,15 +94,23 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   LFCAM_ASSIGN_OR_RETURN(auto allInFocusUrl, dataUrl(composite.photo, options.jpegQuality));
   data["allInFocus"] = allInFocusUrl;
 
-  nlohmann::json slices = nlohmann::json::array();
-  LFCAM_TRY(renderFocalStack(lightField, slopes, SyntheticCamera{}, RenderOptions{},
-                             [&](int i, double slope, Image&& photo) -> Status {
-                               LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(photo, options.jpegQuality));
-                               slices.push_back({{"slope", slope}, {"image", url}});
-                               report(0.4 + 0.4 * (i + 1) / double(slopes.size()));
-                               return {};
-                             }));
-  data["slices"] = std::move(slices);
+  // The focal stack through the full aperture and, when asked, through a small one (more depth of
+  // field, as stopping a lens down gives).
+  const int stacks = options.smallAperture ? 2 : 1;
+  for (int stack = 0; stack < stacks; ++stack) {
+    SyntheticCamera camera;
+    if (stack == 1) camera.aperture = Aperture::circle(smallApertureRadius(lightField));
+    nlohmann::json slices = nlohmann::json::array();
+    LFCAM_TRY(renderFocalStack(lightField, slopes, camera, RenderOptions{},
+                               [&](int i, double slope, Image&& photo) -> Status {
+                                 LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(photo, options.jpegQuality));
+                                 slices.push_back({{"slope", slope}, {"image", url}});
+                                 report(0.4 + 0.4 * (stack * slopes.size() + i + 1) / double(stacks * slopes.size()));
+                                 return {};
+                               }));
+    data[stack == 0 ? "slices" : "smallApertureSlices"] = std::move(slices);
+  }
+  if (options.smallAperture) data["smallApertureRadius"] = smallApertureRadius(lightField);
 
   // Pinhole viewpoints on a circle at 80% of the lens radius (Figure 7's multi-perspective
   // views when the circle leaves the lens's corners).
@@ -83,33 +126,53 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   }
   data["sweep"] = std::move(sweep);
 
-  // JSON inside a <script> element: '<' escaped so that no "</script>" can close it early.
-  std::string json = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  std::string escaped;
-  escaped.reserve(json.size());
-  for (char c : json) {
-    if (c == '<')
-      escaped += "\\u003c";
-    else
-      escaped += c;
-  }
-  std::string html(page->bytes);
-  const auto at = html.find(placeholder);
-  if (at == std::string::npos) return makeError(ErrorCode::Format, "export-html: the page template has no data slot");
-  html.replace(at, placeholder.size(), escaped);
-  return html;
+  return pageWithData(data);
 }
 
 Status writeLivingPicture(const std::filesystem::path& output, const LightField& lightField,
                           const LivingPictureOptions& options, const ProgressCallback& progress) {
   LFCAM_ASSIGN_OR_RETURN(const std::string html, makeLivingPicture(lightField, options, progress));
-  return writeFileAtomically(output, [&](const std::filesystem::path& temporary) -> Status {
-    std::FILE* file = std::fopen(temporary.c_str(), "wb");
-    if (!file) return makeError(ErrorCode::Io, output.string() + ": cannot write");
-    const bool written = std::fwrite(html.data(), 1, html.size(), file) == html.size();
-    if (std::fclose(file) != 0 || !written) return makeError(ErrorCode::Io, output.string() + ": cannot write");
-    return {};
-  });
+  return writePage(output, html);
+}
+
+Result<std::string> makeLytroLivingPicture(const LytroRefocusStack& stack, const std::string& title) {
+  if (stack.slices.size() < 2 || stack.slices.size() > 255)
+    return makeError(ErrorCode::Usage, "export-html: a refocus stack of 2 to 255 slices is needed");
+  nlohmann::json slices = nlohmann::json::array();
+  for (const LytroRefocusSlice& slice : stack.slices)
+    slices.push_back(
+        {{"lambda", slice.lambda},
+         {"image", "data:image/jpeg;base64," + base64Encode(std::string(slice.jpeg.begin(), slice.jpeg.end()))}});
+  // Where each cell of the depth map lies in the stack: the fractional index of its lambda among
+  // the slices' (increasing), so that a click blends the two slices around it.
+  const int width = std::max(stack.depth.width(), 1), height = std::max(stack.depth.height(), 1);
+  nlohmann::json positions = nlohmann::json::array();
+  for (float lambda : stack.depth.pixels()) {
+    const auto above = std::upper_bound(stack.slices.begin(), stack.slices.end(), double(lambda),
+                                        [](double value, const LytroRefocusSlice& s) { return value < s.lambda; });
+    double position = 0;
+    if (above == stack.slices.end()) {
+      position = double(stack.slices.size() - 1);
+    } else if (above != stack.slices.begin()) {
+      const std::size_t k = std::size_t(above - stack.slices.begin()) - 1;
+      position = double(k) + (lambda - stack.slices[k].lambda) / (above->lambda - stack.slices[k].lambda);
+    }
+    positions.push_back(std::round(position * 1000) / 1000);
+  }
+  char caption[160];
+  std::snprintf(caption, sizeof caption, "a Lytro refocus stack of %zu slices, lambda %.2f to %.2f%s",
+                stack.slices.size(), stack.slices.front().lambda, stack.slices.back().lambda,
+                stack.depth.empty() ? " (no depth map: use the slider)" : "");
+  nlohmann::json data = {{"title", title},   {"caption", caption},          {"width", width},
+                         {"height", height}, {"slices", std::move(slices)}, {"sweep", nlohmann::json::array()}};
+  if (!stack.depth.empty()) data["positions"] = std::move(positions);
+  return pageWithData(data);
+}
+
+Status writeLytroLivingPicture(const std::filesystem::path& output, const LytroRefocusStack& stack,
+                               const std::string& title) {
+  LFCAM_ASSIGN_OR_RETURN(const std::string html, makeLytroLivingPicture(stack, title));
+  return writePage(output, html);
 }
 
 }  // namespace lfcam

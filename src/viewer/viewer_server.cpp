@@ -11,16 +11,20 @@
 namespace lfcam {
 
 struct ViewerServer::Impl {
-  ViewerSession& session;
+  std::function<ViewerAnswer(const ViewerRequest&)> answer;
   httplib::Server server;
   int port = 0;
-  explicit Impl(ViewerSession& s) : session(s) {}
+  explicit Impl(std::function<ViewerAnswer(const ViewerRequest&)> a) : answer(std::move(a)) {}
 };
 
-ViewerServer::ViewerServer(ViewerSession& session) : impl_(std::make_unique<Impl>(session)) {
+ViewerServer::ViewerServer(ViewerSession& session)
+    : ViewerServer([&session](const ViewerRequest& request) { return answerRequest(session, request); }) {}
+
+ViewerServer::ViewerServer(std::function<ViewerAnswer(const ViewerRequest&)> answer)
+    : impl_(std::make_unique<Impl>(std::move(answer))) {
   httplib::Server& server = impl_->server;
   auto handle = [this](const httplib::Request& request, httplib::Response& response) {
-    ViewerAnswer answer = answerRequest(impl_->session, {request.method, request.path, request.params});
+    ViewerAnswer answer = impl_->answer({request.method, request.path, request.params});
     response.status = answer.status;
     for (const auto& [name, value] : answer.headers) response.set_header(name, value);
     response.set_header("X-Content-Type-Options", "nosniff");
@@ -78,5 +82,22 @@ Status ViewerServer::run() {
 }
 
 void ViewerServer::stop() { impl_->server.stop(); }
+
+std::function<ViewerAnswer(const ViewerRequest&)> servePage(std::string html) {
+  return [html = std::move(html)](const ViewerRequest& request) {
+    ViewerAnswer answer;
+    if (request.method != "GET" && request.method != "HEAD") {
+      answer.status = 405;
+      answer.body = "method not allowed\n";
+    } else if (request.path != "/" && request.path != "/index.html") {
+      answer.status = 404;
+      answer.body = "not found\n";
+    } else {
+      answer.contentType = "text/html; charset=utf-8";
+      answer.body = html;
+    }
+    return answer;
+  };
+}
 
 }  // namespace lfcam

@@ -1,6 +1,7 @@
-// Browser test of `lfcam view` and `lfcam export-html`: Debian's chromium, driven by
-// playwright-core, clicks a near and a far point and checks that the photograph changes and that
-// the clicked region becomes sharper. Screenshots go to the output folder.
+// Browser test of `lfcam view`, `lfcam export-html` (of light fields and of Lytro containers) and
+// the page of `lfcam demo`: Debian's chromium,
+// driven by playwright-core, clicks a near and a far point and checks that the photograph changes
+// and that the clicked region becomes sharper. Screenshots go to the output folder.
 //
 //   node viewer_browser_test.mjs LFCAM_EXECUTABLE OUTPUT_DIR [SHARED_DATA_DIR]
 //
@@ -241,6 +242,115 @@ async function testExport(context, name, input, truth) {
   await page.close();
 }
 
+// `lfcam demo`, the README's first command: its page opens with a living picture (of the Lytro
+// flower when the shared data is there) that focuses where it is clicked, stops down and moves.
+async function testDemo(context) {
+  const dir = path.join(outDir, 'demo');
+  const env = { ...process.env };
+  if (sharedData) env.LFCAM_DATA_DIR = sharedData;
+  execFileSync(lfcam, ['demo', '-o', dir], { env, stdio: 'ignore' });
+  const page = await context.newPage();
+  const requests = [];
+  page.on('request', (r) => { if (!r.url().startsWith('data:') && !r.url().startsWith('file:')) requests.push(r.url()); });
+  await page.goto(`file://${path.resolve(dir, 'index.html')}`);
+  const frame = page.frameLocator('#living');
+  const inner = page.frames().find((f) => f.url().endsWith('living.html'));
+  check(inner !== undefined, 'demo: index.html opens with the living picture');
+  await inner.waitForFunction(() => window.lfcamLiving && document.getElementById('photo').complete);
+  const info = await inner.evaluate(() => ({ title: window.lfcamLiving.data.title, width: window.lfcamLiving.data.width,
+                                             height: window.lfcamLiving.data.height, nu: window.lfcamLiving.data.nu }));
+  const flower = sharedData && fs.existsSync(path.join(sharedData, 'lytro-f01-flower'));
+  check(!flower || info.nu === 10, `demo: the living picture shows ${flower ? 'the Lytro flower' : 'the layered planes'} (${info.nu} views across)`);
+  // Each click focuses where the page's map of sharpest slices says the clicked point is sharp.
+  const expectedSlice = (x, y) => inner.evaluate(([px, py]) => {
+    const { data } = window.lfcamLiving;
+    const index = Uint8Array.from(atob(data.index), (c) => c.charCodeAt(0));
+    const votes = new Map();
+    for (let dy = -3; dy <= 3; dy++) for (let dx = -3; dx <= 3; dx++) {
+      const qx = Math.min(data.width - 1, Math.max(0, px + dx)), qy = Math.min(data.height - 1, Math.max(0, py + dy));
+      votes.set(index[qy * data.width + qx], (votes.get(index[qy * data.width + qx]) || 0) + 1);
+    }
+    return [...votes.entries()].sort((a, b) => b[1] - a[1])[0][0];
+  }, [x, y]);
+  const box = await frame.locator('#photo').boundingBox();
+  // Two points of a 6x6 grid whose sharpest slices lie furthest apart, the first far from the start.
+  const candidates = [];
+  for (let j = 1; j <= 6; j++) for (let i = 1; i <= 6; i++) {
+    const x = Math.floor(i / 7 * info.width), y = Math.floor(j / 7 * info.height);
+    candidates.push({ x, y, slice: await expectedSlice(x, y) });
+  }
+  candidates.sort((a, b) => a.slice - b.slice);
+  const start = await inner.evaluate(() => window.lfcamLiving.current());
+  const ends = [candidates[0], candidates[candidates.length - 1]];
+  if (Math.abs(ends[0].slice - start) < Math.abs(ends[1].slice - start)) ends.reverse();
+  check(ends[0].slice !== ends[1].slice && ends[0].slice !== start,
+        `demo: points to click whose sharpest slices differ (${ends[0].slice}, ${ends[1].slice}; the page starts at ${start})`);
+  for (const { x, y } of ends) {
+    await page.mouse.click(box.x + (x + 0.5) / info.width * box.width, box.y + (y + 0.5) / info.height * box.height);
+    await inner.waitForFunction(() => window.lfcamLiving.idle() && document.getElementById('photo').complete);
+    const slice = await inner.evaluate(() => Number(document.getElementById('photo').dataset.slice));
+    const expected = await expectedSlice(x, y);
+    check(slice === expected, `demo: a click at (${x}, ${y}) focuses on slice ${slice} (the page's map says ${expected})`);
+  }
+  await page.screenshot({ path: path.join(outDir, 'demo-focused.png') });
+  // Stopping down shows another photograph at the same focus.
+  const fullSource = await photoSource(inner);
+  await frame.locator('#smallaperture').check();
+  await inner.waitForFunction(() => document.getElementById('photo').dataset.aperture === 'small');
+  check((await photoSource(inner)) !== fullSource, 'demo: the small aperture shows another photograph');
+  await page.screenshot({ path: path.join(outDir, 'demo-small-aperture.png') });
+  // The viewpoint moves.
+  await frame.locator('#play').click();
+  const first = await photoSource(inner);
+  await page.waitForTimeout(300);
+  check((await photoSource(inner)) !== first, 'demo: the viewpoint moves');
+  check(requests.length === 0, `demo: no network request (${requests.join(' ') || 'none'})`);
+  await page.close();
+}
+
+// Lytro's living pictures: `lfcam export-html` of a processed container focuses where the
+// container's depth map says, on its own slices, blended between the two around that lambda.
+async function testLytroPage(context, name, container) {
+  const html = path.join(outDir, `${name}.html`);
+  execFileSync(lfcam, ['export-html', container, '-o', html]);
+  const page = await context.newPage();
+  await page.goto(`file://${path.resolve(html)}`);
+  await page.waitForFunction(() => window.lfcamLiving && document.getElementById('photo').complete);
+  const info = await page.evaluate(() => ({ width: window.lfcamLiving.data.width, height: window.lfcamLiving.data.height,
+                                            positions: window.lfcamLiving.data.positions, slices: window.lfcamLiving.data.slices.length }));
+  check(info.positions && info.positions.length === info.width * info.height,
+        `${name}: ${info.slices} stored slices and a ${info.width}x${info.height} depth map`);
+  // The nearest and the farthest cells of the depth map (away from the border).
+  // and the one lying most nearly halfway between two slices.
+  let lo = null, hi = null, between = null;
+  for (let y = 1; y < info.height - 1; y++) for (let x = 1; x < info.width - 1; x++) {
+    const p = info.positions[y * info.width + x];
+    if (!lo || p < lo.p) lo = { x, y, p };
+    if (!hi || p > hi.p) hi = { x, y, p };
+    if (!between || Math.abs(p % 1 - 0.5) < Math.abs(between.p % 1 - 0.5)) between = { x, y, p };
+  }
+  check(hi.p - lo.p >= 1, `${name}: the depth map spans slices ${lo.p.toFixed(2)} to ${hi.p.toFixed(2)}`);
+  const sharp = {};
+  for (const [label, cell] of [['far', lo], ['near', hi], ['between', between]]) {
+    const at = await screenPoint(page, cell.x, cell.y, info);
+    await page.mouse.click(at.x, at.y);
+    await page.waitForFunction(() => window.lfcamLiving.idle() && document.getElementById('photo').complete);
+    const shown = await page.evaluate(() => window.lfcamLiving.current() + window.lfcamLiving.blend());
+    check(Math.abs(shown - cell.p) < 1e-3, `${name}: a click on the ${label} cell shows slice position ${shown.toFixed(3)} (its depth says ${cell.p.toFixed(3)})`);
+    await page.screenshot({ path: path.join(outDir, `${name}-${label}.png`) });
+    if (label !== 'between') {
+      const natural = await page.evaluate(() => [document.getElementById('photo').naturalWidth, document.getElementById('photo').naturalHeight]);
+      const inPhoto = (c) => [Math.floor((c.x + 0.5) / info.width * natural[0]), Math.floor((c.y + 0.5) / info.height * natural[1])];
+      sharp[label] = { near: await sharpness(page, ...inPhoto(hi)), far: await sharpness(page, ...inPhoto(lo)) };
+    }
+  }
+  check(sharp.near.near > 1.2 * sharp.far.near,
+    `${name}: the near cell's region is sharper focused there (${sharp.near.near.toFixed(0)}) than far (${sharp.far.near.toFixed(0)})`);
+  const opacity = await page.evaluate(() => Number(document.getElementById('blend').style.opacity));
+  check(Math.abs(opacity - between.p % 1) < 1e-3, `${name}: between two slices the next is laid over by ${opacity.toFixed(3)}`);
+  await page.close();
+}
+
 const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'lfcam-chromium-'));
 const context = await chromium.launchPersistentContext(userDataDir, {
   executablePath: '/usr/bin/chromium',
@@ -250,6 +360,7 @@ const context = await chromium.launchPersistentContext(userDataDir, {
          '--disable-background-networking', '--disable-component-update', '--disable-sync'],
 });
 try {
+  await testDemo(context);
   // The layered planes: exact ground truth.
   const scene = path.join(outDir, 'planes.lf.h5'), truthFile = path.join(outDir, 'planes-truth.pfm');
   execFileSync(lfcam, ['synth', '-o', scene, '--views', '9', '--size', '256', '--disparity', truthFile]);
@@ -264,6 +375,14 @@ try {
     await testExport(context, 'antinous', antinous, hciTruth);
   } else {
     console.log(`skip hci-antinous: ${antinous || 'no shared data folder given'} is absent`);
+  }
+  // Lytro containers, when the shared data is there.
+  const lytro = sharedData && path.join(sharedData, 'lytro-lfp');
+  if (lytro && fs.existsSync(path.join(lytro, 'IMG_0001-stk.lfp'))) {
+    await testLytroPage(context, 'lytro-f01-stack', path.join(lytro, 'IMG_0001-stk.lfp'));
+    await testLytroPage(context, 'lytro-illum', path.join(lytro, 'demo.LFP'));
+  } else {
+    console.log(`skip Lytro containers: ${lytro || 'no shared data folder given'} is absent`);
   }
 } catch (error) {
   console.log(`FAIL ${error.stack || error}`);

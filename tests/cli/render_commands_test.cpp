@@ -48,6 +48,61 @@ TEST(CliRender, RefocusWithApertureMethodAndFocusAt) {
   EXPECT_EQ(plane.out.rfind("focus plane: slope ", 0), 0u) << plane.out;
 }
 
+TEST(CliRender, RefocusUpsampledIsKTimesLarger) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  for (int factor : {1, 2, 3}) {
+    const fs::path out = dir / ("up" + std::to_string(factor) + ".png");
+    const auto result = runLfcam(
+        {"refocus", input, "--slope", "0.5", "--upsample", std::to_string(factor), "-o", out.string()}, dir.path());
+    ASSERT_EQ(result.exitStatus, 0) << result.err;
+    auto photo = readImage(out);
+    ASSERT_TRUE(photo) << photo.error().message;
+    EXPECT_EQ(photo->width(), 40 * factor);
+    EXPECT_EQ(photo->height(), 40 * factor);
+  }
+}
+
+// --focus-range: a synth capture's near card sharp together with a farther one, from the exact
+// disparity map (--depth) or one estimated on the way; in millimetres through the capture's optics.
+TEST(CliRender, RefocusFocusRangeInSlopesAndMillimetres) {
+  test::TempDir dir;
+  const std::string input = (dir / "cards.lf.h5").string(), truth = (dir / "truth.pfm").string();
+  ASSERT_EQ(
+      runLfcam({"synth", "--views", "5", "--size", "48", "-o", input, "--disparity", truth}, dir.path()).exitStatus, 0);
+  auto run = [&](std::vector<std::string> extra, const std::string& name) {
+    std::vector<std::string> args{"refocus", input, "-o", (dir / name).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto result = runLfcam(args, dir.path());
+    EXPECT_EQ(result.exitStatus, 0) << testing::PrintToString(extra) << ": " << result.err;
+    return readImage(dir / name);
+  };
+  auto exact = run({"--focus-range", "1.6:0.8", "--depth", truth, "--bit-depth", "float"}, "exact.tif");
+  auto estimated = run({"--focus-range", "1.6:0.8", "--bit-depth", "float"}, "estimated.tif");
+  auto near = run({"--slope", "1.6", "--bit-depth", "float"}, "near.tif");
+  ASSERT_TRUE(exact && estimated && near);
+  auto disparity = readImage(truth);
+  ASSERT_TRUE(disparity);
+  // On the near card (truth 1.6), away from its edges, the range renders it as focused on it.
+  double worst = 0;
+  int inside = 0;
+  for (int y = 3; y < 45; ++y)
+    for (int x = 3; x < 45; ++x) {
+      bool interior = true;
+      for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx) interior = interior && disparity->at(x + dx, y + dy, 0) > 1.5f;
+      if (!interior) continue;
+      ++inside;
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, double(std::abs(exact->at(x, y, c) - near->at(x, y, c))));
+    }
+  EXPECT_GT(inside, 20);
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_EQ(estimated->width(), 48);
+  // In millimetres: the same range through the synth capture's optics.
+  auto millimetres = run({"--focus-range", "900mm:4000mm"}, "mm.png");
+  EXPECT_TRUE(millimetres);
+}
+
 TEST(CliRender, ApertureMaskOfOneViewGivesThatView) {
   test::TempDir dir;
   const std::string input = test::makeSynthLightField(dir, 5, 40).string();
@@ -175,6 +230,17 @@ TEST(CliRender, UsageErrorsExitTwoWithOneLine) {
       {"refocus", input, "--focus-plane", "5,5:35,8:20,34", "--slope", "1", "-o", out},
       {"refocus", input, "--focus-plane", "5,5:35,8:20,34", "--aperture", "1", "-o", out},
       {"refocus", input, "--tilt", "1", "-o", out},
+      {"refocus", input, "--slope", "1", "--upsample", "5", "-o", out},
+      {"refocus", input, "--slope", "1", "--upsample", "0", "-o", out},
+      {"refocus", input, "--slope", "1", "--upsample", "2", "--aperture", "1", "-o", out},
+      {"refocus", input, "--slope", "1", "--upsample", "2", "--tilt", "1", "-o", out},
+      {"refocus", input, "--focus-range", "0.5:1.5", "-o", out},  // near behind far
+      {"refocus", input, "--focus-range", "2000mm:1000mm", "-o", out},
+      {"refocus", input, "--focus-range", "1:0mm", "-o", out},
+      {"refocus", input, "--focus-range", "1.5", "-o", out},
+      {"refocus", input, "--focus-range", "1.5:0.5", "--slope", "1", "-o", out},
+      {"refocus", input, "--focus-range", "1.5:0.5", "--aperture", "1", "-o", out},
+      {"refocus", input, "--slope", "1", "--depth", out, "-o", out},  // --depth needs --focus-range
       {"refocus", input, "--slope", "1", "--tilt-direction", "30", "-o", out},
       {"refocus", input, "--slope", "1", "--aperture-center", "1,1", "-o", out},
       {"refocus", input, "--slope", "1", "--aperture", "0.2", "--aperture-center", "9,9", "-o", out},

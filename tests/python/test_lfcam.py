@@ -73,6 +73,18 @@ def test_refocus_at_the_planes_disparity_is_its_texture():
     assert np.abs(blurred[inner] - centre[inner]).mean() > 0.05
 
 
+def test_upsample_renders_on_a_finer_grid_and_repeats_pixels_on_the_microlens_plane():
+    lf = sloped_light_field(disparity=1)
+    fine = lfcam.refocus(lf, 0.5, upsample=2).array
+    assert fine.shape[1:] == (2 * lf.samples.shape[3], 2 * lf.samples.shape[4])
+    plain = lfcam.refocus(lf, 0.0).array
+    repeated = np.repeat(np.repeat(plain, 2, axis=1), 2, axis=2)
+    np.testing.assert_allclose(lfcam.refocus(lf, 0.0, upsample=2).array, repeated, atol=1e-5)
+    for bad in ({"upsample": 5}, {"upsample": 2, "aperture": 1}):
+        with pytest.raises(lfcam.UsageError):
+            lfcam.refocus(lf, 0.5, **bad)
+
+
 def test_focus_plane_through_three_points_of_a_fronto_parallel_plane_is_its_refocus():
     lf = sloped_light_field(disparity=1)
     tilted = lfcam.refocus(lf, focus_plane=((12, 12), (36, 14), (20, 36))).array[0]
@@ -80,6 +92,21 @@ def test_focus_plane_through_three_points_of_a_fronto_parallel_plane_is_its_refo
     np.testing.assert_allclose(tilted[inner], lfcam.refocus(lf, 1.0).array[0][inner], atol=1e-2)
     with pytest.raises(lfcam.UsageError, match="one line"):
         lfcam.refocus(lf, focus_plane=((5, 5), (10, 10), (20, 20)))
+
+
+def test_focus_range_over_a_plane_is_its_refocus_and_bad_ranges_raise():
+    lf = sloped_light_field(disparity=1)
+    flat = np.ones((48, 48), np.float32)
+    inner = (slice(6, -6), slice(6, -6))
+    spread = lfcam.refocus(lf, focus_range=(1.5, 0.5), depth=flat).array[0]
+    np.testing.assert_allclose(spread[inner], lfcam.refocus(lf, 1.0).array[0][inner], atol=1e-5)
+    # The plane lies beyond a range nearer than it: rendered at the range's far end, as a lens focused there.
+    beyond = lfcam.refocus(lf, focus_range=(2.0, 1.5), depth=flat).array[0]
+    np.testing.assert_allclose(beyond[inner], lfcam.refocus(lf, 1.5).array[0][inner], atol=1e-5)
+    for bad in ({"focus_range": (0.5, 1.5)}, {"focus_range": (1.5, 0.5), "aperture": 1}, {"depth": flat},
+                {"focus_range": (1.5, 0.5), "depth": np.ones((10, 10), np.float32)}):
+        with pytest.raises(lfcam.UsageError):
+            lfcam.refocus(lf, **bad)
 
 
 def test_depth_finds_the_disparity_and_takes_the_commands_options():

@@ -1,9 +1,12 @@
 // Real Lytro metadata (../shared/data/lytro-metadata) and processed containers
-// (../shared/data/lytro-lfp): the values lfcam extracts, checked against the files' own numbers.
+// (../shared/data/lytro-lfp): the values lfcam extracts, checked against the files' own numbers,
+// and their refocus stacks as living pictures.
 #include <gtest/gtest.h>
 
 #include <fstream>
 
+#include "lfcam/living_picture.hpp"
+#include "lfcam/raw_io.hpp"
 #include "raw_io/lytro_contents.hpp"
 #include "raw_io/lytro_metadata.hpp"
 #include "test_support.hpp"
@@ -112,6 +115,36 @@ TEST(LytroContainerRealData, ProcessedFilesAreDescribed) {
   ASSERT_TRUE(contents.summary.contains("frame"));
   EXPECT_EQ(contents.summary["frame"]["sensor"], nlohmann::json({7728, 5368}));
   EXPECT_EQ(contents.summary["frame"]["bayer"], "GRBG");
+}
+
+// The refocus stacks of the processed containers: every JPEG slice with its lambda, in order, and
+// the depth map; the H.264 stack is refused in one line.
+TEST(LytroContainerRealData, RefocusStacksBecomeLivingPictures) {
+  LFCAM_REQUIRE_SHARED_DATA("lytro-lfp", dir);
+  struct Expected {
+    const char* file;
+    std::size_t slices;
+    int depthWidth, depthHeight;
+  };
+  for (const Expected& expected : {Expected{"IMG_0001-stk.lfp", 12, 20, 20}, Expected{"demo.LFP", 10, 88, 60}}) {
+    auto stack = readLytroRefocusStack(dir / expected.file);
+    ASSERT_TRUE(stack) << stack.error().message;
+    EXPECT_EQ(stack->slices.size(), expected.slices) << expected.file;
+    for (std::size_t i = 1; i < stack->slices.size(); ++i)
+      EXPECT_LT(stack->slices[i - 1].lambda, stack->slices[i].lambda) << expected.file;
+    for (const LytroRefocusSlice& slice : stack->slices)
+      ASSERT_TRUE(slice.jpeg.size() > 2 && slice.jpeg[0] == 0xFF && slice.jpeg[1] == 0xD8) << expected.file;
+    EXPECT_EQ(stack->depth.width(), expected.depthWidth) << expected.file;
+    EXPECT_EQ(stack->depth.height(), expected.depthHeight) << expected.file;
+    auto page = makeLytroLivingPicture(*stack, "test");
+    ASSERT_TRUE(page) << page.error().message;
+    EXPECT_NE(page->find("\"positions\""), std::string::npos);
+    EXPECT_EQ(page->find("{{LFCAM_DATA}}"), std::string::npos);
+  }
+  auto h264 = readLytroRefocusStack(dir / "IMG_0002-stk.lfp");
+  ASSERT_FALSE(h264);
+  EXPECT_EQ(h264.error().message.find('\n'), std::string::npos);
+  EXPECT_NE(h264.error().message.find("IMG_0002-stk.lfp"), std::string::npos);
 }
 
 }  // namespace

@@ -1,11 +1,15 @@
-// lfcam demo [-o DIR]: the main job on the built-in default. A light field is made on the spot
-// (the layered-planes scene), then everything lfcam can do with it so far is written to DIR with
-// an index.html that shows it.
+// lfcam demo [-o DIR]: the main job on the built-in default. The page opens with a living picture
+// to click (focus, aperture, viewpoint) of a real light field, the Lytro flower of ../shared/data
+// (or $LFCAM_DATA_DIR) when it is there, else of the layered planes; then a light field made on
+// the spot (the layered-planes scene) and everything lfcam does with it, and the camera chain from
+// a simulated raw to photographs, all written to DIR with an index.html that shows it.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -18,6 +22,8 @@
 #include "lfcam/depth.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/living_picture.hpp"
 #include "lfcam/raw_io.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/scene.hpp"
@@ -108,7 +114,21 @@ Status captureWithTheCamera(const fs::path& out) {
   return {};
 }
 
-std::string indexPage(const LightField& lf, const std::vector<double>& slopes) {
+// The real light field the page opens with: the Lytro flower when the shared data is there.
+std::optional<LightField> realLightField(std::string& name) {
+  const char* dataDir = std::getenv("LFCAM_DATA_DIR");
+  const fs::path flower = fs::path(dataDir && *dataDir ? dataDir : "../shared/data") / "lytro-f01-flower";
+  std::error_code error;
+  if (!fs::is_directory(flower, error)) return std::nullopt;
+  auto read = readLightField(flower.string());
+  if (!read) return std::nullopt;
+  name = "A real Lytro capture (lytro-f01-flower, " + std::to_string(read->nu()) + "&times;" +
+         std::to_string(read->nv()) + " views of " + std::to_string(read->ns()) + "&times;" +
+         std::to_string(read->nt()) + " pixels)";
+  return std::move(*read);
+}
+
+std::string indexPage(const LightField& lf, const std::vector<double>& slopes, const std::string& livingName) {
   std::ostringstream html;
   html << R"(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>lfcam demo</title>
@@ -116,6 +136,13 @@ std::string indexPage(const LightField& lf, const std::vector<double>& slopes) {
 figure{display:inline-block;margin:6px}img{max-width:340px;image-rendering:auto}figcaption{font-size:90%}
 .sheet img{max-width:100%}</style></head><body>
 <h1>lfcam demo</h1>
+<h2>Click to focus</h2>
+<p>)" << livingName
+       << R"(, as a living picture: click where to focus, stop the aperture down, move the viewpoint.
+The same page stands alone (<a href="living.html">living.html</a>); <code>lfcam export-html INPUT -o PAGE.html</code>
+makes one of any light field.</p>
+<iframe id="living" src="living.html" title="living picture" style="width:100%;height:720px;border:0;background:#000"></iframe>
+<h2>A light field made on the spot</h2>
 <p>A light field of )"
        << lf.nu() << "&times;" << lf.nv() << " views of " << lf.ns() << "&times;" << lf.nt()
        << R"( pixels, made on the spot: textured planes at known depths (the layered-planes scene).
@@ -195,7 +222,15 @@ Status runDemo(const fs::path& dir) {
     LFCAM_TRY(writeImage(out / "all-in-focus.png", sharp.photo));
     std::printf("  estimated depth -> depth-estimate.png, extended depth of field -> all-in-focus.png\n");
     LFCAM_TRY(captureWithTheCamera(out));
-    LFCAM_TRY(writeText(out / "index.html", indexPage(lf, slopes)));
+    std::string livingName = "The layered planes made below";
+    const std::optional<LightField> real = realLightField(livingName);
+    {
+      ProgressBar bar("making the living picture");
+      LFCAM_TRY(writeLivingPicture(out / "living.html", real ? *real : lf, {.title = "lfcam demo: click to focus"},
+                                   [&](double f) { bar(f); }));
+    }
+    std::printf("  living picture of %s -> living.html\n", real ? "the Lytro flower" : "the layered planes");
+    LFCAM_TRY(writeText(out / "index.html", indexPage(lf, slopes, livingName)));
     return {};
   });
 }

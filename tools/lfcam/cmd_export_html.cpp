@@ -1,6 +1,9 @@
 // lfcam export-html INPUT -o PAGE.html: a self-contained "living picture" that refocuses where it
-// is clicked, with no server (living_picture.hpp).
+// is clicked, with no server (living_picture.hpp); of a processed Lytro container (*-stk.lfp, an
+// Illum picture), over its own stored slices and depth map.
 #include <memory>
+
+#include "raw_io/lytro_container.hpp"
 
 #include "commands.hpp"
 #include "lfcam/living_picture.hpp"
@@ -26,6 +29,11 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
   command->add_option("--title", options->page.title, "the page's title");
   command->callback([options, &job] {
     job = [options]() -> Status {
+      // A processed container: its own slices. (A raw frame is decoded like any raw, with --white.)
+      if (options->input.white.empty() && looksLikeLytroContainer(options->input.path)) {
+        LFCAM_ASSIGN_OR_RETURN(auto stack, readLytroRefocusStack(options->input.path));
+        return writeLytroLivingPicture(options->output, stack, options->page.title);
+      }
       LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
       ProgressBar bar("making " + options->output);
       return writeLivingPicture(options->output, lightField, options->page, [&](double f) { bar(f); });

@@ -1,13 +1,28 @@
 // lfcam view INPUT [--port N] [--host ADDR]: the interactive viewer, a local web server whose page
-// refocuses where it is clicked (viewer.hpp, viewer_server.hpp).
+// refocuses where it is clicked (viewer.hpp, viewer_server.hpp); of a processed Lytro container, its
+// living picture over the container's own slices.
 #include <cstdio>
 #include <memory>
 
 #include "commands.hpp"
+#include "lfcam/living_picture.hpp"
 #include "lfcam/viewer.hpp"
 #include "lfcam/viewer_server.hpp"
+#include "raw_io/lytro_container.hpp"
 
 namespace lfcam::cli {
+
+namespace {
+
+Status serve(ViewerServer& server, const ViewerServerOptions& options, const std::string& input) {
+  LFCAM_TRY(server.bind(options));
+  std::printf("lfcam view: serving %s on http://%s:%d/ (Ctrl-C to stop)\n", input.c_str(), options.host.c_str(),
+              server.port());
+  std::fflush(stdout);
+  return server.run();
+}
+
+}  // namespace
 
 void addViewCommand(CLI::App& app, Job& job) {
   struct Options {
@@ -29,17 +44,20 @@ void addViewCommand(CLI::App& app, Job& job) {
   command->add_option("--max-renders", options->renders, "photographs rendered at once")->check(CLI::Range(1, 64));
   command->callback([options, &job] {
     job = [options]() -> Status {
+      // A processed Lytro container: its living picture over its own slices (living_picture.hpp).
+      if (options->input.white.empty() && looksLikeLytroContainer(options->input.path)) {
+        LFCAM_ASSIGN_OR_RETURN(auto stack, readLytroRefocusStack(options->input.path));
+        LFCAM_ASSIGN_OR_RETURN(auto page, makeLytroLivingPicture(stack, options->input.path));
+        ViewerServer server(servePage(std::move(page)));
+        return serve(server, options->server, options->input.path);
+      }
       LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
       ViewerLimits limits;
       limits.cacheBytes = std::size_t(options->cacheMb) << 20;
       limits.concurrentRenders = options->renders;
       ViewerSession session(std::move(lightField), limits);
       ViewerServer server(session);
-      LFCAM_TRY(server.bind(options->server));
-      std::printf("lfcam view: serving %s on http://%s:%d/ (Ctrl-C to stop)\n", options->input.path.c_str(),
-                  options->server.host.c_str(), server.port());
-      std::fflush(stdout);
-      return server.run();
+      return serve(server, options->server, options->input.path);
     };
   });
 }

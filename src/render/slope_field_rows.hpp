@@ -1,0 +1,79 @@
+// The fast kernel of a refocus whose slope changes from pixel to pixel (tilted focus,
+// tilted_focus.hpp; focus spread, focus_spread.hpp), with an optional test per tap that leaves a
+// ray out (an occluder). The float64 oracle is refocusSlopeFieldReference (references.hpp).
+// Internal to the library.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "lfcam/image.hpp"
+#include "lfcam/light_field.hpp"
+#include "render/bilinear_taps.hpp"
+#include "render/row_blocks.hpp"
+#include "render/shift_and_add_rows.hpp"
+
+namespace lfcam {
+
+// A tap test that keeps every ray.
+struct KeepEveryTap {
+  bool operator()(int, int, int, int, int, int) const { return true; }
+};
+
+// Output rows [y0, y1): each view in turn adds its four bilinear taps at every pixel's own shift
+// into float32 accumulators that stay in cache while the views stream through (the order of
+// refocus.cpp's fast kernel; only the shift is per pixel here, so its bilinear coefficients are).
+// slopeAt(x, y) is the slope of output pixel (x, y) (pixel indices; not finite: the pixel is 0);
+// keep(u, v, row, column, x, y) says whether the tap at (column, row) of view (u, v) counts for it.
+template <typename SlopeAt, typename Keep>
+void refocusSlopeFieldRows(const LightField& lightField, const SlopeAt& slopeAt, const Keep& keep, int y0, int y1,
+                           Image& out) {
+  const int ns = lightField.ns(), nt = lightField.nt(), channels = lightField.channels();
+  const int rows = y1 - y0;
+  // One (rows x ns) plane per channel, then one for the weight sum.
+  std::vector<float> accumulator(std::size_t(channels + 1) * rows * ns, 0.0f);
+  auto accumulatorRow = [&](int plane, int y) {
+    return accumulator.data() + (std::size_t(plane) * rows + (y - y0)) * ns;
+  };
+  std::vector<const float*> viewPlanes(channels);
+  for (int v = 0; v < lightField.nv(); ++v) {
+    const double vc = lightField.vFromCentre(v);
+    for (int u = 0; u < lightField.nu(); ++u) {
+      const double uc = lightField.uFromCentre(u);
+      for (int c = 0; c < channels; ++c) viewPlanes[c] = lightField.plane(u, v, c);
+      for (int y = y0; y < y1; ++y) {
+        float* weightRow = accumulatorRow(channels, y);
+        for (int x = 0; x < ns; ++x) {
+          const double slope = slopeAt(x, y);
+          if (!std::isfinite(slope)) continue;
+          forEachBilinearTap(lightField, u, v, x, y, axisShift(uc, slope, ns), axisShift(vc, slope, nt),
+                             [&](int row, int column, double w) {
+                               if (!keep(u, v, row, column, x, y)) return;
+                               const float tapWeight = float(w);
+                               const std::size_t at = std::size_t(row) * ns + column;
+                               weightRow[x] += tapWeight;
+                               for (int c = 0; c < channels; ++c)
+                                 accumulatorRow(c, y)[x] += tapWeight * viewPlanes[c][at];
+                             });
+        }
+      }
+    }
+  }
+  // Divide by the weight of the rays that arrived (section 5.2).
+  for (int y = y0; y < y1; ++y)
+    for (int c = 0; c < channels; ++c)
+      normaliseRow(out.row(y, c), accumulatorRow(c, y), accumulatorRow(channels, y), ns);
+}
+
+// The photograph of refocusSlopeFieldRows over the whole image, threaded over blocks of rows.
+template <typename SlopeAt, typename Keep = KeepEveryTap>
+Image refocusSlopeField(const LightField& lightField, const SlopeAt& slopeAt, const Keep& keep = {}) {
+  const LightFieldShape& shape = lightField.shape();
+  Image out(shape.ns, shape.nt, shape.channels);
+  if (lightField.empty()) return out;
+  forEachRowBlock(shape.nt, shape.ns, shape.channels + 1,
+                  [&](int y0, int y1) { refocusSlopeFieldRows(lightField, slopeAt, keep, y0, y1, out); });
+  return out;
+}
+
+}  // namespace lfcam
