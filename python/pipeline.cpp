@@ -14,6 +14,7 @@
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/calibrate.hpp"
 #include "lfcam/decode_files.hpp"
+#include "lfcam/denoise.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/depth_knobs.hpp"
 #include "lfcam/disparity_scores.hpp"
@@ -317,6 +318,18 @@ void bindPipeline(py::module_& m) {
       py::arg("max") = py::none(), py::arg("step") = 0.0,
       "Extended depth of field: an all-in-focus photomontage of a focal stack (Figure 15), following a disparity "
       "map when given (e.g. depth(...).disparity.array).");
+  m.def(
+      "denoise",
+      [](const LightField& lf, std::optional<std::pair<double, double>> depthRange, std::optional<double> bandwidth) {
+        DenoiseOptions options = defaultDenoiseOptions(lf);
+        if (depthRange) options.slopeMin = depthRange->first, options.slopeMax = depthRange->second;
+        if (bandwidth) options.bandwidth = *bandwidth;
+        return interruptible([&] { return valueOrThrow(denoise(lf, options)); });
+      },
+      py::arg("light_field"), py::kw_only(), py::arg("depth_range") = py::none(), py::arg("bandwidth") = py::none(),
+      "`lfcam denoise`: the light field through a 4D frequency-domain passband that keeps the surfaces of slopes "
+      "depth_range = (A, B) (pixels per view step; A == B: one depth) and removes most sensor noise. Default range: "
+      "the light field's stated disparity range, else (-2, 2); bandwidth in cycles per view step (default 0.06).");
   m.def(
       "score",
       [](const py::array& estimate, const py::array& truth, std::optional<py::array> mask, int border) {

@@ -4,6 +4,7 @@
 
 #include <functional>
 
+#include "lfcam/denoise.hpp"
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
 #include "lfcam/result.hpp"
@@ -36,5 +37,10 @@ Result<Image> renderSyntheticPhotoReference(const LightField& lightField, const 
 
 // observe (synthetic_camera.hpp), per pixel.
 Result<Image> observeReference(const LightField& lightField, const Observer& observer);
+
+// denoise (denoise.hpp): the same padded, sheared and mirrored frame, transformed by 1D DFTs term
+// by term over the full (not half) spectrum, the passband at every bin. Small light fields only
+// (each DFT is quadratic in its length).
+Result<LightField> denoiseReference(const LightField& lightField, const DenoiseOptions& options);
 
 }  // namespace lfcam

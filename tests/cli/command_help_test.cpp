@@ -10,10 +10,10 @@
 namespace lfcam::test {
 namespace {
 
-const std::vector<std::string> kCommands{"info",   "convert",   "views",   "refocus", "stack",       "observer",
-                                         "bench",  "animate",   "synth",   "demo",    "simulate",    "depth",
-                                         "score",  "edof",      "extract", "view",    "export-html", "experiment",
-                                         "decode", "calibrate", "batch"};
+const std::vector<std::string> kCommands{"info",       "convert", "views",     "refocus", "stack",    "observer",
+                                         "bench",      "animate", "synth",     "demo",    "simulate", "depth",
+                                         "score",      "edof",    "denoise",   "extract", "view",     "export-html",
+                                         "experiment", "decode",  "calibrate", "batch"};
 
 TEST(CommandHelp, AloneListsEveryCommandOnOneLineEach) {
   TempDir dir;

@@ -120,6 +120,18 @@ def test_depth_finds_the_disparity_and_takes_the_commands_options():
         lfcam.depth(lf, median_radius=-4)
 
 
+def test_denoise_keeps_a_plane_in_its_passband_and_removes_noise():
+    lf = sloped_light_field(disparity=1, views=7, size=64)
+    clean = lf.samples.copy()
+    noise = np.random.default_rng(1).normal(0, 0.05, clean.shape).astype(np.float32)
+    lf.samples[...] += noise
+    out = lfcam.denoise(lf, depth_range=(0.8, 1.2)).samples
+    inner = (Ellipsis, slice(10, -10), slice(10, -10))
+    assert np.sqrt(((out - clean)[inner] ** 2).mean()) < 0.5 * np.sqrt((noise[inner] ** 2).mean())
+    with pytest.raises(lfcam.UsageError, match="A <= B"):
+        lfcam.denoise(lf, depth_range=(1, 0))
+
+
 def test_score_of_the_truth_is_perfect():
     truth = np.linspace(-1, 1, 64 * 64, dtype=np.float32).reshape(64, 64)
     scores = lfcam.score(truth, truth, border=4)

@@ -28,6 +28,7 @@ const std::map<std::string, std::string>& examples() {
        "lfcam score ../shared/data/hci-antinous/gt_disp_lowres.pfm "
        "../shared/data/hci-antinous/gt_disp_lowres.pfm --json"},
       {"edof", "lfcam edof ../shared/data/lytro-f01-flower -o flower-all-in-focus.png"},
+      {"denoise", "lfcam denoise ../shared/data/lytro-f01-flower --depth-range -1:1 -o flower-denoised.lf.h5"},
       {"extract", "lfcam extract ../shared/data/lytro-lfp/IMG_0002-dm.lfp -o img0002-dm"},
       {"view", "lfcam view ../shared/data/lytro-f01-flower --port 8080"},
       {"export-html", "lfcam export-html ../shared/data/lytro-f01-flower -o flower.html"},

@@ -33,6 +33,7 @@ void addSimulateCommand(CLI::App& app, Job& job);
 void addDepthCommand(CLI::App& app, Job& job);
 void addScoreCommand(CLI::App& app, Job& job);
 void addEdofCommand(CLI::App& app, Job& job);
+void addDenoiseCommand(CLI::App& app, Job& job);
 void addExtractCommand(CLI::App& app, Job& job);
 void addViewCommand(CLI::App& app, Job& job);
 void addExportHtmlCommand(CLI::App& app, Job& job);

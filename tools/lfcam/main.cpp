@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   cli::addDepthCommand(app, job);
   cli::addScoreCommand(app, job);
   cli::addEdofCommand(app, job);
+  cli::addDenoiseCommand(app, job);
   cli::addExtractCommand(app, job);
   cli::addViewCommand(app, job);
   cli::addExportHtmlCommand(app, job);
