@@ -1,7 +1,7 @@
 // Which codec for the native file's chunks (docs/design.md, "The native file"): the size and the
 // single-thread compress and decompress times of each candidate on a real light field, cut into
 // chunks as the writer cuts it (one view each, in its exact encoding, shuffled when wider than a
-// byte). Median of 3 passes over every view.
+// byte for the byte-stream codecs; szip codes whole samples). Median of 3 passes over every view.
 //   build/bench/native_codec_bench [LIGHT_FIELD]   (default: ../shared/data/hci-antinous)
 #include <zlib.h>
 #include <zstd.h>
@@ -25,6 +25,7 @@ struct Codec {
   const char* name;
   std::function<Bytes(const Bytes&)> compress;
   std::function<void(const Bytes&, Bytes&)> decompress;  // into a buffer of the chunk's size
+  bool shuffled = true;                                  // compresses the shuffled codes (szip takes whole samples)
 };
 
 double medianSeconds(const std::function<void()>& pass) {
@@ -44,6 +45,20 @@ Codec libdeflateCodec(const char* name, int level) {
           [=](const Bytes& in, Bytes& out) {
             lfcam::io::unfilterChunk(in.data(), in.size(), 1, deflate, out.data(), out.size());
           }};
+}
+
+// libhdf5's szip parameters for views `width` samples wide, `elementSize` bytes each.
+Codec szipCodec(const char* name, std::size_t width, std::size_t elementSize) {
+  const lfcam::io::ChunkFilters szip{
+      .szip = lfcam::io::SzipParameters{.optionsMask = 32 | 8 | 128 | 1,  // difference coding, little-endian, raw
+                                        .pixelsPerBlock = 32,
+                                        .bitsPerPixel = unsigned(8 * elementSize),
+                                        .pixelsPerScanline = unsigned(std::min<std::size_t>(width, 32 * 128))}};
+  return {name, [=](const Bytes& in) { return lfcam::io::filterChunk(in.data(), in.size(), elementSize, szip, 0); },
+          [=](const Bytes& in, Bytes& out) {
+            lfcam::io::unfilterChunk(in.data(), in.size(), elementSize, szip, out.data(), out.size());
+          },
+          false};
 }
 
 Codec zlibCodec(const char* name, int level) {
@@ -85,12 +100,13 @@ int main(int argc, char** argv) {
   const lfcam::io::SampleEncoding encoding =
       lfcam::io::exactEncodingOf(samples, viewValues, lfcam::io::kColorEncodings);
   const std::size_t elementSize = lfcam::io::bytesPerSample(encoding.kind);
-  std::vector<Bytes> chunks;
+  std::vector<Bytes> chunks, unshuffled;
   std::size_t rawBytes = 0;
   for (std::size_t view = 0; view < lightField->shape().views(); ++view) {
     Bytes codes(viewValues * elementSize);
     lfcam::io::encodeExactly(encoding, samples.subspan(view * viewValues, viewValues), codes.data());
     chunks.push_back(lfcam::io::filterChunk(codes.data(), codes.size(), elementSize, {.shuffle = true}, 0));
+    unshuffled.push_back(codes);
     rawBytes += codes.size();
   }
   std::printf("%s: %zu views, %zu bytes per sample, %.1f MB as stored without compression\n", input.c_str(),
@@ -101,11 +117,13 @@ int main(int argc, char** argv) {
                           libdeflateCodec("libdeflate 1", 1),
                           libdeflateCodec("libdeflate 6", 6),
                           zstdCodec("zstd 1", 1),
-                          zstdCodec("zstd 3", 3)};
+                          zstdCodec("zstd 3", 3),
+                          szipCodec("szip", std::size_t(lightField->shape().ns), elementSize)};
   for (const Codec& codec : codecs) {
+    const std::vector<Bytes>& codes = codec.shuffled ? chunks : unshuffled;
     std::vector<Bytes> stored(chunks.size());
     const double compress = medianSeconds([&] {
-      for (std::size_t i = 0; i < chunks.size(); ++i) stored[i] = codec.compress(chunks[i]);
+      for (std::size_t i = 0; i < codes.size(); ++i) stored[i] = codec.compress(codes[i]);
     });
     Bytes back(chunks.front().size());
     const double decompress = medianSeconds([&] {

@@ -14,6 +14,7 @@ packages=(
   libpng-dev libjpeg-dev libtiff-dev libopenexr-dev libgif-dev  # image formats: their own libraries (docs/design.md, "Start-up")
   libhdf5-dev          # the native .lf.h5 light-field file
   libdeflate-dev       # its chunks, deflated and inflated by lfcam's own threads
+  libaec-dev           # szip (libsz): its 8- and 16-bit chunks, HDF5's own filter, coded by lfcam's threads
   zlib1g-dev libzstd-dev  # bench/native_codec_bench: the codecs it could have used instead
   libeigen3-dev        # least-squares fits (lenslet grid)
   nlohmann-json3-dev   # metadata, scene and grid JSON

@@ -54,7 +54,8 @@ float maxDifference(const Image& a, const Image& b) {
 }
 
 // The error's message names the file.
-void expectErrorNaming(const Result<Image>& result, const fs::path& path) {
+template <class T>
+void expectErrorNaming(const Result<T>& result, const fs::path& path) {
   ASSERT_FALSE(result.ok());
   EXPECT_NE(result.error().message.find(path.filename().string()), std::string::npos) << result.error().message;
   EXPECT_EQ(result.error().message.find('\n'), std::string::npos) << result.error().message;
@@ -359,6 +360,20 @@ TEST(ImageIoErrors, CorruptAndTruncatedPng) {
 
   test::writeBytes(dir / "signature.png", bytes.substr(0, 8));
   expectErrorNaming(readImage(dir / "signature.png"), dir / "signature.png");
+
+  // A header read (lfcam info) skips the image data: it still finds the file cut short, but
+  // leaves damage inside the data to the read of the pixels.
+  expectErrorNaming(readImageHeader(dir / "half.png"), dir / "half.png");
+  expectErrorNaming(readImageHeader(dir / "signature.png"), dir / "signature.png");
+  std::string damagedData = bytes;
+  damagedData[bytes.size() / 2] = char(damagedData[bytes.size() / 2] ^ 0x5a);
+  test::writeBytes(dir / "damaged.png", damagedData);
+  auto header = readImageHeader(dir / "damaged.png");
+  ASSERT_TRUE(header) << header.error().message;
+  EXPECT_EQ(header->width, 64);
+  auto pixels = readImage(dir / "damaged.png");
+  expectErrorNaming(pixels, dir / "damaged.png");
+  EXPECT_NE(pixels.error().message.find("fails its CRC check"), std::string::npos) << pixels.error().message;
 }
 
 std::uint32_t crc32(const std::string& bytes) {

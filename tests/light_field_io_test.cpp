@@ -297,6 +297,38 @@ TEST(LightFieldIoHdf5, AcceptsAnUntaggedFileOfTheRightLayout) {
 }
 
 // The precision rule (io/sample_encoding.hpp): the most compact type that gives every sample back.
+// The filters of /lightfield in `path`, in pipeline order.
+std::vector<H5Z_filter_t> filtersOf(const fs::path& path) {
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t data = H5Dopen2(file, "/lightfield", H5P_DEFAULT);
+  hid_t dcpl = H5Dget_create_plist(data);
+  std::vector<H5Z_filter_t> filters;
+  for (int i = 0; i < H5Pget_nfilters(dcpl); ++i)
+    filters.push_back(H5Pget_filter2(dcpl, unsigned(i), nullptr, nullptr, nullptr, 0, nullptr, nullptr));
+  H5Pclose(dcpl), H5Dclose(data), H5Fclose(file);
+  return filters;
+}
+
+// Writes `codes` as an srgb8 /lightfield of shape kSmall through libhdf5, one chunk per view,
+// with the filters `filter` sets.
+void writeCodes(const fs::path& path, const std::vector<std::uint8_t>& codes, void (*filter)(hid_t dcpl)) {
+  const hsize_t dims[5] = {2, 3, 3, 5, 7}, chunk[5] = {1, 1, 3, 5, 7};
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_chunk(dcpl, 5, chunk);
+  filter(dcpl);
+  hid_t space = H5Screate_simple(5, dims, nullptr);
+  hid_t data = H5Dcreate2(file, "lightfield", H5T_STD_U8LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+  H5Dwrite(data, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, codes.data());
+  hid_t stringType = H5Tcopy(H5T_C_S1);
+  H5Tset_size(stringType, 5);
+  hid_t scalar = H5Screate(H5S_SCALAR);
+  hid_t encoding = H5Acreate2(data, "encoding", stringType, scalar, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(encoding, stringType, "srgb8");
+  H5Aclose(encoding), H5Sclose(scalar), H5Tclose(stringType);
+  H5Dclose(data), H5Sclose(space), H5Pclose(dcpl), H5Fclose(file);
+}
+
 TEST(LightFieldIoHdf5, SamplesAreStoredInThePrecisionTheyCameIn) {
   test::TempDir dir;
   const LightFieldShape shape{.nu = 3, .nv = 2, .ns = 40, .nt = 30, .channels = 3};
@@ -346,6 +378,87 @@ TEST(LightFieldIoHdf5, SamplesAreStoredInThePrecisionTheyCameIn) {
   }
   // 8-bit sRGB costs a quarter of float32 before compression (which does better on floats of few values).
   EXPECT_LT(fs::file_size(dir / "srgb8.lf.h5") * 2, fs::file_size(dir / "float.lf.h5"));
+  // Integer codes through szip, floats through shuffle and deflate: HDF5's built-in filters.
+  EXPECT_EQ(filtersOf(dir / "srgb8.lf.h5"), std::vector<H5Z_filter_t>{H5Z_FILTER_SZIP});
+  EXPECT_EQ(filtersOf(dir / "linear16.lf.h5"), std::vector<H5Z_filter_t>{H5Z_FILTER_SZIP});
+  EXPECT_EQ(filtersOf(dir / "float.lf.h5"), (std::vector<H5Z_filter_t>{H5Z_FILTER_SHUFFLE, H5Z_FILTER_DEFLATE}));
+}
+
+// A smooth 8-bit light field, as photographs are: szip codes differences of neighbours, so it
+// stores far fewer bytes than samples; noise does not shrink, and its views are stored unfiltered
+// (the chunk's filter mask says so, and libhdf5 reads them too). A view smaller than one szip
+// block is deflated.
+TEST(LightFieldIoHdf5, SzipShrinksSmoothCodesAndStoresNoiseAsItIs) {
+  test::TempDir dir;
+  const LightFieldShape shape{.nu = 2, .nv = 2, .ns = 64, .nt = 48, .channels = 3};
+  LightField smooth(shape);
+  for (int v = 0; v < 2; ++v)
+    for (int u = 0; u < 2; ++u)
+      for (int c = 0; c < 3; ++c)
+        for (int t = 0; t < shape.nt; ++t)
+          for (int s = 0; s < shape.ns; ++s)
+            smooth.at(u, v, s, t, c) = linearFromSrgb(float((40 + s + t + 10 * c + u) % 256) / 255.0f);
+  const LightField noise = randomLightField(shape, 12, Quantise::Srgb8);
+  const LightField tiny = randomLightField({.nu = 2, .nv = 1, .ns = 4, .nt = 2, .channels = 1}, 13, Quantise::Srgb8);
+  for (const auto& [name, lf] : {std::pair<const char*, const LightField*>{"smooth.lf.h5", &smooth},
+                                 {"noise.lf.h5", &noise},
+                                 {"tiny.lf.h5", &tiny}}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(writeLightField(dir / name, *lf));
+    auto read = readLightField(dir / name);
+    ASSERT_TRUE(read) << read.error().message;
+    EXPECT_EQ(maxDifference(*read, *lf), 0.0f);
+  }
+  const auto storedBytes = [&](const char* name) {
+    hid_t file = H5Fopen((dir / name).c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t data = H5Dopen2(file, "/lightfield", H5P_DEFAULT);
+    const hsize_t bytes = H5Dget_storage_size(data);
+    H5Dclose(data), H5Fclose(file);
+    return bytes;
+  };
+  const hsize_t codes = smooth.samples().size();
+  EXPECT_LT(storedBytes("smooth.lf.h5"), codes / 2);  // steps of one code: about 3 bits a sample
+  EXPECT_EQ(storedBytes("noise.lf.h5"), codes);
+  EXPECT_EQ(filtersOf(dir / "tiny.lf.h5"), std::vector<H5Z_filter_t>{H5Z_FILTER_DEFLATE});
+
+  hid_t file = H5Fopen((dir / "noise.lf.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t data = H5Dopen2(file, "/lightfield", H5P_DEFAULT);
+  const hsize_t offset[5] = {1, 1, 0, 0, 0};
+  std::uint32_t mask = 0;
+  ASSERT_GE(H5Dget_chunk_info_by_coord(data, offset, &mask, nullptr, nullptr), 0);
+  EXPECT_EQ(mask, 1u);  // szip skipped
+  std::vector<std::uint8_t> stored(noise.samples().size());
+  ASSERT_GE(H5Dread(data, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, stored.data()), 0);
+  EXPECT_EQ(stored.back(), std::lround(srgbFromLinear(noise.samples().back()) * 255.0f));
+  H5Dclose(data), H5Fclose(file);
+}
+
+// 8-bit codes as lfcam wrote them before szip (shuffle-free deflate, the same encoding attribute)
+// still read, through lfcam's own inflation.
+TEST(LightFieldIoHdf5, DeflatedCodesOfEarlierFilesStillRead) {
+  test::TempDir dir;
+  const LightField lf = randomLightField(kSmall, 14, Quantise::Srgb8);
+  std::vector<std::uint8_t> codes(lf.samples().size());
+  for (std::size_t i = 0; i < codes.size(); ++i)
+    codes[i] = std::uint8_t(std::lround(srgbFromLinear(lf.samples()[i]) * 255.0f));
+  const fs::path path = dir / "deflated.lf.h5";
+  writeCodes(path, codes, [](hid_t dcpl) { H5Pset_deflate(dcpl, 1); });
+  EXPECT_EQ(filtersOf(path), std::vector<H5Z_filter_t>{H5Z_FILTER_DEFLATE});
+  auto read = readLightField(path);
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(maxDifference(*read, lf), 0.0f);
+}
+
+// szip parameters libaec cannot take (blocks of 4 pixels: libhdf5 accepts them, libaec does not)
+// are one Format error before anything decodes with them.
+TEST(LightFieldIoHdf5, SzipParametersOutOfRangeAreAFormatError) {
+  test::TempDir dir;
+  const fs::path path = dir / "blocks4.lf.h5";
+  writeCodes(path, std::vector<std::uint8_t>(kSmall.views() * 3 * 5 * 7, 9),
+             [](hid_t dcpl) { H5Pset_szip(dcpl, H5_SZIP_NN_OPTION_MASK, 4); });
+  auto read = readLightField(path);
+  expectErrorMentioning(read, "szip parameters out of range");
+  EXPECT_EQ(read.error().code, ErrorCode::Format);
 }
 
 // Writes /lightfield as lfcam 1 did: float32, one chunk per view, shuffle and deflate applied by
@@ -492,7 +605,7 @@ TEST(LightFieldIoHdf5, ChunksOfTheWrongSizeOrCorruptAreErrors) {
     hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     hid_t data = H5Dopen2(file, "lightfield", H5P_DEFAULT);
     const hsize_t offset[5] = {1, 2, 0, 0, 0};
-    // Filter mask 0: deflate applied (all but the last are not deflate streams at all).
+    // Filter mask 0: szip applied (none of these is an szip stream of one view).
     ASSERT_GE(H5Dwrite_chunk(data, H5P_DEFAULT, 0, offset, stored[i].size(), stored[i].data()), 0);
     H5Dclose(data), H5Fclose(file);
     auto read = readLightField(path);

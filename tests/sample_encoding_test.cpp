@@ -5,6 +5,8 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -107,6 +109,53 @@ TEST(Hdf5ChunkCodec, FiltersRoundTripAndBadChunksAreDescribed) {
   EXPECT_EQ(shuffled, (std::vector<unsigned char>{1, 3, 5, 2, 4, 6}));
   std::vector<unsigned char> garbage(100, 0xAB), out(4000);
   EXPECT_NE(unfilterChunk(garbage.data(), garbage.size(), 1, {.deflate = true}, out.data(), out.size()), "");
+}
+
+// szip with libhdf5's parameters for a 64 x 50 uint16 view (little-endian, difference coding).
+constexpr SzipParameters kSzip16{
+    .optionsMask = 32 | 8 | 128 | 1, .pixelsPerBlock = 32, .bitsPerPixel = 16, .pixelsPerScanline = 64};
+
+TEST(Hdf5ChunkCodec, SzipRoundTripsSmoothCodesSmallAndRefusesWhatIsWrong) {
+  std::vector<std::uint16_t> codes(64 * 50);
+  for (std::size_t i = 0; i < codes.size(); ++i) codes[i] = std::uint16_t(1000 + (i % 64) * 3 + (i / 64) * 5);
+  const auto* data = reinterpret_cast<const unsigned char*>(codes.data());
+  const std::size_t bytes = codes.size() * 2;
+  const ChunkFilters szip{.szip = kSzip16};
+  const std::vector<unsigned char> stored = filterChunk(data, bytes, 2, szip, 1);
+  ASSERT_FALSE(stored.empty());
+  EXPECT_LT(stored.size(), bytes / 3);  // differences of 3 take a few bits each, not 16
+  EXPECT_EQ(stored[0] | stored[1] << 8 | stored[2] << 16 | stored[3] << 24, int(bytes));  // libhdf5's header
+  std::vector<unsigned char> back(bytes);
+  EXPECT_EQ(unfilterChunk(stored.data(), stored.size(), 2, szip, back.data(), back.size()), "");
+  EXPECT_EQ(std::memcmp(back.data(), data, bytes), 0);
+  std::vector<unsigned char> small(bytes - 2), cut(stored.begin(), stored.begin() + 3);
+  EXPECT_NE(unfilterChunk(stored.data(), stored.size(), 2, szip, small.data(), small.size()), "");
+  EXPECT_NE(unfilterChunk(cut.data(), cut.size(), 2, szip, back.data(), back.size()), "");
+  std::vector<unsigned char> corrupt = stored;
+  corrupt.resize(corrupt.size() / 2);
+  EXPECT_NE(unfilterChunk(corrupt.data(), corrupt.size(), 2, szip, back.data(), back.size()), "");
+
+  // Noise does not shrink: the writer stores such a chunk unfiltered.
+  std::mt19937 random(7);
+  std::vector<unsigned char> noise(4096);
+  for (unsigned char& byte : noise) byte = static_cast<unsigned char>(random());
+  SzipParameters bytes8 = kSzip16;
+  bytes8.bitsPerPixel = 8;
+  EXPECT_TRUE(filterChunk(noise.data(), noise.size(), 1, {.szip = bytes8}, 1).empty());
+
+  // Parameters libaec could not take (a zero block size divides by zero in it) are refused.
+  EXPECT_TRUE(szipParametersValid(kSzip16, 2));
+  EXPECT_FALSE(szipParametersValid(kSzip16, 1));
+  for (const unsigned block : {0u, 7u, 64u}) {
+    SzipParameters bad = kSzip16;
+    bad.pixelsPerBlock = block;
+    EXPECT_FALSE(szipParametersValid(bad, 2)) << block;
+  }
+  SzipParameters wide = kSzip16;
+  wide.pixelsPerScanline = 0;
+  EXPECT_FALSE(szipParametersValid(wide, 2));
+  wide.pixelsPerScanline = 32 * 128 + 1;
+  EXPECT_FALSE(szipParametersValid(wide, 2));
 }
 
 }  // namespace

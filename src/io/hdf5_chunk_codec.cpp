@@ -1,6 +1,9 @@
 #include "io/hdf5_chunk_codec.hpp"
 
 #include <libdeflate.h>
+extern "C" {  // szlib.h declares C functions without saying so to C++
+#include <szlib.h>
+}
 
 #include <cstring>
 #include <memory>
@@ -21,10 +24,51 @@ void unshuffleBytes(const unsigned char* in, std::size_t count, std::size_t elem
     for (std::size_t i = 0; i < count; ++i) out[i * elementSize + j] = in[j * count + i];
 }
 
+SZ_com_t szipOptions(const SzipParameters& szip) {
+  return {.options_mask = int(szip.optionsMask),
+          .bits_per_pixel = int(szip.bitsPerPixel),
+          .pixels_per_block = int(szip.pixelsPerBlock),
+          .pixels_per_scanline = int(szip.pixelsPerScanline)};
+}
+
+// libhdf5's szip chunk: the unfiltered size (32-bit little-endian), then libaec's stream.
+constexpr std::size_t kSzipHeader = 4;
+
+std::vector<unsigned char> szipChunk(const unsigned char* data, std::size_t bytes, const SzipParameters& szip) {
+  std::vector<unsigned char> out(kSzipHeader + bytes);
+  for (std::size_t i = 0; i < kSzipHeader; ++i) out[i] = static_cast<unsigned char>(bytes >> (8 * i));
+  std::size_t size = bytes;
+  SZ_com_t options = szipOptions(szip);
+  if (SZ_BufftoBuffCompress(out.data() + kSzipHeader, &size, data, bytes, &options) != SZ_OK) return {};
+  out.resize(kSzipHeader + size);
+  return out;
+}
+
+std::string unszipChunk(const unsigned char* data, std::size_t bytes, const SzipParameters& szip, unsigned char* out,
+                        std::size_t outBytes) {
+  if (bytes < kSzipHeader) return "a truncated szip chunk";
+  std::size_t claimed = 0;
+  for (std::size_t i = 0; i < kSzipHeader; ++i) claimed |= std::size_t(data[i]) << (8 * i);
+  if (claimed != outBytes) return "a chunk says it holds another number of bytes than a view";
+  std::size_t size = outBytes;
+  SZ_com_t options = szipOptions(szip);
+  if (SZ_BufftoBuffDecompress(out, &size, data + kSzipHeader, bytes - kSzipHeader, &options) != SZ_OK)
+    return "a corrupt szip stream in a chunk";
+  if (size != outBytes) return "a chunk decompresses to fewer bytes than it should hold";
+  return {};
+}
+
 }  // namespace
+
+bool szipParametersValid(const SzipParameters& szip, std::size_t elementSize) {
+  const unsigned block = szip.pixelsPerBlock;
+  return (block == 8 || block == 16 || block == 32) && szip.bitsPerPixel == 8 * elementSize &&
+         szip.pixelsPerScanline > 0 && szip.pixelsPerScanline <= block * 128;
+}
 
 std::vector<unsigned char> filterChunk(const unsigned char* data, std::size_t bytes, std::size_t elementSize,
                                        const ChunkFilters& filters, int deflateLevel) {
+  if (filters.szip) return szipChunk(data, bytes, *filters.szip);
   std::vector<unsigned char> shuffled;
   if (filters.shuffle && elementSize > 1) {
     shuffled.resize(bytes);
@@ -42,6 +86,7 @@ std::vector<unsigned char> filterChunk(const unsigned char* data, std::size_t by
 
 std::string unfilterChunk(const unsigned char* data, std::size_t bytes, std::size_t elementSize,
                           const ChunkFilters& filters, unsigned char* out, std::size_t outBytes) {
+  if (filters.szip) return unszipChunk(data, bytes, *filters.szip, out, outBytes);
   const bool unshuffle = filters.shuffle && elementSize > 1;
   std::vector<unsigned char> shuffled(unshuffle ? outBytes : 0);
   unsigned char* target = unshuffle ? shuffled.data() : out;

@@ -30,7 +30,8 @@ namespace {
 constexpr const char* kFormatTag = "lfcam-lightfield";
 constexpr int kFormatVersion = 2;  // 2: samples in their own precision (sample_encoding.hpp)
 constexpr const char* kAxes = "v,u,c,t,s";
-constexpr int kDeflateLevel = 1;  // higher levels gain little on samples (docs/design.md), and cost time
+constexpr int kDeflateLevel = 1;              // higher levels gain little on samples (docs/design.md), and cost time
+constexpr unsigned kSzipPixelsPerBlock = 32;  // szip's largest block: the fastest, as small as 16 here
 
 std::mutex& hdf5Mutex() {
   static std::mutex mutex;
@@ -190,8 +191,10 @@ struct StoredSamples {
   std::vector<hsize_t> dims;
   SampleEncoding encoding;
   // Set when lfcam reads the chunks raw and unfilters them itself: one chunk per view, stored in
-  // the encoding's own little-endian type, filtered by shuffle and deflate only, in that order.
+  // the encoding's own little-endian type, filtered by shuffle and deflate only, in that order, or
+  // by szip alone (with `szip` its parameters).
   std::optional<std::vector<H5Z_filter_t>> rawFilters;
+  std::optional<SzipParameters> szip;
 
   std::size_t views() const { return viewsOf(dims); }
   std::size_t viewValues() const { return viewValuesOf(dims); }
@@ -270,24 +273,31 @@ Result<SampleEncoding> encodingOf(const fs::path& path, hid_t dataset, hid_t typ
   return SampleEncoding{size == 1 ? SampleEncodingKind::Linear8 : SampleEncodingKind::Linear16, *scale};
 }
 
-// The filters lfcam undoes itself when the chunks are laid out as it writes them; nullopt when
-// libhdf5 must read the dataset (and then every filter must be one libhdf5 can load).
-Result<std::optional<std::vector<H5Z_filter_t>>> rawFiltersOf(const fs::path& path, const StoredSamples& stored,
-                                                              hid_t type, const std::string& name) {
+// The filters lfcam undoes itself when the chunks are laid out as it writes them (into
+// `stored.rawFilters` and `stored.szip`); left unset when libhdf5 must read the dataset (and then
+// every filter must be one libhdf5 can load).
+Status findRawFilters(const fs::path& path, StoredSamples& stored, hid_t type, const std::string& name) {
   Handle dcpl(H5Dget_create_plist(stored.dataset->get()), H5Pclose);
   std::vector<H5Z_filter_t> filters;
   bool ownFilters = true;
   for (int i = 0, count = H5Pget_nfilters(dcpl.get()); i < count; ++i) {
     char filterName[64] = {};
-    unsigned flags = 0;
-    std::size_t values = 0;
+    unsigned flags = 0, values[4] = {};
+    std::size_t valueCount = 4;
     const H5Z_filter_t filter =
-        H5Pget_filter2(dcpl.get(), unsigned(i), &flags, &values, nullptr, sizeof filterName, filterName, nullptr);
-    const bool own = filter == (filters.empty() ? H5Z_FILTER_SHUFFLE : -1) || filter == H5Z_FILTER_DEFLATE;
+        H5Pget_filter2(dcpl.get(), unsigned(i), &flags, &valueCount, values, sizeof filterName, filterName, nullptr);
+    const bool szip = filter == H5Z_FILTER_SZIP && count == 1;
+    const bool own = filter == (filters.empty() ? H5Z_FILTER_SHUFFLE : -1) || filter == H5Z_FILTER_DEFLATE || szip;
     if (!own && H5Zfilter_avail(filter) <= 0)
       return fileError(ErrorCode::Unsupported, path,
                        "dataset " + name + " is compressed with HDF5 filter " + std::to_string(filter) + " (" +
                            filterName + "), which is not installed: install its plugin and set HDF5_PLUGIN_PATH");
+    if (szip) {
+      // libaec divides by some of these: they are checked before anything decodes with them.
+      stored.szip = SzipParameters{values[0], values[1], values[2], values[3]};
+      if (valueCount != 4 || !szipParametersValid(*stored.szip, H5Tget_size(type)))
+        return fileError(ErrorCode::Format, path, "dataset " + name + " has szip parameters out of range");
+    }
     ownFilters = ownFilters && own && (filters.empty() || filters.back() != H5Z_FILTER_DEFLATE);
     filters.push_back(filter);
   }
@@ -297,8 +307,8 @@ Result<std::optional<std::vector<H5Z_filter_t>>> rawFiltersOf(const fs::path& pa
                              H5Pget_chunk(dcpl.get(), rank, chunk) == rank && chunk[0] == 1 && chunk[1] == 1 &&
                              std::equal(chunk + 2, chunk + rank, stored.dims.begin() + 2);
   Handle ownType = fileTypeOf(stored.encoding.kind);
-  if (ownFilters && oneViewChunks && H5Tequal(type, ownType.get()) > 0) return std::optional(filters);
-  return std::optional<std::vector<H5Z_filter_t>>();
+  if (ownFilters && oneViewChunks && H5Tequal(type, ownType.get()) > 0) stored.rawFilters = filters;
+  return {};
 }
 
 Result<StoredSamples> openSamples(const fs::path& path, hid_t file, const char* name, int rank, const char* axes) {
@@ -321,17 +331,20 @@ Result<StoredSamples> openSamples(const fs::path& path, hid_t file, const char* 
   for (hsize_t dim : stored.dims)
     if (dim == 0 || dim > hsize_t(INT_MAX))
       return fileError(ErrorCode::Format, path, "dataset " + slashName + " has an empty or absurd dimension");
-  // Samples the file cannot hold mean a corrupt header (or chunks never written): deflate, the
-  // only compression lfcam writes, shrinks at most about 1032:1.
+  LFCAM_TRY(findRawFilters(path, stored, type.get(), slashName));
+  // Samples the file cannot hold mean a corrupt header (or chunks never written): deflate shrinks
+  // at most about 1032:1, szip to at least 2 bytes a scanline (a constant image).
+  const std::size_t elementSize = H5Tget_size(type.get());
+  const std::uint64_t maxRatio =
+      std::max<std::uint64_t>(1100, stored.szip ? stored.szip->pixelsPerScanline * elementSize : 0);
   std::error_code ec;
   const std::uint64_t fileSize = fs::file_size(path, ec);
-  std::uint64_t bytes = H5Tget_size(type.get());
+  std::uint64_t bytes = elementSize;
   for (hsize_t dim : stored.dims) bytes = checkedProduct({bytes, dim}).value_or(UINT64_MAX);
-  if (!ec && bytes / 1100 > fileSize + 4096)
+  if (!ec && bytes / maxRatio > fileSize + 4096)
     return fileError(ErrorCode::Format, path,
                      "truncated or corrupt: " + slashName + " claims " + formatBytes(bytes) +
                          " of samples but the file has only " + std::to_string(fileSize) + " bytes");
-  LFCAM_ASSIGN_OR_RETURN(stored.rawFilters, rawFiltersOf(path, stored, type.get(), slashName));
   return stored;
 }
 
@@ -447,7 +460,11 @@ Result<std::vector<RawChunk>> readRawChunks(const fs::path& path, const StoredSa
     const std::vector<H5Z_filter_t>& filters = *stored.rawFilters;
     for (std::size_t i = 0; i < filters.size(); ++i) {
       const bool applied = (skipped & (1u << i)) == 0;
-      (filters[i] == H5Z_FILTER_SHUFFLE ? chunk.filters.shuffle : chunk.filters.deflate) = applied;
+      if (filters[i] == H5Z_FILTER_SZIP) {
+        if (applied) chunk.filters.szip = stored.szip;
+      } else {
+        (filters[i] == H5Z_FILTER_SHUFFLE ? chunk.filters.shuffle : chunk.filters.deflate) = applied;
+      }
     }
   }
   return chunks;
@@ -536,17 +553,33 @@ Status writeSamples(const fs::path& path, Hdf5Session& session, hid_t file, cons
   // A chunk holds at most 4 GiB; a view that large would not be a light field this tool can hold.
   if (viewValues * elementSize > (std::size_t(1) << 31))
     return fileError(ErrorCode::Unsupported, path, "a view larger than 2 GiB does not fit one HDF5 chunk");
-  const ChunkFilters filters{.shuffle = elementSize > 1, .deflate = true};
+  // Integer codes go through szip, which codes each sample's difference from the previous one in
+  // its row, as PNG's filters do (smaller than the PNGs they came from, docs/design.md); floats
+  // through shuffle and deflate. szip needs a view of at least one block of pixels.
+  const bool szip = encoding.kind != SampleEncodingKind::Float16 && encoding.kind != SampleEncodingKind::Float32 &&
+                    viewValues >= kSzipPixelsPerBlock;
+  ChunkFilters filters{.shuffle = !szip && elementSize > 1, .deflate = !szip};
 
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   const std::vector<hsize_t> chunk = oneViewCount(dims);
   H5Pset_chunk(dcpl.get(), rank, chunk.data());
   if (filters.shuffle) H5Pset_shuffle(dcpl.get());
-  H5Pset_deflate(dcpl.get(), kDeflateLevel);
+  if (filters.deflate) H5Pset_deflate(dcpl.get(), kDeflateLevel);
+  if (szip) H5Pset_szip(dcpl.get(), H5_SZIP_NN_OPTION_MASK, kSzipPixelsPerBlock);
   Handle fileSpace(H5Screate_simple(rank, dims.data(), nullptr), H5Sclose);
   Handle type = fileTypeOf(encoding.kind);
   Handle dataset(H5Dcreate2(file, name, type.get(), fileSpace.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), H5Dclose);
   if (!dataset.valid()) return hdf5Error(ErrorCode::Io, path, std::string("cannot create dataset ") + name);
+  if (szip) {
+    // The parameters libhdf5 completed for this dataset (sample width, scanline, byte order).
+    Handle created(H5Dget_create_plist(dataset.get()), H5Pclose);
+    unsigned flags = 0, values[4] = {};
+    std::size_t valueCount = 4;
+    if (H5Pget_filter_by_id2(created.get(), H5Z_FILTER_SZIP, &flags, &valueCount, values, 0, nullptr, nullptr) < 0 ||
+        valueCount != 4)
+      return hdf5Error(ErrorCode::Io, path, std::string("cannot set up szip for ") + name);
+    filters.szip = SzipParameters{values[0], values[1], values[2], values[3]};
+  }
   bool ok = writeStringAttribute(dataset.get(), "encoding", encodingName(encoding.kind));
   if (encoding.kind == SampleEncodingKind::Linear8 || encoding.kind == SampleEncodingKind::Linear16)
     ok = ok && writeScalarAttribute(dataset.get(), "scale", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, encoding.scale);
@@ -555,19 +588,26 @@ Status writeSamples(const fs::path& path, Hdf5Session& session, hid_t file, cons
   for (std::size_t first = 0; first < views; first += kViewsPerBatch) {
     const std::size_t last = std::min(views, first + kViewsPerBatch);
     std::vector<std::vector<unsigned char>> chunks(last - first);
+    std::vector<std::uint32_t> skipped(last - first, 0);  // filter masks: bit 0 for an unfiltered szip chunk
     session.unlockedWhile([&] {
       parallelFor(first, last, 1, [&](std::size_t begin, std::size_t end) {
         std::vector<unsigned char> codes(viewValues * elementSize);
         for (std::size_t view = begin; view < end; ++view) {
           encodeExactly(encoding, values.subspan(view * viewValues, viewValues), codes.data());
-          chunks[view - first] = filterChunk(codes.data(), codes.size(), elementSize, filters, kDeflateLevel);
+          std::vector<unsigned char>& stored = chunks[view - first];
+          stored = filterChunk(codes.data(), codes.size(), elementSize, filters, kDeflateLevel);
+          if (stored.empty()) {  // szip would not shrink it
+            stored = codes;
+            skipped[view - first] = 1;
+          }
         }
       });
     });
     for (std::size_t view = first; view < last; ++view) {
       const std::vector<unsigned char>& bytes = chunks[view - first];
       const std::vector<hsize_t> offset = viewOffset(dims, view);
-      if (H5Dwrite_chunk(dataset.get(), H5P_DEFAULT, 0, offset.data(), bytes.size(), bytes.data()) < 0)
+      if (H5Dwrite_chunk(dataset.get(), H5P_DEFAULT, skipped[view - first], offset.data(), bytes.size(), bytes.data()) <
+          0)
         return hdf5Error(ErrorCode::Io, path, "cannot write samples");
       viewDone();
     }

@@ -41,9 +41,12 @@ Status checkHeader(const unsigned char* ihdr, const Corrupt& corrupt) {
 
 }  // namespace
 
-Status checkPngStructure(const fs::path& path) {
+Status checkPngStructure(const fs::path& path, bool imageData) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return fileError(ErrorCode::Io, path, "cannot open: " + std::string(std::strerror(errno)));
+  std::error_code ec;
+  const std::uintmax_t fileSize = fs::file_size(path, ec);
+  if (ec) return fileError(ErrorCode::Io, path, "cannot read its size: " + ec.message());
   const auto corrupt = [&](const std::string& what) {
     return fileError(ErrorCode::Format, path, "not a readable image: " + what);
   };
@@ -62,6 +65,14 @@ Status checkPngStructure(const fs::path& path) {
     if (first && (type != "IHDR" || length != 13)) return corrupt("corrupt PNG: it does not start with IHDR");
     first = false;
 
+    if (type == "IDAT") sawData = true;
+    if (type == "IDAT" && !imageData) {  // skipped, once known to be in the file with its CRC
+      const std::uintmax_t end = std::uintmax_t(in.tellg()) + length + 4;
+      if (end > fileSize)
+        return corrupt("truncated PNG: chunk '" + type + "' needs " + std::to_string(length) + " bytes");
+      in.seekg(std::streamoff(end));
+      continue;
+    }
     // The CRC covers the type and the data; read the data in pieces to bound memory.
     uLong crc = crc32(0, head + 4, 4);  // zlib's: several bytes a step
     std::uint32_t left = length;
@@ -79,7 +90,6 @@ Status checkPngStructure(const fs::path& path) {
     if (in.gcount() != 4) return corrupt("truncated PNG: chunk '" + type + "' has no CRC");
     if (bigEndian32(stored) != crc) return corrupt("corrupt PNG: chunk '" + type + "' fails its CRC check");
     if (type == "IHDR") LFCAM_TRY(checkHeader(data.data(), corrupt));
-    if (type == "IDAT") sawData = true;
     if (type == "IEND") break;
   }
   if (!sawData) return corrupt("corrupt PNG: no image data (IDAT)");

@@ -11,6 +11,8 @@
 namespace lfcam::io {
 
 // Walks the chunks: IHDR first, every chunk whole with a matching CRC, IDAT present, IEND last.
-Status checkPngStructure(const std::filesystem::path& path);
+// Without `imageData`, the image data (IDAT) is only checked to be in the file, not read: what a
+// header read needs, which then costs a few small reads instead of the whole file.
+Status checkPngStructure(const std::filesystem::path& path, bool imageData);
 
 }  // namespace lfcam::io

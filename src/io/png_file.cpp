@@ -165,7 +165,7 @@ bool encode(const InterleavedCodes& image, Sink& sink, ErrorSink& errors) {
 
 Result<InterleavedCodes> readPng(const fs::path& path, bool pixels,
                                  const std::function<Status(const InterleavedCodes&)>& checkHeader) {
-  LFCAM_TRY(checkPngStructure(path));
+  LFCAM_TRY(checkPngStructure(path, pixels));
   File file(std::fopen(path.c_str(), "rb"));
   if (!file) return fileError(ErrorCode::Io, path, "cannot open: " + std::string(std::strerror(errno)));
   ErrorSink errors;
