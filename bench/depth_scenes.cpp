@@ -84,6 +84,24 @@ DepthScene simulated(std::string name, const Scene& scene, const CameraModel& mo
   return withRange(std::move(name), std::move(*lightField), std::move(disparity));
 }
 
+// Half an elliptic cylinder with a vertical axis, bulging towards the camera: `facets` planes
+// spanning +-endDeg around the axis at axisZ, `across` wide on either side and `deep` towards the
+// camera, `height` tall.
+void addFacetedColumn(Scene& scene, double across, double deep, double axisZ, double endDeg, int facets, double height,
+                      const Texture& texture) {
+  const double end = endDeg * M_PI / 180;
+  const auto point = [&](double angle) {
+    return std::array<double, 2>{across * std::sin(angle), axisZ - deep * std::cos(angle)};
+  };
+  for (int i = 0; i < facets; ++i) {
+    const auto a = point(-end + 2 * end * i / facets), b = point(-end + 2 * end * (i + 1) / facets);
+    Plane facet = plane("facet", {(a[0] + b[0]) / 2, 0, (a[1] + b[1]) / 2}, 1.02 * std::hypot(b[0] - a[0], b[1] - a[1]),
+                        height, texture);
+    facet.tiltYDeg = std::atan2(b[1] - a[1], b[0] - a[0]) * 180 / M_PI;  // its right side away right of the axis
+    scene.planes.push_back(facet);
+  }
+}
+
 Scene emptyScene(const CameraModel& model) {
   Scene scene;
   scene.camera = model;
@@ -117,40 +135,20 @@ std::vector<DepthScene> developmentScenes(int size) {
      // distance), 32 facets: deep enough along z for its disparity to curve by 0.6 px.
     Scene scene = emptyScene(model);
     scene.planes.push_back(backdrop(model, 2.0 * d, 4));
-    const double across = 0.6 * halfField(model, d), deep = 0.4 * d, axisZ = 1.2 * d, end = 75 * M_PI / 180;
-    const int facets = 32;
-    const auto point = [&](double angle) {
-      return std::array<double, 2>{across * std::sin(angle), axisZ - deep * std::cos(angle)};
-    };
-    for (int i = 0; i < facets; ++i) {
-      const auto a = point(-end + 2 * end * i / facets), b = point(-end + 2 * end * (i + 1) / facets);
-      Plane facet =
-          plane("facet", {(a[0] + b[0]) / 2, 0, (a[1] + b[1]) / 2}, 1.02 * std::hypot(b[0] - a[0], b[1] - a[1]),
-                2.5 * across, noise(across / 12, {0.15f, 0.1f, 0.3f}, {0.85f, 0.8f, 0.9f}, 6));
-      facet.tiltYDeg = std::atan2(b[1] - a[1], b[0] - a[0]) * 180 / M_PI;  // its right side away right of the axis
-      scene.planes.push_back(facet);
-    }
+    const double across = 0.6 * halfField(model, d);
+    addFacetedColumn(scene, across, 0.4 * d, 1.2 * d, 75, 32, 2.5 * across,
+                     noise(across / 12, {0.15f, 0.1f, 0.3f}, {0.85f, 0.8f, 0.9f}, 6));
     scenes.push_back(simulated("curved surface", scene, model));
   }
   {  // A grey column bulging far towards the camera (from 0.55 to 1.0 times the focus distance) before
      // a grey wall: disparity that changes fast at grazing angles, and no hue to tell surfaces apart.
     Scene scene = emptyScene(model);
     const double wallZ = 1.6 * d, hw = halfField(model, wallZ);
-    scene.planes.push_back(plane("wall", {0, 0, wallZ}, 2.6 * hw, 2.6 * hw,
-                                 noise(hw / 9, {0.25f, 0.25f, 0.25f}, {0.7f, 0.7f, 0.7f}, 18)));
-    const double across = 0.45 * halfField(model, d), deep = 0.45 * d, axisZ = 1.0 * d, end = 80 * M_PI / 180;
-    const int facets = 48;
-    const auto point = [&](double angle) {
-      return std::array<double, 2>{across * std::sin(angle), axisZ - deep * std::cos(angle)};
-    };
-    for (int i = 0; i < facets; ++i) {
-      const auto a = point(-end + 2 * end * i / facets), b = point(-end + 2 * end * (i + 1) / facets);
-      Plane facet =
-          plane("facet", {(a[0] + b[0]) / 2, 0, (a[1] + b[1]) / 2}, 1.02 * std::hypot(b[0] - a[0], b[1] - a[1]),
-                3 * across, noise(across / 10, {0.3f, 0.3f, 0.3f}, {0.8f, 0.8f, 0.8f}, 19));
-      facet.tiltYDeg = std::atan2(b[1] - a[1], b[0] - a[0]) * 180 / M_PI;
-      scene.planes.push_back(facet);
-    }
+    scene.planes.push_back(
+        plane("wall", {0, 0, wallZ}, 2.6 * hw, 2.6 * hw, noise(hw / 9, {0.25f, 0.25f, 0.25f}, {0.7f, 0.7f, 0.7f}, 18)));
+    const double across = 0.45 * halfField(model, d);
+    addFacetedColumn(scene, across, 0.45 * d, 1.0 * d, 80, 48, 3 * across,
+                     noise(across / 10, {0.3f, 0.3f, 0.3f}, {0.8f, 0.8f, 0.8f}, 19));
     scenes.push_back(simulated("grey column", scene, model));
   }
   {  // Bars 1 to 4 pixels wide, nearer than a wall.
