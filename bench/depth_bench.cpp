@@ -161,8 +161,8 @@ BENCHMARK(BM_DepthAndAllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->
 void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam::Image& truth, double seconds) {
   auto scores = lfcam::scoreHci(depth.disparity, truth);
   if (!scores) return (void)std::printf("%-28s %s\n", name.c_str(), scores.error().message.c_str());
-  std::printf("%-28s %8.2f %8.2f %9.3f %9.3f %7.2f\n", name.c_str(), scores->badPix007, scores->badPix003,
-              scores->mse100, scores->bumpiness, seconds);
+  std::printf("%-28s %8.2f %8.2f %9.3f %9.3f %7.2f %9.2g %9.2f\n", name.c_str(), scores->badPix007, scores->badPix003,
+              scores->mse100, scores->bumpiness, seconds, depth.viewResidual, depth.prefilterSigma);
 }
 
 // Every scene's HCI scores with today's defaults (disparity_scores.hpp; 15-pixel border; bumpiness
@@ -182,7 +182,8 @@ void printScores(const lfcam::DepthOptions& options, bool heldOut, const std::st
       if (auto written = lfcam::writeImage(folder + "/" + file, *image); !written)
         std::fprintf(stderr, "depth_bench: %s\n", written.error().message.c_str());
   };
-  std::printf("%-28s %8s %8s %9s %9s %7s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100", "bumpiness", "seconds");
+  std::printf("%-28s %8s %8s %9s %9s %7s %9s %9s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100", "bumpiness", "seconds",
+              "residual", "prefilter");
   for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes()) {
     const auto start = std::chrono::steady_clock::now();
     lfcam::DepthOptions sceneOptions = options;

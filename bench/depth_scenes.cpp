@@ -139,6 +139,7 @@ std::vector<DepthScene> developmentScenes(int size) {
     addFacetedColumn(scene, across, 0.4 * d, 1.2 * d, 75, 32, 2.5 * across,
                      noise(across / 12, {0.15f, 0.1f, 0.3f}, {0.85f, 0.8f, 0.9f}, 6));
     scenes.push_back(simulated("curved surface", scene, model));
+    scenes.push_back(simulated("curved surface, noisy", scene, model, true));
   }
   {  // A grey column bulging far towards the camera (from 0.55 to 1.0 times the focus distance) before
      // a grey wall: disparity that changes fast at grazing angles, and no hue to tell surfaces apart.
@@ -161,6 +162,7 @@ std::vector<DepthScene> developmentScenes(int size) {
     scene.planes.push_back(plane("rail", {0, 0.5 * h, 0.9 * d}, 1.6 * h, 2 * pixel,
                                  noise(h / 6, {0.1f, 0.1f, 0.6f}, {0.4f, 0.9f, 0.95f}, 13)));
     scenes.push_back(simulated("thin structures", scene, model));
+    scenes.push_back(simulated("thin structures, noisy", scene, model, true));
   }
   {  // Texture at the scale of a pixel, and of half a pixel, on two cards.
     Scene scene = emptyScene(model);

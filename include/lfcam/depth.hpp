@@ -14,6 +14,9 @@
 //     of a star through it, sheared by the label, over subsets of views that an occluder leaves
 //     out (four strict half-apertures, the centre row, the centre column); less the defocus cue
 //     (squared Laplacian of the photograph refocused at the label, `defocusWeight`).
+//     Views that disagree at their best match (noise, aliasing) are smoothed first
+//     (`prefilterSigma`; automatic: stages 2-7 run once, and again on smoothed views when the fine
+//     search's median residual says so).
 //  3. Aggregation: a guided filter steered by the centre view (`filterRadius`, `filterEpsilon`),
 //     each subset's cost apart, then the lowest subset per label.
 //  4. Regularisation: semi-global optimisation along 8 paths (`smoothness`), then a parabola
@@ -44,6 +47,8 @@ struct DepthOptions {
   std::optional<double> disparityMin, disparityMax;  // default: metadata, else [-2, 2]
   int labels = 0;                                    // candidate disparities; 0: one per 0.1 px, within [16, 96]
   // 2. Cost.
+  double prefilterSigma = -1;  // views smoothed by a Gaussian of this sigma (px) before matching; 0: none;
+                               // -1: automatic, 0.55 where the views are noisy, else none
   double defocusWeight = 0.4;  // weight of the defocus cue against the correspondence cue
   // 3. Aggregation.
   int filterRadius = 1;         // guided filter window: (2 r + 1)^2 pixels
@@ -67,6 +72,10 @@ struct DepthMap {
   Image confidence;                           // ns x nt, 1 channel, in [0, 1]
   double disparityMin = 0, disparityMax = 0;  // the range searched
   int labels = 0;
+  // How much the views, as given, disagree at the disparity found: the median over pixels of the
+  // fine search's cost there (mean squared sRGB difference from the centre view); 0 without it.
+  double viewResidual = 0;
+  double prefilterSigma = 0;  // the smoothing the views were matched with (px; 0: none)
 };
 
 // Usage error for an empty light field or an empty/invalid disparity range.

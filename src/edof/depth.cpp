@@ -408,43 +408,17 @@ void fillUncertain(const Image& guide, const std::vector<float>& curvature, cons
                      float(options.fillLambda), float(std::max(options.fillSigma, 1e-6)), /*iterations=*/3);
 }
 
-}  // namespace
-
-Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options) {
-  return edof::estimateDepth(lightField, options, {});
-}
-
-Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOptions& options,
-                                     const DepthExperiment& experiment) {
-  if (lightField.empty() || lightField.ns() < 2 || lightField.nt() < 2)
-    return makeError(ErrorCode::Usage, "depth: the light field is empty");
-  if (lightField.nu() * lightField.nv() < 2)
-    return makeError(ErrorCode::Usage, "depth: the light field has a single view, so no parallax to measure");
-  const double dmin = options.disparityMin.value_or(lightField.metadata.disparityMin.value_or(-2.0));
-  const double dmax = options.disparityMax.value_or(lightField.metadata.disparityMax.value_or(2.0));
-  if (!(std::isfinite(dmin) && std::isfinite(dmax) && dmin < dmax))
-    return makeError(ErrorCode::Usage, "depth: the disparity range [" + std::to_string(dmin) + ", " +
-                                           std::to_string(dmax) + "] is empty");
-  // 1. Range: the candidate disparities.
-  int labels = options.labels;
-  if (labels <= 0) labels = std::clamp(int(std::ceil((dmax - dmin) / 0.1)) + 1, 16, 96);
-  if (labels < 2) return makeError(ErrorCode::Usage, "depth: at least 2 candidate disparities are needed");
-  std::vector<double> disparities(labels);
-  const double step = (dmax - dmin) / (labels - 1);
-  for (int l = 0; l < labels; ++l) disparities[l] = dmin + l * step;
-
-  const int ns = lightField.ns(), nt = lightField.nt();
+// Stages 2-7 (depth.hpp) on `grey`, the sRGB luminance the views are matched on, steered by
+// `guide` (its centre view before any prefilter) and the light field's centre colours.
+// `medianResidual`: the median over pixels of the fine search's cost at its minimum (the mean
+// squared difference between the views there), 0 without a fine search.
+DepthMap depthStages(const LightField& lightField, const LightField& grey, const Image& guide,
+                     const std::vector<double>& disparities, const DepthOptions& options,
+                     const edof::DepthExperiment& experiment, double* medianResidual) {
+  const int ns = lightField.ns(), nt = lightField.nt(), labels = int(disparities.size());
   const std::size_t n = lightField.shape().viewPixels();
-  // Matching on sRGB-encoded luminance: roughly uniform in perceived contrast, so that texture in
-  // the shadows counts as much as in the light (in linear light it nearly vanishes).
-  LightField grey = edof::luminanceLightField(lightField);
-  parallelFor(0, grey.samples().size(), 1 << 16, [&](std::size_t begin, std::size_t end) {
-    float* samples = grey.samples().data();
-    for (std::size_t i = begin; i < end; ++i) samples[i] = srgbFromLinear(std::max(samples[i], 0.0f));
-  });
+  const double dmin = disparities.front(), dmax = disparities.back(), step = (dmax - dmin) / (labels - 1);
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
-  Image guide = grey.subApertureImage(referenceU, referenceV);
-
   const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.filterRadius, 0),
                                   std::max(options.filterEpsilon, 1e-12));
   const double locking = std::max(experiment.lockingCorrection, 0.0);
@@ -526,6 +500,12 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     for (std::size_t p = 0; p < n; ++p)
       result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
   }
+  *medianResidual = 0;
+  if (options.refineSteps > 0) {
+    std::vector<float> sorted(residual);
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    *medianResidual = sorted[sorted.size() / 2];
+  }
   // 6. Cleanup: the edge-aware fill, occlusion edges, the weighted median, each guided by the
   // centre view's sRGB colours.
   Image colors = lightField.subApertureImage(referenceU, referenceV);
@@ -542,6 +522,74 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     result.confidence.plane(0)[p] = float(std::clamp(1.0 - std::exp(-std::max(depthOfMinimum, 0.0) / scale), 0.0, 1.0));
   }
   return result;
+}
+
+// Automatic prefilter (DepthOptions::prefilterSigma -1): the views count as noisy when the fine
+// search's median residual (DepthMap::viewResidual) exceeds kNoisyResidual, the geometric middle
+// between the development scenes without noise (up to 7.5e-6) and those with Lytro-like noise
+// (from 2.4e-4; pixel-scale texture reads as noisy too); they are then smoothed by
+// kNoisyPrefilterSigma, chosen on the development scenes (`depth_bench` prints both per scene).
+constexpr double kNoisyResidual = 4e-5, kNoisyPrefilterSigma = 0.55;
+
+// Every view smoothed by a Gaussian of `sigma` pixels: sensor noise is white, while the views of
+// a plenoptic camera are band-limited by its microlenses, so a light smoothing removes more noise
+// than detail.
+void blurViews(LightField& grey, double sigma) {
+  parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t view = begin; view < end; ++view)
+      edof::gaussianBlur(grey.plane(int(view % grey.nu()), int(view / grey.nu()), 0), grey.ns(), grey.nt(), sigma);
+  });
+}
+
+}  // namespace
+
+Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options) {
+  return edof::estimateDepth(lightField, options, {});
+}
+
+Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOptions& options,
+                                     const DepthExperiment& experiment) {
+  if (lightField.empty() || lightField.ns() < 2 || lightField.nt() < 2)
+    return makeError(ErrorCode::Usage, "depth: the light field is empty");
+  if (lightField.nu() * lightField.nv() < 2)
+    return makeError(ErrorCode::Usage, "depth: the light field has a single view, so no parallax to measure");
+  const double dmin = options.disparityMin.value_or(lightField.metadata.disparityMin.value_or(-2.0));
+  const double dmax = options.disparityMax.value_or(lightField.metadata.disparityMax.value_or(2.0));
+  if (!(std::isfinite(dmin) && std::isfinite(dmax) && dmin < dmax))
+    return makeError(ErrorCode::Usage, "depth: the disparity range [" + std::to_string(dmin) + ", " +
+                                           std::to_string(dmax) + "] is empty");
+  // 1. Range: the candidate disparities.
+  int labels = options.labels;
+  if (labels <= 0) labels = std::clamp(int(std::ceil((dmax - dmin) / 0.1)) + 1, 16, 96);
+  if (labels < 2) return makeError(ErrorCode::Usage, "depth: at least 2 candidate disparities are needed");
+  std::vector<double> disparities(labels);
+  const double step = (dmax - dmin) / (labels - 1);
+  for (int l = 0; l < labels; ++l) disparities[l] = dmin + l * step;
+
+  // Matching on sRGB-encoded luminance: roughly uniform in perceived contrast, so that texture in
+  // the shadows counts as much as in the light (in linear light it nearly vanishes).
+  LightField grey = edof::luminanceLightField(lightField);
+  parallelFor(0, grey.samples().size(), 1 << 16, [&](std::size_t begin, std::size_t end) {
+    float* samples = grey.samples().data();
+    for (std::size_t i = begin; i < end; ++i) samples[i] = srgbFromLinear(std::max(samples[i], 0.0f));
+  });
+  const Image guide = grey.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2);
+  const double prefilter = options.prefilterSigma;
+  if (prefilter > 0) blurViews(grey, prefilter);
+  double residual = 0;
+  DepthMap map = depthStages(lightField, grey, guide, disparities, options, experiment, &residual);
+  map.prefilterSigma = std::max(prefilter, 0.0);
+  map.viewResidual = prefilter > 0 ? 0.0 : residual;  // of the views as given only
+  // Automatic: the views matched as they are, then, where they disagree at their best match by
+  // more than clean views do (noise, or texture finer than the pixels), smoothed and matched again.
+  if (prefilter < 0 && residual > kNoisyResidual) {
+    blurViews(grey, kNoisyPrefilterSigma);
+    const double asGiven = map.viewResidual;
+    map = depthStages(lightField, grey, guide, disparities, options, experiment, &residual);
+    map.prefilterSigma = kNoisyPrefilterSigma;
+    map.viewResidual = asGiven;
+  }
+  return map;
 }
 
 std::optional<double> distanceFromDisparity(const Optics& optics, double disparity) {

@@ -24,6 +24,10 @@ Image luminance(const Image& image);
 // The light field of luminance: same views, one channel, weight kept.
 LightField luminanceLightField(const LightField& lightField);
 
+// `plane` smoothed in place by a sampled Gaussian of standard deviation `sigma` pixels (taps out
+// to 3 sigma, at least one), separable, borders clamped. sigma <= 0 leaves it as it is.
+void gaussianBlur(float* plane, int width, int height, double sigma);
+
 // Squared 4-neighbour Laplacian of channel 0, borders clamped: a focus energy per pixel.
 void squaredLaplacian(const Image& image, float* out);
 

@@ -171,6 +171,31 @@ void GuidedFilter::apply(const float* in, float* out, Scratch& scratch) const {
   }
 }
 
+void gaussianBlur(float* plane, int width, int height, double sigma) {
+  if (!(sigma > 0)) return;
+  const int radius = std::max(1, int(std::ceil(3 * sigma)));
+  std::vector<float> taps(2 * radius + 1);
+  double total = 0;
+  for (int k = -radius; k <= radius; ++k) total += taps[k + radius] = float(std::exp(-0.5 * k * k / (sigma * sigma)));
+  for (float& tap : taps) tap = float(tap / total);
+  std::vector<float> across(std::size_t(width) * height);
+  for (int y = 0; y < height; ++y) {
+    const float* row = plane + std::size_t(y) * width;
+    for (int x = 0; x < width; ++x) {
+      float sum = 0;
+      for (int k = -radius; k <= radius; ++k) sum += taps[k + radius] * row[std::clamp(x + k, 0, width - 1)];
+      across[std::size_t(y) * width + x] = sum;
+    }
+  }
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      float sum = 0;
+      for (int k = -radius; k <= radius; ++k)
+        sum += taps[k + radius] * across[std::size_t(std::clamp(y + k, 0, height - 1)) * width + x];
+      plane[std::size_t(y) * width + x] = sum;
+    }
+}
+
 void squaredLaplacian(const Image& image, float* out) {
   const int w = image.width(), h = image.height();
   const float* p = image.plane(0);
