@@ -14,7 +14,10 @@
 // puts on a slope plane and which a refocused photo averages away too.
 //
 // Development (--development): the chart at slopes -0.75, -0.25, 0.25 and 0.5 through the passband
-// -1:0.75 at several bandwidths (--bandwidth B, repeatable): where the default bandwidth was chosen.
+// -1:0.75 at several bandwidths (--bandwidth B, repeatable): where the default bandwidth was chosen;
+// with each view's modulation of the finest grating, how sharp the views are. --ideal: the same on
+// the simulator's ideal light field with white noise instead of the sensor capture (every view
+// equally sharp), to tell what the filter loses from what the capture's views do not share.
 // Report (default): the scene never used for tuning, `people` (its cards' disparities, passband
 // 0.25 wider on each side): SNR (mean over rms error against the noise-free capture) of the centre
 // view and of the photo refocused at each card's disparity, before and after, and the noise alone;
@@ -26,6 +29,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -49,7 +53,36 @@ struct Captures {
   LightField clean, noisy, cleanFiltered, noisyFiltered;
 };
 
+// Instead of the sensor capture, the simulator's ideal light field (each sample the mean radiance
+// over its pixel's footprint, every view equally sharp) with white noise of the sensor capture's
+// rms at exposure 0.1: what the filter does when the views share all their detail.
+bool idealViews = false;
+constexpr float kIdealNoise = 0.017f;
+
 Captures capture(const Scene& scene, const CameraModel& camera) {
+  if (idealViews) {
+    auto ideal = idealLightFieldBoxFiltered(scene, camera, 4);
+    if (!ideal) throw std::runtime_error(ideal.error().message);
+    // Its central 9 x 9 views (it has as many as a microlens image is pixels across, 12 here), as
+    // many as the decoded capture's.
+    LightFieldShape shape = ideal->shape();
+    const int first = (shape.nu - 9) / 2;
+    shape.nu = shape.nv = 9;
+    LightField clean(shape);
+    clean.metadata = ideal->metadata;
+    clean.enableWeight();
+    for (int v = 0; v < 9; ++v)
+      for (int u = 0; u < 9; ++u) {
+        for (int c = 0; c < shape.channels; ++c)
+          std::copy_n(ideal->plane(u + first, v + first, c), shape.viewPixels(), clean.plane(u, v, c));
+        std::copy_n(ideal->weightPlane(u + first, v + first), shape.viewPixels(), clean.weightPlane(u, v));
+      }
+    LightField noisy = clean.copy();
+    std::mt19937 generator(7);
+    std::normal_distribution<float> normal(0.0f, kIdealNoise);
+    for (float& sample : noisy.samples()) sample += normal(generator);
+    return {std::move(clean), std::move(noisy), {}, {}};
+  }
   auto traced = experiments::traceCapture(scene, camera, 64);
   if (!traced) throw std::runtime_error(traced.error().message);
   auto clean = experiments::captureLightField(*traced, false, 0);
@@ -126,11 +159,20 @@ void printChartHeader() {
 }
 
 void chartRow(const Captures& captures, double slope, const DenoiseOptions& options);
+bool printViews = false;
 
 // Rows: the chart at `slope` through each passband of `passbands`.
 void chartRows(const CameraModel& camera, const Optics& optics, double slope,
                const std::vector<DenoiseOptions>& passbands) {
   Captures captures = capture(test::sineChartScene(camera, *distanceFromDisparity(optics, slope)), camera);
+  if (printViews) {
+    // How sharp each view is: the finest grating below Nyquist (band 3, 0.45 cycles per pixel).
+    std::printf("| %+.2f | views of the centre row, modulation at 0.45 cycles/px:", slope);
+    const int v = (captures.clean.nv() - 1) / 2;
+    for (int u = 0; u < captures.clean.nu(); ++u)
+      std::printf(" %.2f", test::modulationPerBand(captures.clean.subApertureImage(u, v), 1)[3]);
+    std::printf(" |\n");
+  }
   for (const DenoiseOptions& options : passbands) {
     filter(captures, options);
     chartRow(captures, slope, options);
@@ -162,7 +204,12 @@ void development(double exposure, const std::vector<double>& bandwidths) {
   CameraModel camera = test::peopleCamera();
   camera.sensor.exposure = exposure;
   const Optics optics = opticsOf(camera);
-  std::printf("\ndevelopment: the sine chart, exposure %.2f, passband -1.00:0.75\n", exposure);
+  if (idealViews)
+    std::printf("\ndevelopment: the sine chart, ideal 9 x 9 views with white noise of rms %.3f, passband -1.00:0.75\n",
+                kIdealNoise);
+  else
+    std::printf("\ndevelopment: the sine chart, exposure %.2f, passband -1.00:0.75\n", exposure);
+  printViews = true;
   printChartHeader();
   std::vector<DenoiseOptions> passbands;
   for (double bandwidth : bandwidths) passbands.push_back({.slopeMin = -1.0, .slopeMax = 0.75, .bandwidth = bandwidth});
@@ -238,6 +285,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--development") == 0)
       development = true;
+    else if (std::strcmp(argv[i], "--ideal") == 0)
+      lfcam::idealViews = true;
     else if (std::strcmp(argv[i], "--exposure") == 0 && i + 1 < argc)
       exposure = std::atof(argv[++i]);
     else if (std::strcmp(argv[i], "--bandwidth") == 0 && i + 1 < argc)
