@@ -63,8 +63,8 @@ Captures capture(const Scene& scene, const CameraModel& camera) {
   if (idealViews) {
     auto ideal = idealLightFieldBoxFiltered(scene, camera, 4);
     if (!ideal) throw std::runtime_error(ideal.error().message);
-    // Its central 9 x 9 views (it has as many as a microlens image is pixels across, 12 here), as
-    // many as the decoded capture's.
+    // Its central 9 x 9 views (it has as many as a microlens image is pixels across: 12 without
+    // --matched), as many as the decoded capture's.
     LightFieldShape shape = ideal->shape();
     const int first = (shape.nu - 9) / 2;
     shape.nu = shape.nv = 9;
@@ -193,6 +193,19 @@ void chartRow(const Captures& captures, double slope, const DenoiseOptions& opti
   std::printf("\n");
 }
 
+// The people tests' camera (9x9 views of 80x80): its main lens at image-side f/2.9 makes microlens
+// images 12 pixels across on a 9-pixel pitch, the outer pixels of each cell mixing light from the
+// next microlens. --matched stops the main lens to image-side f/4, the microlenses' f-number, so
+// that the microlens images tile the sensor (the paper's section 3.1).
+bool matched = false;
+
+CameraModel benchCamera(double exposure) {
+  CameraModel camera = test::peopleCamera();
+  camera.sensor.exposure = exposure;
+  if (matched) camera.mainLens.setImageSideFNumber(4);
+  return camera;
+}
+
 // The optics of the people camera (from a capture's metadata).
 Optics opticsOf(const CameraModel& camera) {
   auto ideal = idealLightField(*builtinScene("white", camera), camera);
@@ -201,14 +214,14 @@ Optics opticsOf(const CameraModel& camera) {
 }
 
 void development(double exposure, const std::vector<double>& bandwidths) {
-  CameraModel camera = test::peopleCamera();
-  camera.sensor.exposure = exposure;
+  const CameraModel camera = benchCamera(exposure);
   const Optics optics = opticsOf(camera);
   if (idealViews)
     std::printf("\ndevelopment: the sine chart, ideal 9 x 9 views with white noise of rms %.3f, passband -1.00:0.75\n",
                 kIdealNoise);
   else
-    std::printf("\ndevelopment: the sine chart, exposure %.2f, passband -1.00:0.75\n", exposure);
+    std::printf("\ndevelopment: the sine chart, %s camera, exposure %.2f, passband -1.00:0.75\n",
+                matched ? "matched" : "overlapping", exposure);
   printViews = true;
   printChartHeader();
   std::vector<DenoiseOptions> passbands;
@@ -228,8 +241,7 @@ Image maskOf(const test::Card& card, int cardWidth, int width, int height) {
 }
 
 void report(double exposure, double bandwidth) {
-  CameraModel camera = test::peopleCamera();
-  camera.sensor.exposure = exposure;
+  const CameraModel camera = benchCamera(exposure);
   const Scene scene = *builtinScene("people", camera);
   const Optics optics = opticsOf(camera);
   const Image depth = *idealDepth(scene, camera);
@@ -240,9 +252,10 @@ void report(double exposure, double bandwidth) {
     options.slopeMax = std::max(options.slopeMax, card.disparity + 0.25);
   Captures captures = capture(scene, camera);
   filter(captures, options);
-  std::printf("\nreport: people, exposure %.2f (%d x %d views of %d x %d), passband %.2f:%.2f, bandwidth %.3f\n",
-              exposure, captures.clean.nu(), captures.clean.nv(), captures.clean.ns(), captures.clean.nt(),
-              options.slopeMin, options.slopeMax, options.bandwidth);
+  std::printf(
+      "\nreport: people, %s camera, exposure %.2f (%d x %d views of %d x %d), passband %.2f:%.2f, bandwidth %.3f\n",
+      matched ? "matched" : "overlapping", exposure, captures.clean.nu(), captures.clean.nv(), captures.clean.ns(),
+      captures.clean.nt(), options.slopeMin, options.slopeMax, options.bandwidth);
   std::printf(
       "| card | disparity | centre view SNR before | after | noise rms before | after | ratio | refocused SNR before | "
       "after | noise rms before | after | ratio |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -285,6 +298,8 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--development") == 0)
       development = true;
+    else if (std::strcmp(argv[i], "--matched") == 0)
+      lfcam::matched = true;
     else if (std::strcmp(argv[i], "--ideal") == 0)
       lfcam::idealViews = true;
     else if (std::strcmp(argv[i], "--exposure") == 0 && i + 1 < argc)
