@@ -295,6 +295,9 @@ int main(int argc, char** argv) {
   bool development = false;
   std::vector<double> bandwidths;
   std::vector<char*> rest{argv[0]};
+  std::printf("command:");  // the tables below come from it
+  for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
+  std::printf("\n");
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--development") == 0)
       development = true;
