@@ -329,7 +329,7 @@ void bindPipeline(py::module_& m) {
       py::arg("light_field"), py::kw_only(), py::arg("depth_range") = py::none(), py::arg("bandwidth") = py::none(),
       "`lfcam denoise`: the light field through a 4D frequency-domain passband that keeps the surfaces of slopes "
       "depth_range = (A, B) (pixels per view step; A == B: one depth) and removes most sensor noise. Default range: "
-      "the light field's stated disparity range, else (-2, 2); bandwidth in cycles per view step (default 0.06).");
+      "the light field's stated disparity range, else (-2, 2); bandwidth in cycles per view step (default 0.11).");
   m.def(
       "score",
       [](const py::array& estimate, const py::array& truth, std::optional<py::array> mask, int border) {

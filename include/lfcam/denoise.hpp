@@ -32,12 +32,13 @@ struct DenoiseOptions {
   // The passband, slopes in pixels per view step; equal for a plane (one depth).
   double slopeMin = -2, slopeMax = 2;
   // Standard deviation of the passband's Gaussian roll-off across the segment, cycles per view
-  // step: narrower removes more noise, but keeps less of what is not Lambertian (occlusion edges,
-  // highlights) and of surfaces near the ends of the range, whose spectrum a few views spread by
-  // about 1 / views around their plane. 0.06, chosen among 0.04-0.1 on the textured planes of
-  // tests/denoise_test.cpp (9x9 views, range -1:0.5): white noise 2.6x lower, a plane in the range
-  // changed by 8-17 % of its texture's rms (0.04: 3.2x and 14-28 %; 0.1: 2.0x and 4-9 %).
-  double bandwidth = 0.06;
+  // step: narrower removes more noise, but also more of what the views do not share, and a decoded
+  // capture's views are not equally sharp (its outer views keep far less of a fine grating than
+  // the centre one), so a narrow passband pulls each view towards the views' mean sharpness. 0.11:
+  // the narrowest whose centre view keeps its MTF50 within 5 % on the development captures of
+  // bench/denoise_bench.cpp (--development: a sine chart at slopes -0.75..0.5, passband -1:0.75;
+  // 0.10 loses 5.7 % at -0.75), where the noise falls 1.95-1.98x (0.06: 3.2x, but MTF50 17 % lower).
+  double bandwidth = 0.11;
 };
 
 // The passband (0..1) at spatial frequency (fs, ft), cycles per pixel, and angular frequency (fu,

@@ -42,7 +42,7 @@ void addDenoiseCommand(CLI::App& app, Job& job) {
                       "A:B slopes (pixels per view step) to keep; A = B keeps one depth (a planar passband). "
                       "Default: the light field's stated disparity range, else -2:2");
   command->add_option("--bandwidth", options->bandwidth,
-                      "width of the passband's roll-off, cycles per view step (default 0.06): narrower removes more "
+                      "width of the passband's roll-off, cycles per view step (default 0.11): narrower removes more "
                       "noise and more of what is not a plain surface");
   command->callback([options, &job] {
     job = [options]() -> Status {
