@@ -15,11 +15,12 @@
 //   BM_AllInFocus   allInFocus given the depth map (focal stack + blending). Same counter.
 //   BM_DepthAndAllInFocus  both, as `lfcam edof` without --depth does: the goal is < 5 s on 2 cores.
 //
-// Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--benchmark_filter=...]
+// Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--high-pass R] [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
 //   --development-only  the table without antinous, for choosing settings (it is held out)
 //   --write DIR         also each scene's map, truth and centre view: DIR/<scene>.pfm, -truth.pfm, -centre.png
+//   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -169,7 +170,8 @@ void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam
 // on the planes of the ground truth): the development scenes, on which defaults are chosen, then
 // HCI antinous, held out: never used to choose a parameter.
 // With `folder` not empty, each scene's disparity, truth and centre view are written there.
-void printScores(const lfcam::DepthOptions& options, bool heldOut, const std::string& folder) {
+void printScores(const lfcam::DepthOptions& options, const lfcam::edof::DepthExperiment& experiment, bool heldOut,
+                 const std::string& folder) {
   auto write = [&](const std::string& scene, const lfcam::Image& disparity, const lfcam::Image& truth,
                    const lfcam::LightField& lightField) {
     if (folder.empty()) return;
@@ -189,7 +191,7 @@ void printScores(const lfcam::DepthOptions& options, bool heldOut, const std::st
     lfcam::DepthOptions sceneOptions = options;
     sceneOptions.disparityMin = scene.disparityMin;
     sceneOptions.disparityMax = scene.disparityMax;
-    auto depth = lfcam::estimateDepth(scene.lightField, sceneOptions);
+    auto depth = lfcam::edof::estimateDepth(scene.lightField, sceneOptions, experiment);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (depth) printRow(scene.name, *depth, scene.disparity, seconds);
     if (depth) write(scene.name, depth->disparity, scene.disparity, scene.lightField);
@@ -199,7 +201,7 @@ void printScores(const lfcam::DepthOptions& options, bool heldOut, const std::st
   if (!truth) return (void)std::printf("hci-antinous (held out): not found in %s\n", kFolder.c_str());
   const auto start = std::chrono::steady_clock::now();
   const lfcam::LightField& lightField = antinous();
-  auto depth = lfcam::estimateDepth(lightField, options);
+  auto depth = lfcam::edof::estimateDepth(lightField, options, experiment);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (depth) printRow("hci-antinous (held out)", *depth, *truth, seconds);
   if (depth) write("hci-antinous", depth->disparity, *truth, lightField);
@@ -210,6 +212,7 @@ void printScores(const lfcam::DepthOptions& options, bool heldOut, const std::st
 int main(int argc, char** argv) {
   // The table's own flags, taken out before the benchmark library reads the rest.
   lfcam::DepthOptions options;
+  lfcam::edof::DepthExperiment experiment;
   bool heldOut = true;
   std::string folder;
   int kept = 1;
@@ -219,6 +222,8 @@ int main(int argc, char** argv) {
       heldOut = false;
     } else if (argument == "--write" && i + 1 < argc) {
       folder = argv[++i];
+    } else if (argument == "--high-pass" && i + 1 < argc) {
+      experiment.highPassRadius = std::atoi(argv[++i]);
     } else if (argument == "--options" && i + 1 < argc) {
       if (auto read = lfcam::readDepthOptions(argv[++i], options); !read)
         return std::fprintf(stderr, "depth_bench: %s\n", read.error().message.c_str()), 2;
@@ -227,7 +232,7 @@ int main(int argc, char** argv) {
     }
   }
   argc = kept;
-  printScores(options, heldOut, folder);
+  printScores(options, experiment, heldOut, folder);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

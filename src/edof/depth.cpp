@@ -574,6 +574,15 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     for (std::size_t i = begin; i < end; ++i) samples[i] = srgbFromLinear(std::max(samples[i], 0.0f));
   });
   const Image guide = grey.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2);
+  if (experiment.highPassRadius > 0)
+    parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
+      std::vector<float> mean(grey.shape().viewPixels());
+      for (std::size_t view = begin; view < end; ++view) {
+        float* plane = grey.plane(int(view % grey.nu()), int(view / grey.nu()), 0);
+        boxFilter(plane, mean.data(), grey.ns(), grey.nt(), experiment.highPassRadius);
+        for (std::size_t i = 0; i < mean.size(); ++i) plane[i] -= mean[i];
+      }
+    });
   const double prefilter = options.prefilterSigma;
   if (prefilter > 0) blurViews(grey, prefilter);
   double residual = 0;
