@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 #include <httplib.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <thread>
@@ -86,6 +88,7 @@ TEST(ViewerRoutes, ServesTheEmbeddedPageAndNothingElse) {
   EXPECT_NE(page.body.find("viewer.js"), std::string::npos);
   EXPECT_EQ(get("/viewer.js").status, 200);
   EXPECT_EQ(get("/viewer.css").contentType.rfind("text/css", 0), 0u);
+  EXPECT_EQ(get("/viewer.dual-range.css").contentType.rfind("text/css", 0), 0u);
   // The export template and anything that looks like a path stay out of reach.
   for (const char* path : {"/living.html", "/../etc/passwd", "/viewer.js/../../etc/passwd", "/etc/passwd",
                            "//etc/passwd", "/api/../viewer.js", "/api", "", "/viewer.jsx", "/VIEWER.JS"})
@@ -391,7 +394,8 @@ TEST(LivingPicture, EmbedsTheStackTheIndexAndTheSweep) {
   auto scene = smallScene();
   auto html = makeLivingPicture(scene.lightField, {.maxSlices = 8, .sweepFrames = 4, .jpegQuality = 70});
   ASSERT_TRUE(html.ok()) << html.error().message;
-  EXPECT_EQ(html->find("{{LFCAM_DATA}}"), std::string::npos);
+  EXPECT_EQ(html->find("{{LFCAM_"), std::string::npos);
+  EXPECT_NE(html->find(".dual input"), std::string::npos);  // the range slider's style, inlined
   EXPECT_NE(html->find("\"index\":\""), std::string::npos);
   int images = 0;
   for (std::size_t at = 0; (at = html->find("data:image/jpeg;base64,", at)) != std::string::npos; ++at) ++images;
@@ -400,6 +404,45 @@ TEST(LivingPicture, EmbedsTheStackTheIndexAndTheSweep) {
   EXPECT_EQ(html->find("src=\"http"), std::string::npos);
   EXPECT_EQ(html->find("<script src"), std::string::npos);
   EXPECT_FALSE(makeLivingPicture(LightField()).ok());
+}
+
+TEST(LivingPicture, FocusRangesAreTheLibrarysFocusSpreadOverTheStacksSlopes) {
+  auto scene = smallScene();
+  const LivingPictureOptions options{.maxSlices = 8, .sweepFrames = 1, .jpegQuality = 70, .rangeEnds = 4};
+  auto html = makeLivingPicture(scene.lightField, options);
+  ASSERT_TRUE(html.ok()) << html.error().message;
+  const std::string open = "<script id=\"lfcam-data\" type=\"application/json\">";
+  const auto begin = html->find(open) + open.size();
+  const auto data = nlohmann::json::parse(html->substr(begin, html->find("</script>", begin) - begin));
+  // Four stops from the farthest slice to the nearest, and one photograph per pair of them.
+  const auto stops = data["rangeStops"].get<std::vector<int>>();
+  ASSERT_EQ(stops.size(), 4u);
+  EXPECT_EQ(stops.front(), 0);
+  EXPECT_EQ(stops.back(), int(data["slices"].size()) - 1);
+  EXPECT_TRUE(std::is_sorted(stops.begin(), stops.end()));
+  ASSERT_EQ(data["ranges"].size(), 6u);
+  // Each is refocusSpread between its stops' slopes, on the depth map over the stack's slopes.
+  std::vector<double> slopes;
+  for (const auto& slice : data["slices"]) slopes.push_back(slice["slope"]);
+  DepthOptions depthOptions;
+  depthOptions.disparityMin = slopes.front();
+  depthOptions.disparityMax = slopes.back();
+  auto depth = estimateDepth(scene.lightField, depthOptions);
+  ASSERT_TRUE(depth.ok());
+  for (const auto& range : data["ranges"]) {
+    const int far = range["far"], near = range["near"];
+    ASSERT_LT(far, near);
+    auto photo = refocusSpread(scene.lightField, depth->disparity, slopes[stops[far]], slopes[stops[near]]);
+    ASSERT_TRUE(photo.ok());
+    auto jpeg = encodeImage(*photo, {.format = EncodedFormat::Jpeg, .jpegQuality = 70});
+    ASSERT_TRUE(jpeg.ok());
+    EXPECT_EQ(range["image"].get<std::string>(), "data:image/jpeg;base64," + base64Encode(*jpeg)) << far << ":" << near;
+  }
+  // None asked: no slider's data; one stop is refused.
+  auto none = makeLivingPicture(scene.lightField, {.maxSlices = 4, .sweepFrames = 1, .rangeEnds = 0});
+  ASSERT_TRUE(none.ok());
+  EXPECT_EQ(none->find("\"ranges\""), std::string::npos);
+  EXPECT_FALSE(makeLivingPicture(scene.lightField, {.maxSlices = 4, .sweepFrames = 1, .rangeEnds = 1}).ok());
 }
 
 }  // namespace

@@ -315,6 +315,27 @@ async function testExport(context, name, input, truth) {
     `${name} (exported): near region sharper focused near (${focused.near.nearSharpness.toFixed(0)}) than far (${focused.far.nearSharpness.toFixed(0)})`);
   check(focused.far.farSharpness > 1.2 * focused.near.farSharpness,
     `${name} (exported): far region sharper focused far (${focused.far.farSharpness.toFixed(0)}) than near (${focused.near.farSharpness.toFixed(0)})`);
+  // The focus range: both ends on the stack's stops, one precomputed photograph per pair.
+  const stops = await page.evaluate(() => window.lfcamLiving.data.rangeStops.length);
+  let wide = null;
+  for (const [end, value] of [['#rangeFar', 1], ['#rangeFar', 0], ['#rangeFar', stops - 1]]) {
+    const hash = await photoPixels(page);
+    await page.locator(end).fill(String(value));
+    await page.waitForFunction(() => document.getElementById('photo').complete);
+    await page.waitForTimeout(100);
+    const shown = await page.evaluate(() => document.getElementById('photo').dataset.range);
+    check(shown === `${value}:${stops - 1}` && (await photoPixels(page)) !== hash,
+      `${name} (exported): the range's far end at stop ${value} of ${stops} brings a new photograph (range ${shown})`);
+    const sharp = { near: await sharpness(page, near.x, near.y), far: await sharpness(page, far.x, far.y) };
+    if (value === 0) {
+      wide = sharp;
+      check(sharp.near > 1.2 * focused.far.nearSharpness && sharp.far > 1.2 * focused.near.farSharpness,
+        `${name} (exported): the whole range focuses both points (near ${sharp.near.toFixed(0)} > ${focused.far.nearSharpness.toFixed(0)} focused far, far ${sharp.far.toFixed(0)} > ${focused.near.farSharpness.toFixed(0)} focused near)`);
+      await page.screenshot({ path: path.join(outDir, `${name}-export-range.png`) });
+    } else if (value === stops - 1) {
+      check(sharp.far < 0.8 * wide.far, `${name} (exported): the range on the nearest stop alone blurs the far point (${sharp.far.toFixed(0)} < ${wide.far.toFixed(0)})`);
+    }
+  }
   // The viewpoint sweep plays.
   await page.locator('#play').click();
   const first = await photoSource(page);

@@ -1,5 +1,5 @@
 // lfcam export-html INPUT -o PAGE.html: a self-contained "living picture" that refocuses where it
-// is clicked, with no server (living_picture.hpp); of a processed Lytro container (*-stk.lfp, an
+// is clicked, with a precomputed focus range slider, with no server (living_picture.hpp); of a processed Lytro container (*-stk.lfp, an
 // Illum picture), over its own stored slices and depth map.
 #include <memory>
 
@@ -26,6 +26,11 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
   command->add_option("--frames", options->page.sweepFrames, "viewpoints in the sweep")->check(CLI::Range(1, 360));
   command->add_option("--quality", options->page.jpegQuality, "JPEG quality of the embedded images")
       ->check(CLI::Range(1, 100));
+  command
+      ->add_option("--range-ends", options->page.rangeEnds,
+                   "stops of the focus range slider, slices from the farthest to the nearest: every pair is one "
+                   "precomputed photograph with all between in focus (0: no range slider; default 5)")
+      ->check(CLI::Range(0, kMaxRangeEnds));
   command->add_option("--title", options->page.title, "the page's title");
   command->callback([options, &job] {
     job = [options]() -> Status {
