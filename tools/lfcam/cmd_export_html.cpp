@@ -1,6 +1,6 @@
 // lfcam export-html INPUT -o PAGE.html: a self-contained "living picture" that refocuses where it
-// is clicked, with a precomputed focus range slider, with no server (living_picture.hpp); of a processed Lytro container (*-stk.lfp, an
-// Illum picture), over its own stored slices and depth map.
+// is clicked, with a precomputed focus range slider, with no server (living_picture.hpp); of a processed Lytro
+// container (*-stk.lfp, an Illum picture), over its own stored slices and depth map.
 #include <memory>
 
 #include "raw_io/lytro_container.hpp"
@@ -19,7 +19,9 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
-      "export-html", "write one self-contained HTML page that refocuses where it is clicked, with a viewpoint sweep");
+      "export-html",
+      "write one self-contained HTML page that refocuses where it is clicked, with a focus range slider and a "
+      "viewpoint sweep");
   addInputOptions(*command, options->input);
   command->add_option("-o,--output", options->output, "the page (.html)")->required();
   command->add_option("--slices", options->page.maxSlices, "focal stack depth")->check(CLI::Range(2, 255));
