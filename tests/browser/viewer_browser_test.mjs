@@ -209,14 +209,17 @@ async function testViewer(context, name, input, truth, { depth = true } = {}) {
 async function testFocusShapes(page, name, info, near, far, focused, { range }) {
   const markers = () => page.evaluate(() => [...document.querySelectorAll('#markers .marker')].map((m) => m.textContent).join(''));
   const renders = () => page.evaluate(() => window.lfcamViewer.renders());
+  // Until its third point, the tilt mode shows the photograph focused at the slider's slope.
+  let before = await renders();
   await page.locator('input[name=mode][value=tilt]').check();
+  await waitIdle(page, before);
   // The near and the far point, and the image corner (inside a margin) that makes the widest triangle.
   const m = Math.round(info.width / 8);
   const corners = [[m, m], [info.width - m, m], [m, info.height - m], [info.width - m, info.height - m]];
   const area = ([x, y]) => Math.abs((far.x - near.x) * (y - near.y) - (far.y - near.y) * (x - near.x));
   const third = corners.sort((a, b) => area(b) - area(a))[0];
   const points = [[near.x, near.y], [far.x, far.y], third];
-  let before = await renders();
+  before = await renders();
   const hashBefore = await photoPixels(page);
   for (const [i, [x, y]] of points.entries()) {
     if (i === 2) before = await renders();

@@ -18,7 +18,7 @@ const state = {
   upsample: 1,      // point: the photograph on a grid this many times finer
   plane: null,      // tilt: the plane last rendered, [slope at the centre, gradient x, gradient y]
 };
-let inFlight = false, wanted = false, renders = 0, objectUrl = null;
+let inFlight = false, wanted = false, renders = 0, objectUrl = null, shownUrl = null;
 
 function fMax() { return 4 * state.info.lensRadius; }
 function fFromSlider(t) { return Math.pow(fMax(), t); }
@@ -85,7 +85,7 @@ function showMarkers() {
 
 function imageUrl() {
   if (state.layer !== 'photo') return `/api/image?layer=${state.layer}`;
-  if (state.mode === 'tilt') return `/api/image?plane=${state.points.map(([x, y]) => `${x.toFixed(1)},${y.toFixed(1)}`).join(':')}`;
+  if (state.mode === 'tilt' && state.points.length === 3) return `/api/image?plane=${state.points.map(([x, y]) => `${x.toFixed(1)},${y.toFixed(1)}`).join(':')}`;
   if (state.mode === 'range') return `/api/image?range=${state.near.toFixed(3)}:${state.far.toFixed(3)}`;
   const p = wholeLens() ? new URLSearchParams({ upsample: String(state.upsample) })
     : new URLSearchParams({ f: state.fNumber.toFixed(3), u: state.u.toFixed(3), v: state.v.toFixed(3) });
@@ -94,14 +94,15 @@ function imageUrl() {
   return `/api/image?${p}`;
 }
 
-// Asks for the photograph the controls describe; coalesces wishes while one is in flight. A tilt
-// waits for its third point.
+// Asks for the photograph the controls describe, unless it is the one shown (a tilt's first two
+// points keep the photograph of a plane facing the camera); coalesces wishes while one is in flight.
 function request() {
-  if (state.layer === 'photo' && state.mode === 'tilt' && state.points.length < 3) return;
   if (inFlight) { wanted = true; return; }
-  inFlight = true; wanted = false;
-  $('busy').hidden = false;
+  wanted = false;
   const url = imageUrl(), started = performance.now();
+  if (url === shownUrl && state.focus === null) return;
+  inFlight = true;
+  $('busy').hidden = false;
   const clicked = state.focus !== null;
   state.focus = null;
   if (state.layer !== 'photo') watchLayer(false);
@@ -112,6 +113,7 @@ function request() {
     const plane = response.headers.get('X-Lfcam-Plane');
     const blob = await response.blob();
     await showBlob(blob);
+    shownUrl = url;
     if (clicked && Number.isFinite(slope)) state.slope = slope;
     if (plane) state.plane = plane.split(',').map(Number);
     showControls();
