@@ -7,14 +7,19 @@
 
 #include <gtest/gtest.h>
 #include <httplib.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <thread>
 
+#include "lfcam/depth.hpp"
+#include "lfcam/focus_spread.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/layered_planes.hpp"
 #include "lfcam/living_picture.hpp"
+#include "lfcam/upsampled_refocus.hpp"
 #include "lfcam/viewer.hpp"
 #include "lfcam/viewer_server.hpp"
 #include "test_support.hpp"
@@ -83,6 +88,7 @@ TEST(ViewerRoutes, ServesTheEmbeddedPageAndNothingElse) {
   EXPECT_NE(page.body.find("viewer.js"), std::string::npos);
   EXPECT_EQ(get("/viewer.js").status, 200);
   EXPECT_EQ(get("/viewer.css").contentType.rfind("text/css", 0), 0u);
+  EXPECT_EQ(get("/viewer.dual-range.css").contentType.rfind("text/css", 0), 0u);
   // The export template and anything that looks like a path stay out of reach.
   for (const char* path : {"/living.html", "/../etc/passwd", "/viewer.js/../../etc/passwd", "/etc/passwd",
                            "//etc/passwd", "/api/../viewer.js", "/api", "", "/viewer.jsx", "/VIEWER.JS"})
@@ -123,6 +129,49 @@ TEST(ViewerRoutes, RefusesBadParameters) {
   EXPECT_EQ(get("/api/focus", {{"x", "3"}}).status, 400);
   EXPECT_EQ(get("/api/focus", {{"x", "300"}, {"y", "3"}}).status, 400);
   EXPECT_EQ(get("/api/info", {{"x", "1"}}).status, 400);
+}
+
+TEST(ViewerRoutes, RefusesBadFocusShapesInOneLineLikeTheCommandLine) {
+  using P = std::multimap<std::string, std::string>;
+  // Each refused request and a word its message must hold.
+  const std::vector<std::pair<P, std::string>> cases = {
+      {{{"plane", "10,10:20,20:30,30"}}, "lie on one line"},
+      {{{"plane", "10,10:20,20:30,30.5"}}, "lie on one line"},  // within a pixel of the line
+      {{{"plane", "10,10:20,20:64,3"}}, "outside the 64x64 image"},
+      {{{"plane", "10,10:20,20"}}, "expected three points as X1,Y1:X2,Y2:X3,Y3"},
+      {{{"plane", "10,10:20,20:30,nan"}}, "expected three points"},
+      {{{"range", "0.2:0.8"}}, "lies behind the far end"},
+      {{{"range", "0.5"}}, "expected NEAR:FAR"},
+      {{{"range", "9:0"}}, "expected NEAR:FAR as slopes in"},
+      {{{"range", "a:b"}}, "expected NEAR:FAR"},
+      {{{"upsample", "0"}}, "expected 1 to 4"},
+      {{{"upsample", "5"}}, "expected 1 to 4"},
+      {{{"upsample", "1.5"}}, "expected 1 to 4"},
+      {{{"plane", "5,5:50,10:20,50"}, {"range", "1:0"}}, "at most one"},
+      {{{"upsample", "2"}, {"range", "1:0"}}, "at most one"},
+      {{{"upsample", "2"}, {"f", "2"}}, "whole lens"},
+      {{{"range", "1:0"}, {"u", "1"}}, "whole lens"},
+      {{{"plane", "5,5:50,10:20,50"}, {"layer", "depth"}}, "whole lens"},
+      {{{"plane", "5,5:50,10:20,50"}, {"slope", "1"}}, "set the focus themselves"},
+      {{{"range", "1:0"}, {"focus", "3,3"}}, "set the focus themselves"},
+  };
+  for (const auto& [params, words] : cases) {
+    const auto answer = get("/api/image", params);
+    EXPECT_EQ(answer.status, 400) << params.begin()->first << "=" << params.begin()->second;
+    EXPECT_NE(answer.body.find(words), std::string::npos) << answer.body;
+    EXPECT_EQ(answer.body.find('\n'), answer.body.size() - 1) << answer.body;  // one line
+  }
+  // Accepted: the values at their limits, and a range of one slope.
+  for (const P& params :
+       std::vector<P>{{{"upsample", "1"}, {"f", "2"}},
+                      {{"upsample", "4"}, {"focus", "3,3"}},
+                      {{"range", std::to_string(session().slopeMax()) + ":" + std::to_string(session().slopeMin())}},
+                      {{"range", "0.5:0.5"}},
+                      {{"plane", "5,5:50,10:20,50"}, {"f", "1"}, {"u", "0"}}})
+    EXPECT_TRUE(parseViewerView(params, session()).ok()) << params.begin()->first << "=" << params.begin()->second;
+  auto range = parseViewerView({{"range", "0.75:-0.25"}}, session());
+  ASSERT_TRUE(range.ok());
+  EXPECT_EQ(range->focusRange, (std::pair{-0.25, 0.75}));  // {far, near}
 }
 
 TEST(ViewerRoutes, ClampsTheObserverToTheLens) {
@@ -184,6 +233,87 @@ TEST(ViewerSession, SlowLayersAreComputedOnceAndReportProgress) {
   ASSERT_EQ(depth.status, 200) << depth.body;
   EXPECT_TRUE(isJpeg(depth.body));
   EXPECT_NE(session().statusJson().find("\"ready\""), std::string::npos);
+}
+
+TEST(ViewerSession, TiltAnswerIsTheLibrarysTiltedRenderOfTheThreePoints) {
+  const std::array<ImagePoint, 3> points = {{{10.5, 40.5}, {50.5, 12.5}, {52.5, 50.5}}};
+  auto answer = get("/api/image", {{"plane", "10.5,40.5:50.5,12.5:52.5,50.5"}});
+  ASSERT_EQ(answer.status, 200) << answer.body;
+  // Each point at its sharpest over the slider's range, as a click focuses it.
+  const LightField& lf = session().lightField();
+  auto plane = focusPlaneThroughPoints(lf, points, session().focusSearch());
+  ASSERT_TRUE(plane.ok());
+  auto expected = encodeImage(refocusTilted(lf, *plane), {.format = EncodedFormat::Jpeg, .jpegQuality = 80});
+  ASSERT_TRUE(expected.ok());
+  EXPECT_EQ(answer.body, *expected);
+  EXPECT_NEAR(std::stod(answer.headers["X-Lfcam-Slope"]), plane->slope, 1e-5);
+  double slope = 0, gx = 0, gy = 0;
+  ASSERT_EQ(std::sscanf(answer.headers["X-Lfcam-Plane"].c_str(), "%lf,%lf,%lf", &slope, &gx, &gy), 3);
+  EXPECT_NEAR(gx, plane->gradientX, 1e-7);
+  EXPECT_NEAR(gy, plane->gradientY, 1e-7);
+  // The scene's planes lie at different depths: the three points do not share one slope.
+  EXPECT_GT(std::hypot(gx, gy), 1e-4);
+  // Asked again: from the cache, the plane still reported.
+  auto again = get("/api/image", {{"plane", "10.5,40.5:50.5,12.5:52.5,50.5"}});
+  EXPECT_EQ(again.headers["X-Lfcam-Cached"], "1");
+  EXPECT_EQ(again.headers["X-Lfcam-Plane"], answer.headers["X-Lfcam-Plane"]);
+  EXPECT_EQ(again.body, answer.body);
+}
+
+TEST(ViewerSession, UpsampledAnswerIsTheLibrarysFinerGrid) {
+  const LightField& lf = session().lightField();
+  for (const char* factor : {"2", "3"}) {
+    auto answer = get("/api/image", {{"slope", "0.4"}, {"upsample", factor}});
+    ASSERT_EQ(answer.status, 200) << answer.body;
+    auto photo = refocusUpsampled(lf, 0.4, std::stoi(factor));
+    ASSERT_TRUE(photo.ok());
+    EXPECT_EQ(photo->width(), std::stoi(factor) * lf.ns());
+    auto expected = encodeImage(*photo, {.format = EncodedFormat::Jpeg, .jpegQuality = 80});
+    ASSERT_TRUE(expected.ok());
+    EXPECT_EQ(answer.body, *expected) << factor;
+  }
+  // A click on the finer grid focuses as a plain click does.
+  auto clicked = get("/api/image", {{"focus", "20,30"}, {"upsample", "2"}});
+  ASSERT_EQ(clicked.status, 200) << clicked.body;
+  EXPECT_NEAR(std::stod(clicked.headers["X-Lfcam-Slope"]), *session().focusAt(20, 30), 1e-5);
+  EXPECT_NE(clicked.body, get("/api/image", {{"focus", "20,30"}}).body);
+}
+
+TEST(ViewerSession, FocusRangeWaitsForTheDepthMapThenIsTheLibrarysFocusSpread) {
+  auto scene = smallScene();
+  ViewerSession local(std::move(scene.lightField));
+  const ViewerRequest range{"GET", "/api/image", {{"range", "0.8:-0.2"}}};
+  // The first range request computes the depth map; meanwhile another gets 202 with the progress.
+  std::atomic<bool> done = false;
+  ViewerAnswer first;
+  std::thread computing([&] {
+    first = answerRequest(local, range);
+    done = true;
+  });
+  bool sawRunning = false;
+  while (!done && !sawRunning) sawRunning = local.statusJson().find("\"running\"") != std::string::npos;
+  ViewerAnswer waiting;
+  if (sawRunning) waiting = answerRequest(local, range);
+  computing.join();
+  ASSERT_TRUE(sawRunning) << "the depth map was never seen running";
+  EXPECT_EQ(waiting.status, 202) << waiting.body;
+  EXPECT_NE(waiting.body.find("\"depth\""), std::string::npos);
+  ASSERT_EQ(first.status, 200) << first.body;
+
+  // The same photograph from the library: the depth map over the session's slope range.
+  const LightField& lf = local.lightField();
+  DepthOptions options;
+  options.disparityMin = local.slopeMin();
+  options.disparityMax = local.slopeMax();
+  auto depth = estimateDepth(lf, options);
+  ASSERT_TRUE(depth.ok());
+  auto spread = refocusSpread(lf, depth->disparity, -0.2, 0.8);
+  ASSERT_TRUE(spread.ok());
+  auto expected = encodeImage(*spread, {.format = EncodedFormat::Jpeg, .jpegQuality = 80});
+  ASSERT_TRUE(expected.ok());
+  EXPECT_EQ(first.body, *expected);
+  // Another range needs no new depth map: answered at once.
+  EXPECT_EQ(answerRequest(local, {"GET", "/api/image", {{"range", "0.3:0.1"}}}).status, 200);
 }
 
 // --- The server on a socket ---
@@ -264,7 +394,8 @@ TEST(LivingPicture, EmbedsTheStackTheIndexAndTheSweep) {
   auto scene = smallScene();
   auto html = makeLivingPicture(scene.lightField, {.maxSlices = 8, .sweepFrames = 4, .jpegQuality = 70});
   ASSERT_TRUE(html.ok()) << html.error().message;
-  EXPECT_EQ(html->find("{{LFCAM_DATA}}"), std::string::npos);
+  EXPECT_EQ(html->find("{{LFCAM_"), std::string::npos);
+  EXPECT_NE(html->find(".dual input"), std::string::npos);  // the range slider's style, inlined
   EXPECT_NE(html->find("\"index\":\""), std::string::npos);
   int images = 0;
   for (std::size_t at = 0; (at = html->find("data:image/jpeg;base64,", at)) != std::string::npos; ++at) ++images;
@@ -273,6 +404,45 @@ TEST(LivingPicture, EmbedsTheStackTheIndexAndTheSweep) {
   EXPECT_EQ(html->find("src=\"http"), std::string::npos);
   EXPECT_EQ(html->find("<script src"), std::string::npos);
   EXPECT_FALSE(makeLivingPicture(LightField()).ok());
+}
+
+TEST(LivingPicture, FocusRangesAreTheLibrarysFocusSpreadOverTheStacksSlopes) {
+  auto scene = smallScene();
+  const LivingPictureOptions options{.maxSlices = 8, .sweepFrames = 1, .jpegQuality = 70, .rangeEnds = 4};
+  auto html = makeLivingPicture(scene.lightField, options);
+  ASSERT_TRUE(html.ok()) << html.error().message;
+  const std::string open = "<script id=\"lfcam-data\" type=\"application/json\">";
+  const auto begin = html->find(open) + open.size();
+  const auto data = nlohmann::json::parse(html->substr(begin, html->find("</script>", begin) - begin));
+  // Four stops from the farthest slice to the nearest, and one photograph per pair of them.
+  const auto stops = data["rangeStops"].get<std::vector<int>>();
+  ASSERT_EQ(stops.size(), 4u);
+  EXPECT_EQ(stops.front(), 0);
+  EXPECT_EQ(stops.back(), int(data["slices"].size()) - 1);
+  EXPECT_TRUE(std::is_sorted(stops.begin(), stops.end()));
+  ASSERT_EQ(data["ranges"].size(), 6u);
+  // Each is refocusSpread between its stops' slopes, on the depth map over the stack's slopes.
+  std::vector<double> slopes;
+  for (const auto& slice : data["slices"]) slopes.push_back(slice["slope"]);
+  DepthOptions depthOptions;
+  depthOptions.disparityMin = slopes.front();
+  depthOptions.disparityMax = slopes.back();
+  auto depth = estimateDepth(scene.lightField, depthOptions);
+  ASSERT_TRUE(depth.ok());
+  for (const auto& range : data["ranges"]) {
+    const int far = range["far"], near = range["near"];
+    ASSERT_LT(far, near);
+    auto photo = refocusSpread(scene.lightField, depth->disparity, slopes[stops[far]], slopes[stops[near]]);
+    ASSERT_TRUE(photo.ok());
+    auto jpeg = encodeImage(*photo, {.format = EncodedFormat::Jpeg, .jpegQuality = 70});
+    ASSERT_TRUE(jpeg.ok());
+    EXPECT_EQ(range["image"].get<std::string>(), "data:image/jpeg;base64," + base64Encode(*jpeg)) << far << ":" << near;
+  }
+  // None asked: no slider's data; one stop is refused.
+  auto none = makeLivingPicture(scene.lightField, {.maxSlices = 4, .sweepFrames = 1, .rangeEnds = 0});
+  ASSERT_TRUE(none.ok());
+  EXPECT_EQ(none->find("\"ranges\""), std::string::npos);
+  EXPECT_FALSE(makeLivingPicture(scene.lightField, {.maxSlices = 4, .sweepFrames = 1, .rangeEnds = 1}).ok());
 }
 
 }  // namespace

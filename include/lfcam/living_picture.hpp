@@ -5,6 +5,11 @@
 // all-in-focus photograph, and a viewpoint sweep
 // (pinhole views around a circle on the lens, observe() of synthetic_camera.hpp). The page is
 // src/viewer/assets/living.html, embedded in the binary; the data replaces its placeholder.
+//
+// A focus range (focus_spread.hpp) is precomputed for a two-ended slider: `rangeEnds` slices of
+// the stack (the first, the last, and evenly between) are the ends it stops at, and every pair of
+// distinct ends is one photograph, refocusSpread on the depth map (depth.hpp) estimated over the
+// stack's slopes; equal ends show that slice.
 #pragma once
 
 #include <filesystem>
@@ -17,17 +22,21 @@
 
 namespace lfcam {
 
+constexpr int kMaxRangeEnds = 12;  // 66 focus-range photographs
+
 struct LivingPictureOptions {
   int maxSlices = 24;    // focal stack depth (the all-in-focus step grows to fit)
   int sweepFrames = 24;  // viewpoints around the lens
   int jpegQuality = 85;
   bool smallAperture = true;  // a second focal stack through a small aperture (a page control)
+  int rangeEnds = 5;          // stops of the focus range slider: rangeEnds (rangeEnds - 1) / 2 photographs; 0: none
   std::string title = "lfcam living picture";
 };
 
 // The page's HTML. Usage error for an empty light field or options out of range.
 // Cost: about 3 maxSlices + 64 refocus times (all-in-focus with its focus measure, then the
-// stacks) plus the JPEG encoding.
+// stacks), plus about 70 for the depth map and a few per focus range (rangeEnds 0 saves them),
+// plus the JPEG encoding.
 Result<std::string> makeLivingPicture(const LightField& lightField, const LivingPictureOptions& options = {},
                                       const ProgressCallback& progress = {});
 

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/image.hpp"
@@ -35,8 +36,16 @@ struct FocusPlane {
 
 using ImagePoint = std::array<double, 2>;  // (x, y), image coordinates
 
-// The plane through three image points at the slopes that focus each sharpest. Usage errors: a
-// point outside the image, or three points on (within a pixel of) one line.
+// "X1,Y1:X2,Y2:X3,Y3" -> three points (the command line's --focus-plane, the viewer's plane=).
+// Usage error for anything but six finite numbers so written.
+Result<std::array<ImagePoint, 3>> parseFocusPlanePoints(const std::string& text);
+
+// Whether three points can define a plane of focus, checked before any (slow) focus search. Usage
+// errors: a point outside the image, or three points on (within a pixel of) one line.
+Status checkFocusPlanePoints(const LightField& lightField, const std::array<ImagePoint, 3>& points);
+
+// The plane through three image points at the slopes that focus each sharpest. Usage errors: those
+// of checkFocusPlanePoints.
 Result<FocusPlane> focusPlaneThroughPoints(const LightField& lightField, const std::array<ImagePoint, 3>& points,
                                            const FocusSearch& search = {});
 

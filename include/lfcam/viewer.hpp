@@ -1,6 +1,7 @@
 // The interactive viewer behind `lfcam view`: a light field held in memory and the photographs a
-// page asks for (click to focus, focus, aperture, observer position, all-in-focus and depth
-// layers), answered as JPEG bytes. Requests are plain values (ViewerRequest, ViewerAnswer) routed
+// page asks for (click to focus, focus, aperture, observer position, a tilted plane of focus
+// through three clicked points, a focus range, a finer grid, all-in-focus and depth layers),
+// answered as JPEG bytes. Requests are plain values (ViewerRequest, ViewerAnswer) routed
 // by answerRequest, independent of the HTTP library, so that routing, parsing and limits are
 // unit-tested without a socket; viewer_server.hpp puts them on the network.
 //
@@ -13,9 +14,11 @@
 // The all-in-focus photograph and the depth map are slow (about 60-130 refocus times, depth.hpp,
 // all_in_focus.hpp): the first request for one computes it in its own (server) thread, and
 // while it runs every other request for it answers 202 with the estimated progress, so the page
-// can poll /api/status and stay responsive.
+// can poll /api/status and stay responsive. A focus range (focus_spread.hpp) needs the depth map:
+// it answers 202 in the same way until the depth layer is ready, then renders on its disparity.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cstddef>
 #include <map>
@@ -26,6 +29,7 @@
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
 #include "lfcam/result.hpp"
+#include "lfcam/tilted_focus.hpp"
 
 namespace lfcam {
 
@@ -39,6 +43,10 @@ struct ViewerView {
   double fNumber = 1;   // aperture, relative to the whole lens (1): radius = lens radius / fNumber
   double u = 0, v = 0;  // observer: the aperture's centre, view steps from the lens centre
   int quality = 80;     // JPEG quality
+  // At most one of these three, each with the whole lens seen from its centre (fNumber 1, u = v = 0):
+  std::optional<std::array<ImagePoint, 3>> focusPlane;  // tilted focus through three points (tilted_focus.hpp)
+  std::optional<std::pair<double, double>> focusRange;  // {far, near} slopes in focus (focus_spread.hpp)
+  int upsample = 1;  // the photograph on a grid this many times finer (upsampled_refocus.hpp)
 };
 
 struct ViewerLimits {
@@ -69,12 +77,15 @@ class ViewerSession {
   // the time one refocus takes.
   std::string statusJson() const;
 
+  // The focus search of a click and of each point of a tilted plane: the slider's range.
+  FocusSearch focusSearch() const;
   // The slope that makes pixel (x, y) sharpest (slopeAtPixel over the slider's range).
   Result<double> focusAt(double x, double y) const;
 
   struct Photo {
     std::string jpeg;
-    double slope = 0;  // the slope rendered (the one chosen, for a click)
+    double slope = 0;                 // the slope rendered (the one chosen, for a click)
+    std::optional<FocusPlane> plane;  // the tilted plane rendered, for focusPlane
     bool cached = false;
   };
   // The photograph `view` describes. Errors: Usage for a view outside the light field's range;
@@ -109,9 +120,13 @@ struct ViewerAnswer {
 //   GET /api/info, /api/status                    JSON (above)
 //   GET /api/focus?x=X&y=Y                         {"slope": D}
 //   GET /api/image?layer=photo|allinfocus|depth&slope=D&focus=X,Y&f=N&u=U&v=V&q=Q
-//       image/jpeg, the slope rendered in header X-Lfcam-Slope; every parameter optional
+//                  &plane=X1,Y1:X2,Y2:X3,Y3 | &range=NEAR:FAR | &upsample=K
+//       image/jpeg, the slope rendered in header X-Lfcam-Slope (for a plane, at the image centre, and
+//       the plane in X-Lfcam-Plane: "slope,gradientX,gradientY"); every parameter optional
 // Anything else: 404 (unknown path), 405 (not GET/HEAD), 400 (bad, unknown or repeated
-// parameter), 202 (layer being computed), 503 (render queue full).
+// parameter, three points on one line, a range with its near end behind its far end or outside
+// the slope range, K outside 1-4, or plane/range/upsample with another aperture or observer), 202
+// (layer being computed, or the depth map a range needs), 503 (render queue full).
 ViewerAnswer answerRequest(ViewerSession& session, const ViewerRequest& request);
 
 // The parameters of /api/image, checked (400 material on error) against the light field.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -23,22 +24,47 @@ FocusPlane centredPlane(const LightField& lightField) {
 
 std::string pointText(const ImagePoint& point) { return std::to_string(point[0]) + "," + std::to_string(point[1]); }
 
+// Twice the signed area of the triangle, and its longest side: their ratio is its height over that side.
+double crossOf(const std::array<ImagePoint, 3>& p) {
+  return (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+}
+double longestSide(const std::array<ImagePoint, 3>& p) {
+  auto side = [&](int i, int j) { return std::hypot(p[j][0] - p[i][0], p[j][1] - p[i][1]); };
+  return std::max({side(0, 1), side(0, 2), side(1, 2)});
+}
+
 }  // namespace
 
-Result<FocusPlane> focusPlaneThroughPoints(const LightField& lightField, const std::array<ImagePoint, 3>& points,
-                                           const FocusSearch& search) {
+Result<std::array<ImagePoint, 3>> parseFocusPlanePoints(const std::string& text) {
+  std::array<ImagePoint, 3> points{};
+  char end = 0;
+  const int read = std::sscanf(text.c_str(), "%lf,%lf:%lf,%lf:%lf,%lf%c", &points[0][0], &points[0][1], &points[1][0],
+                               &points[1][1], &points[2][0], &points[2][1], &end);
+  const bool finite = std::all_of(points.begin(), points.end(),
+                                  [](const ImagePoint& p) { return std::isfinite(p[0]) && std::isfinite(p[1]); });
+  if (read != 6 || !finite)
+    return makeError(ErrorCode::Usage, "expected three points as X1,Y1:X2,Y2:X3,Y3, got '" + text + "'");
+  return points;
+}
+
+Status checkFocusPlanePoints(const LightField& lightField, const std::array<ImagePoint, 3>& points) {
   for (const ImagePoint& point : points)
     if (!(point[0] >= 0 && point[0] < lightField.ns() && point[1] >= 0 && point[1] < lightField.nt()))
       return makeError(ErrorCode::Usage, "point " + pointText(point) + " lies outside the " +
                                              std::to_string(lightField.ns()) + "x" + std::to_string(lightField.nt()) +
                                              " image");
   // The triangle's height over its longest side: under a pixel, the points do not span a plane.
+  if (!(std::abs(crossOf(points)) >= longestSide(points)))
+    return makeError(ErrorCode::Usage, "the three points lie on one line: they span no plane");
+  return {};
+}
+
+Result<FocusPlane> focusPlaneThroughPoints(const LightField& lightField, const std::array<ImagePoint, 3>& points,
+                                           const FocusSearch& search) {
+  LFCAM_TRY(checkFocusPlanePoints(lightField, points));
   const double ax = points[1][0] - points[0][0], ay = points[1][1] - points[0][1];
   const double bx = points[2][0] - points[0][0], by = points[2][1] - points[0][1];
-  const double cross = ax * by - ay * bx;
-  const double longest = std::max({std::hypot(ax, ay), std::hypot(bx, by), std::hypot(bx - ax, by - ay)});
-  if (!(std::abs(cross) >= longest))
-    return makeError(ErrorCode::Usage, "the three points lie on one line: they span no plane");
+  const double cross = crossOf(points);
 
   std::array<double, 3> slopes{};
   for (int i = 0; i < 3; ++i) {

@@ -5,13 +5,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <numbers>
 
 #include <nlohmann/json.hpp>
 
 #include "lfcam/all_in_focus.hpp"
 #include "lfcam/atomic_file.hpp"
+#include "lfcam/depth.hpp"
 #include "lfcam/focal_stack.hpp"
+#include "lfcam/focus_spread.hpp"
 #include "lfcam/synthetic_camera.hpp"
 #include "viewer/image_encode.hpp"
 #include "viewer/viewer_assets.hpp"
@@ -20,7 +23,7 @@ namespace lfcam {
 
 namespace {
 
-constexpr std::string_view placeholder = "{{LFCAM_DATA}}";
+constexpr std::string_view placeholder = "{{LFCAM_DATA}}", stylePlaceholder = "{{LFCAM_DUAL_RANGE_CSS}}";
 
 Result<std::string> dataUrl(const Image& image, int quality) {
   LFCAM_ASSIGN_OR_RETURN(auto jpeg, encodeImage(image, {.format = EncodedFormat::Jpeg, .jpegQuality = quality}));
@@ -41,10 +44,15 @@ Result<std::string> pageWithData(const nlohmann::json& data) {
     else
       escaped += c;
   }
+  // The two-ended slider's style, shared with lfcam view's page.
+  const viewer::Asset* dualRange = viewer::findAsset("viewer.dual-range.css");
   std::string html(page->bytes);
-  const auto at = html.find(placeholder);
-  if (at == std::string::npos) return makeError(ErrorCode::Format, "export-html: the page template has no data slot");
+  const auto at = html.find(placeholder), styleAt = html.find(stylePlaceholder);
+  if (at == std::string::npos || styleAt >= at || !dualRange)
+    return makeError(ErrorCode::Format, "export-html: the page template has no data or style slot");
+  // The data first: the style slot lies before it, so its position holds.
   html.replace(at, placeholder.size(), escaped);
+  html.replace(styleAt, stylePlaceholder.size(), dualRange->bytes);
   return html;
 }
 
@@ -63,14 +71,50 @@ double smallApertureRadius(const LightField& lightField) {
   return std::max(1.0, (std::min(lightField.nu(), lightField.nv()) - 1) / 6.0);
 }
 
+// The focus range slider's stops (slice indices, ascending) and, for every pair of distinct stops,
+// the photograph with everything between them in focus: refocusSpread on the depth map estimated
+// over the stack's slopes. Precomputed rather than picked per pixel from the slices in the page: a
+// slice focused beside a nearer surface carries that surface's blur over the pixels around it, a
+// ring that refocusSpread leaves out by dropping the rays the nearer surface hides. The depth map,
+// not the all-in-focus labels: a label one slice off its neighbours (noise on a flat wall) makes
+// them hide all of its rays, a black dot.
+Status addFocusRanges(const LightField& lightField, const std::vector<double>& slopes,
+                      const LivingPictureOptions& options, const std::function<void(double)>& report,
+                      nlohmann::json& data) {
+  const int slices = int(slopes.size()), ends = std::min(options.rangeEnds, slices);
+  if (ends < 2) return {};
+  DepthOptions depthOptions;
+  depthOptions.disparityMin = slopes.front();
+  depthOptions.disparityMax = slopes.back();
+  LFCAM_ASSIGN_OR_RETURN(auto depth, estimateDepth(lightField, depthOptions));
+  report(0.5);
+  nlohmann::json stops = nlohmann::json::array(), ranges = nlohmann::json::array();
+  for (int i = 0; i < ends; ++i) stops.push_back(int(std::lround(double(i) * (slices - 1) / (ends - 1))));
+  for (int far = 0; far < ends; ++far)
+    for (int near = far + 1; near < ends; ++near) {
+      const double farSlope = slopes[stops[far].get<int>()], nearSlope = slopes[stops[near].get<int>()];
+      LFCAM_ASSIGN_OR_RETURN(auto photo, refocusSpread(lightField, depth.disparity, farSlope, nearSlope));
+      LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(photo, options.jpegQuality));
+      ranges.push_back({{"far", far}, {"near", near}, {"image", url}});
+      report(0.5 + 0.5 * double(ranges.size()) / (ends * (ends - 1) / 2));
+    }
+  data["rangeStops"] = std::move(stops);
+  data["ranges"] = std::move(ranges);
+  return {};
+}
+
 }  // namespace
 
 Result<std::string> makeLivingPicture(const LightField& lightField, const LivingPictureOptions& options,
                                       const ProgressCallback& progress) {
   if (lightField.empty()) return makeError(ErrorCode::Usage, "export-html: empty light field");
   if (options.maxSlices < 2 || options.maxSlices > 255 || options.sweepFrames < 1 || options.sweepFrames > 360 ||
-      options.jpegQuality < 1 || options.jpegQuality > 100)
-    return makeError(ErrorCode::Usage, "export-html: slices must be in 2..255, frames in 1..360, quality in 1..100");
+      options.jpegQuality < 1 || options.jpegQuality > 100 || options.rangeEnds == 1 || options.rangeEnds < 0 ||
+      options.rangeEnds > kMaxRangeEnds)
+    return makeError(ErrorCode::Usage,
+                     "export-html: slices must be in 2..255, frames in 1..360, quality in 1..100, "
+                     "range ends 0 or 2.." +
+                         std::to_string(kMaxRangeEnds));
   auto report = [&](double fraction) {
     if (progress) progress(fraction);
   };
@@ -122,10 +166,11 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
     LFCAM_ASSIGN_OR_RETURN(auto view, observe(lightField, observer));
     LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(view, options.jpegQuality));
     sweep.push_back({{"u", observer.u}, {"v", observer.v}, {"image", url}});
-    report(0.8 + 0.2 * (k + 1) / options.sweepFrames);
+    report(0.8 + 0.1 * (k + 1) / options.sweepFrames);
   }
   data["sweep"] = std::move(sweep);
-
+  LFCAM_TRY(addFocusRanges(
+      lightField, slopes, options, [&](double f) { report(0.9 + 0.1 * f); }, data));
   return pageWithData(data);
 }
 

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lfcam/upsampled_refocus.hpp"
 #include "lfcam/viewer.hpp"
 #include "viewer/viewer_assets.hpp"
 
@@ -53,11 +54,62 @@ const std::string* param(const std::multimap<std::string, std::string>& params, 
   return it == params.end() ? nullptr : &it->second;
 }
 
+// "NEAR:FAR" in slopes within the session's range, near the larger -> {far, near}; the command
+// line's --focus-range wording.
+Result<std::pair<double, double>> parseFocusRange(const std::string& text, const ViewerSession& session) {
+  const auto colon = text.find(':');
+  const auto nearEnd = parseNumber(text.substr(0, colon)),
+             farEnd = colon == std::string::npos ? std::nullopt : parseNumber(text.substr(colon + 1));
+  char expected[128];
+  std::snprintf(expected, sizeof expected, "parameter range: expected NEAR:FAR as slopes in [%g, %g]",
+                session.slopeMin(), session.slopeMax());
+  if (!nearEnd || !farEnd) return makeError(ErrorCode::Usage, expected);
+  if (*nearEnd < *farEnd)
+    return makeError(ErrorCode::Usage, "parameter range: the near end (slope " + text.substr(0, colon) +
+                                           ") lies behind the far end (slope " + text.substr(colon + 1) +
+                                           "); slopes grow towards the camera");
+  if (*farEnd < session.slopeMin() || *nearEnd > session.slopeMax()) return makeError(ErrorCode::Usage, expected);
+  return std::pair{*farEnd, *nearEnd};
+}
+
+// The tilted plane, the focus range and the finer grid: each value checked, at most one of them,
+// and each with the whole lens from its centre (as the command line's refocus accepts them).
+Status parseFocusShape(const std::multimap<std::string, std::string>& params, const ViewerSession& session,
+                       ViewerView& view) {
+  if (auto* plane = param(params, "plane")) {
+    auto points = parseFocusPlanePoints(*plane);
+    Status valid = points ? checkFocusPlanePoints(session.lightField(), *points) : Status(points.error());
+    if (!valid) return makeError(ErrorCode::Usage, "parameter plane: " + valid.error().message);
+    view.focusPlane = *points;
+  }
+  if (auto* range = param(params, "range")) {
+    LFCAM_ASSIGN_OR_RETURN(auto value, parseFocusRange(*range, session));
+    view.focusRange = value;
+  }
+  if (auto* upsample = param(params, "upsample")) {
+    const auto value = parseNumber(*upsample);
+    if (!value || *value != std::floor(*value) || *value < 1 || *value > kMaxUpsampleFactor)
+      return makeError(ErrorCode::Usage, "parameter upsample: expected 1 to " + std::to_string(kMaxUpsampleFactor) +
+                                             ", got '" + upsample->substr(0, 20) + "'");
+    view.upsample = int(*value);
+  }
+  const int shapes = int(view.focusPlane.has_value()) + int(view.focusRange.has_value()) + int(view.upsample > 1);
+  if (shapes == 0) return {};
+  if (shapes > 1) return makeError(ErrorCode::Usage, "parameters plane, range and upsample: at most one at a time");
+  if (view.layer != ViewerLayer::Photo || view.fNumber != 1 || view.u != 0 || view.v != 0)
+    return makeError(ErrorCode::Usage,
+                     "parameters plane, range and upsample render the photo layer with the whole lens from its "
+                     "centre only (no f, u or v)");
+  if ((view.focusPlane || view.focusRange) && (param(params, "slope") || view.focusAt))
+    return makeError(ErrorCode::Usage, "parameters plane and range set the focus themselves (no slope or focus)");
+  return {};
+}
+
 }  // namespace
 
 Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>& params,
                                    const ViewerSession& session) {
-  LFCAM_TRY(checkNames(params, {"layer", "slope", "focus", "f", "u", "v", "q"}));
+  LFCAM_TRY(checkNames(params, {"layer", "slope", "focus", "f", "u", "v", "q", "plane", "range", "upsample"}));
   const LightField& lf = session.lightField();
   ViewerView view;
   if (auto* layer = param(params, "layer")) {
@@ -101,6 +153,7 @@ Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>
     LFCAM_ASSIGN_OR_RETURN(auto value, numberIn("q", *q, 10, 100));
     view.quality = int(std::lround(value));
   }
+  LFCAM_TRY(parseFocusShape(params, session, view));
   return view;
 }
 
@@ -154,6 +207,11 @@ ViewerAnswer answerRequest(ViewerSession& session, const ViewerRequest& request)
     char slope[32];
     std::snprintf(slope, sizeof slope, "%.6f", photo->slope);
     answer.headers["X-Lfcam-Slope"] = slope;
+    if (const auto& plane = photo->plane) {
+      char text[96];
+      std::snprintf(text, sizeof text, "%.6f,%.8f,%.8f", plane->slope, plane->gradientX, plane->gradientY);
+      answer.headers["X-Lfcam-Plane"] = text;
+    }
     answer.headers["X-Lfcam-Cached"] = photo->cached ? "1" : "0";
     answer.headers["Cache-Control"] = "no-store";
     return answer;

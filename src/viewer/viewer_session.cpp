@@ -14,8 +14,11 @@
 #include "lfcam/color_map.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/focal_stack.hpp"
+#include "lfcam/focus_spread.hpp"
 #include "lfcam/refocus.hpp"
 #include "lfcam/synthetic_camera.hpp"
+#include "lfcam/tilted_focus.hpp"
+#include "lfcam/upsampled_refocus.hpp"
 #include "lfcam/viewer.hpp"
 #include "viewer/image_encode.hpp"
 
@@ -25,11 +28,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// What a slow layer holds: the picture shown, and for the depth layer the disparity map behind its
+// colours (px per view step), on which a focus range is rendered.
+struct LayerImages {
+  Image shown;  // linear RGB, ready to encode
+  Image values;
+};
+
 // A slow layer computed once, by the first request that asks for it.
 struct LazyLayer {
   enum class State { Idle, Running, Ready, Failed };
   State state = State::Idle;
-  Image image;  // linear RGB, ready to encode
+  LayerImages images;
   std::string error;
   Clock::time_point started;
   double expectedSeconds = 1;
@@ -49,20 +59,20 @@ const char* stateName(LazyLayer::State state) {
 class AnswerCache {
  public:
   explicit AnswerCache(std::size_t capacity) : capacity_(capacity) {}
-  std::optional<std::pair<std::string, double>> find(const std::string& key) {
+  std::optional<ViewerSession::Photo> find(const std::string& key) {
     auto it = index_.find(key);
     if (it == index_.end()) return std::nullopt;
     entries_.splice(entries_.begin(), entries_, it->second);
-    return std::pair{it->second->jpeg, it->second->slope};
+    return it->second->photo;
   }
-  void insert(const std::string& key, const std::string& jpeg, double slope) {
-    if (jpeg.size() + key.size() > capacity_ || index_.count(key)) return;
-    entries_.push_front({key, jpeg, slope});
+  void insert(const std::string& key, const ViewerSession::Photo& photo) {
+    if (photo.jpeg.size() + key.size() > capacity_ || index_.count(key)) return;
+    entries_.push_front({key, photo});
     index_[key] = entries_.begin();
-    bytes_ += jpeg.size() + key.size();
+    bytes_ += photo.jpeg.size() + key.size();
     while (bytes_ > capacity_) {
       const Entry& last = entries_.back();
-      bytes_ -= last.jpeg.size() + last.key.size();
+      bytes_ -= last.photo.jpeg.size() + last.key.size();
       index_.erase(last.key);
       entries_.pop_back();
     }
@@ -71,8 +81,8 @@ class AnswerCache {
 
  private:
   struct Entry {
-    std::string key, jpeg;
-    double slope;
+    std::string key;
+    ViewerSession::Photo photo;
   };
   std::size_t capacity_, bytes_ = 0;
   std::list<Entry> entries_;
@@ -162,45 +172,54 @@ std::string ViewerSession::statusJson() const {
       -1, ' ', true, nlohmann::json::error_handler_t::replace);
 }
 
+FocusSearch ViewerSession::focusSearch() const {
+  FocusSearch search;
+  search.minSlope = state_->slopeMin;
+  search.maxSlope = state_->slopeMax;
+  return search;
+}
+
 Result<double> ViewerSession::focusAt(double x, double y) const {
   const LightField& lf = state_->lightField;
   if (!(x >= 0 && y >= 0 && x < lf.ns() && y < lf.nt()))
     return makeError(ErrorCode::Usage, "focus point outside the image");
-  FocusSearch search;
-  search.minSlope = state_->slopeMin;
-  search.maxSlope = state_->slopeMax;
-  return slopeAtPixel(lf, x, y, search);
+  return slopeAtPixel(lf, x, y, focusSearch());
 }
 
 namespace {
 
 // Computes a slow layer for the caller that finds it idle; others see Running (Resource error).
-Result<const Image*> lazyLayer(std::mutex& mutex, LazyLayer& layer, const std::function<Result<Image>()>& compute) {
+Result<const LayerImages*> lazyLayer(std::mutex& mutex, LazyLayer& layer,
+                                     const std::function<Result<LayerImages>()>& compute) {
   {
     std::lock_guard lock(mutex);
     switch (layer.state) {
-      case LazyLayer::State::Ready: return &layer.image;
+      case LazyLayer::State::Ready: return &layer.images;
       case LazyLayer::State::Failed: return makeError(ErrorCode::Format, layer.error);
       case LazyLayer::State::Running: return makeError(ErrorCode::Resource, "running");
       case LazyLayer::State::Idle: layer.state = LazyLayer::State::Running; layer.started = Clock::now();
     }
   }
-  Result<Image> image = compute();
+  Result<LayerImages> images = compute();
   std::lock_guard lock(mutex);
-  if (!image) {
+  if (!images) {
     layer.state = LazyLayer::State::Failed;
-    layer.error = image.error().message;
-    return image.error();
+    layer.error = images.error().message;
+    return images.error();
   }
-  layer.image = std::move(*image);
+  layer.images = std::move(*images);
   layer.state = LazyLayer::State::Ready;
-  return &layer.image;
+  return &layer.images;
 }
 
 std::string cacheKey(const ViewerView& view) {
-  char key[160];
-  std::snprintf(key, sizeof key, "%d|%.4f|%.3f|%.3f|%.3f|%d", int(view.layer), view.slope, view.fNumber, view.u, view.v,
-                view.quality);
+  char key[256];
+  int n = std::snprintf(key, sizeof key, "%d|%.4f|%.3f|%.3f|%.3f|%d|%d", int(view.layer), view.slope, view.fNumber,
+                        view.u, view.v, view.quality, view.upsample);
+  if (const auto& p = view.focusPlane)
+    n += std::snprintf(key + n, sizeof key - n, "|plane %.2f,%.2f:%.2f,%.2f:%.2f,%.2f", (*p)[0][0], (*p)[0][1],
+                       (*p)[1][0], (*p)[1][1], (*p)[2][0], (*p)[2][1]);
+  if (const auto& r = view.focusRange) std::snprintf(key + n, sizeof key - n, "|range %.4f:%.4f", r->first, r->second);
   return key;
 }
 
@@ -214,35 +233,52 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
   if (view.layer == ViewerLayer::Photo && view.focusAt) {
     LFCAM_ASSIGN_OR_RETURN(auto slope, focusAt(view.focusAt->first, view.focusAt->second));
     view.slope = slope;
+    view.focusAt.reset();
   }
   if (view.layer != ViewerLayer::Photo) view.slope = view.fNumber = view.u = view.v = 0;
+  if (view.focusPlane || view.focusRange) view.slope = 0;
   const std::string key = cacheKey(view);
   {
     std::lock_guard lock(s.mutex);
-    if (auto hit = s.cache.find(key)) return Photo{std::move(hit->first), hit->second, true};
+    if (auto hit = s.cache.find(key)) {
+      hit->cached = true;
+      return std::move(*hit);
+    }
   }
 
+  Photo photo{.slope = view.slope};
   Image computed;
   const Image* image = nullptr;
-  if (view.layer == ViewerLayer::AllInFocus) {
-    auto compute = [&]() -> Result<Image> {
-      AllInFocusOptions options;
-      options.disparityMin = s.slopeMin;
-      options.disparityMax = s.slopeMax;
-      LFCAM_ASSIGN_OR_RETURN(auto result, allInFocus(lf, options));
-      return std::move(result.photo);
-    };
-    LFCAM_ASSIGN_OR_RETURN(image, lazyLayer(s.mutex, s.allInFocus, compute));
-  } else if (view.layer == ViewerLayer::Depth) {
-    auto compute = [&]() -> Result<Image> {
+  auto depthLayer = [&] {
+    return lazyLayer(s.mutex, s.depth, [&]() -> Result<LayerImages> {
       DepthOptions options;
       options.disparityMin = s.slopeMin;
       options.disparityMax = s.slopeMax;
       LFCAM_ASSIGN_OR_RETURN(auto result, estimateDepth(lf, options));
-      return colorMap(result.disparity, result.disparityMin, result.disparityMax);
+      Image shown = colorMap(result.disparity, result.disparityMin, result.disparityMax);
+      return LayerImages{std::move(shown), std::move(result.disparity)};
+    });
+  };
+  if (view.layer == ViewerLayer::AllInFocus) {
+    auto compute = [&]() -> Result<LayerImages> {
+      AllInFocusOptions options;
+      options.disparityMin = s.slopeMin;
+      options.disparityMax = s.slopeMax;
+      LFCAM_ASSIGN_OR_RETURN(auto result, allInFocus(lf, options));
+      return LayerImages{std::move(result.photo), {}};
     };
-    LFCAM_ASSIGN_OR_RETURN(image, lazyLayer(s.mutex, s.depth, compute));
+    LFCAM_ASSIGN_OR_RETURN(const LayerImages* layer, lazyLayer(s.mutex, s.allInFocus, compute));
+    image = &layer->shown;
+  } else if (view.layer == ViewerLayer::Depth) {
+    LFCAM_ASSIGN_OR_RETURN(const LayerImages* layer, depthLayer());
+    image = &layer->shown;
   } else {
+    // A focus range waits for the depth map (202 while another request computes it).
+    const Image* disparity = nullptr;
+    if (view.focusRange) {
+      LFCAM_ASSIGN_OR_RETURN(const LayerImages* layer, depthLayer());
+      disparity = &layer->values;
+    }
     // A render slot, or 503 after waiting: bounds the memory and CPU of concurrent renders.
     if (!s.renderSlots.try_acquire_for(std::chrono::duration<double>(s.limits.renderWaitSeconds)))
       return makeError(ErrorCode::Resource, "busy: too many renders at once");
@@ -252,6 +288,14 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
     } release{s.renderSlots};
     const double radius = s.lensRadius / view.fNumber;
     auto render = [&]() -> Result<Image> {
+      if (view.focusRange) return refocusSpread(lf, *disparity, view.focusRange->first, view.focusRange->second);
+      if (view.focusPlane) {
+        LFCAM_ASSIGN_OR_RETURN(auto plane, focusPlaneThroughPoints(lf, *view.focusPlane, focusSearch()));
+        photo.plane = plane;
+        photo.slope = plane.slope;
+        return refocusTilted(lf, plane);
+      }
+      if (view.upsample > 1) return refocusUpsampled(lf, view.slope, view.upsample);
       // A circle narrower than half a view diagonal can fall between the views: below that the
       // aperture is a pinhole, one ray per pixel interpolated between the views.
       if (radius < 0.71) return observe(lf, Observer{.u = view.u, .v = view.v, .clampToLens = true});
@@ -263,10 +307,10 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
     LFCAM_ASSIGN_OR_RETURN(computed, render());
     image = &computed;
   }
-  LFCAM_ASSIGN_OR_RETURN(auto jpeg, encodeImage(*image, {.format = EncodedFormat::Jpeg, .jpegQuality = view.quality}));
+  LFCAM_ASSIGN_OR_RETURN(photo.jpeg, encodeImage(*image, {.format = EncodedFormat::Jpeg, .jpegQuality = view.quality}));
   std::lock_guard lock(s.mutex);
-  s.cache.insert(key, jpeg, view.slope);
-  return Photo{std::move(jpeg), view.slope, false};
+  s.cache.insert(key, photo);
+  return photo;
 }
 
 }  // namespace lfcam

@@ -197,9 +197,95 @@ async function testViewer(context, name, input, truth, { depth = true } = {}) {
       const shown = await page.evaluate(() => document.getElementById('layerProgress').dataset.shown);
       check(Number(shown) >= 1, `${name}: the depth map arrived, a progress bar shown meanwhile (${shown} time(s))`);
     }
+    await testFocusShapes(page, name, info, near, far, focused, { range: depth });
     await page.close();
   } finally {
     child.kill('SIGTERM');
+  }
+}
+
+// Tilt by three clicks, a focus range by the two-ended slider, the finer grid by its toggle: each
+// brings a new photograph, and each keeps what it promises sharp.
+async function testFocusShapes(page, name, info, near, far, focused, { range }) {
+  const markers = () => page.evaluate(() => [...document.querySelectorAll('#markers .marker')].map((m) => m.textContent).join(''));
+  const renders = () => page.evaluate(() => window.lfcamViewer.renders());
+  // Until its third point, the tilt mode shows the photograph focused at the slider's slope.
+  let before = await renders();
+  await page.locator('input[name=mode][value=tilt]').check();
+  await waitIdle(page, before);
+  // The near and the far point, and the image corner (inside a margin) that makes the widest triangle.
+  const m = Math.round(info.width / 8);
+  const corners = [[m, m], [info.width - m, m], [m, info.height - m], [info.width - m, info.height - m]];
+  const area = ([x, y]) => Math.abs((far.x - near.x) * (y - near.y) - (far.y - near.y) * (x - near.x));
+  const third = corners.sort((a, b) => area(b) - area(a))[0];
+  const points = [[near.x, near.y], [far.x, far.y], third];
+  before = await renders();
+  const hashBefore = await photoPixels(page);
+  for (const [i, [x, y]] of points.entries()) {
+    if (i === 2) before = await renders();
+    const at = await screenPoint(page, x, y, info);
+    await page.mouse.click(at.x, at.y);
+    if (i < 2) check((await markers()) === '123'.slice(0, i + 1) && (await renders()) === before,
+      `${name}: tilt click ${i + 1} places marker ${i + 1} and renders nothing yet`);
+  }
+  await waitIdle(page, before);
+  const tilted = { hash: await photoPixels(page), near: await sharpness(page, near.x, near.y), far: await sharpness(page, far.x, far.y) };
+  const plane = await page.evaluate(() => window.lfcamViewer.state.plane);
+  check((await markers()) === '123' && tilted.hash !== hashBefore && plane !== null,
+    `${name}: the third click renders the plane through the three markers (slope ${plane && plane[0].toFixed(2)} at the centre)`);
+  // Where no plane facing the camera can: each point sharper than when the other one is in focus.
+  check(tilted.near > 1.2 * focused.far.nearSharpness && tilted.far > 1.2 * focused.near.farSharpness,
+    `${name}: the tilted plane through the near and the far point focuses both (near ${tilted.near.toFixed(0)} > ${focused.far.nearSharpness.toFixed(0)} focused far, far ${tilted.far.toFixed(0)} > ${focused.near.farSharpness.toFixed(0)} focused near)`);
+  await page.screenshot({ path: path.join(outDir, `${name}-view-tilt.png`) });
+  // A marker clicked goes away (the others renumbered); a new third point renders a new plane.
+  await page.locator('#markers .marker', { hasText: '2' }).click();
+  check((await markers()) === '12', `${name}: clicking marker 2 removes it, the others renumbered`);
+  before = await renders();
+  const other = await screenPoint(page, (far.x + third[0]) / 2, (far.y + third[1]) / 2, info);
+  await page.mouse.click(other.x, other.y);
+  await waitIdle(page, before);
+  check((await markers()) === '123' && (await photoPixels(page)) !== tilted.hash, `${name}: a new third point brings a new photograph`);
+  await page.locator('#resetPoints').click();
+  check((await markers()) === '', `${name}: "Clear the points" removes the markers`);
+
+  if (range) {
+    // Both ends around both points: both sharp; then the range on the near point alone.
+    before = await renders();
+    await page.locator('input[name=mode][value=range]').check();
+    await waitIdle(page, before);
+    const shown = [];
+    const onSlider = (d) => String(Number(Math.min(info.slopeMax, Math.max(info.slopeMin, d)).toFixed(2)));
+    for (const [end, value] of [['#rangeFar', far.d - 0.15], ['#rangeNear', near.d + 0.15]]) {
+      before = await renders();
+      const hash = await photoPixels(page);
+      await page.locator(end).fill(onSlider(value));
+      await waitIdle(page, before);
+      shown.push(await photoPixels(page));
+      check(shown.at(-1) !== hash, `${name}: moving the range's ${end === '#rangeFar' ? 'far' : 'near'} end brings a new photograph`);
+    }
+    const wide = { near: await sharpness(page, near.x, near.y), far: await sharpness(page, far.x, far.y) };
+    check(wide.near > 0.7 * focused.near.nearSharpness && wide.far > 0.7 * focused.far.farSharpness,
+      `${name}: a range from the far to the near point keeps both sharp (near ${wide.near.toFixed(0)} of ${focused.near.nearSharpness.toFixed(0)}, far ${wide.far.toFixed(0)} of ${focused.far.farSharpness.toFixed(0)})`);
+    await page.screenshot({ path: path.join(outDir, `${name}-view-range.png`) });
+    before = await renders();
+    await page.locator('#rangeFar').fill(onSlider(near.d - 0.15));
+    await waitIdle(page, before);
+    const narrow = await sharpness(page, far.x, far.y);
+    check(narrow < 0.8 * wide.far, `${name}: the range on the near point alone blurs the far one (${narrow.toFixed(0)} < ${wide.far.toFixed(0)})`);
+  }
+
+  // The finer grid: twice the pixels, and back.
+  await page.locator('input[name=mode][value=point]').check();
+  await page.waitForFunction(() => window.lfcamViewer.idle());
+  for (const [on, factor] of [[true, 2], [false, 1]]) {
+    before = await renders();
+    const hash = await photoPixels(page);
+    await page.locator('#upsample').setChecked(on);
+    await waitIdle(page, before);
+    const width = await page.evaluate(() => document.getElementById('photo').naturalWidth);
+    check(width === factor * info.width && (await photoPixels(page)) !== hash,
+      `${name}: the finer grid ${on ? 'on' : 'off'} brings a ${width} pixel wide photograph`);
+    if (on) await page.screenshot({ path: path.join(outDir, `${name}-view-upsampled.png`) });
   }
 }
 
@@ -232,6 +318,27 @@ async function testExport(context, name, input, truth) {
     `${name} (exported): near region sharper focused near (${focused.near.nearSharpness.toFixed(0)}) than far (${focused.far.nearSharpness.toFixed(0)})`);
   check(focused.far.farSharpness > 1.2 * focused.near.farSharpness,
     `${name} (exported): far region sharper focused far (${focused.far.farSharpness.toFixed(0)}) than near (${focused.near.farSharpness.toFixed(0)})`);
+  // The focus range: both ends on the stack's stops, one precomputed photograph per pair.
+  const stops = await page.evaluate(() => window.lfcamLiving.data.rangeStops.length);
+  let wide = null;
+  for (const [end, value] of [['#rangeFar', 1], ['#rangeFar', 0], ['#rangeFar', stops - 1]]) {
+    const hash = await photoPixels(page);
+    await page.locator(end).fill(String(value));
+    await page.waitForFunction(() => document.getElementById('photo').complete);
+    await page.waitForTimeout(100);
+    const shown = await page.evaluate(() => document.getElementById('photo').dataset.range);
+    check(shown === `${value}:${stops - 1}` && (await photoPixels(page)) !== hash,
+      `${name} (exported): the range's far end at stop ${value} of ${stops} brings a new photograph (range ${shown})`);
+    const sharp = { near: await sharpness(page, near.x, near.y), far: await sharpness(page, far.x, far.y) };
+    if (value === 0) {
+      wide = sharp;
+      check(sharp.near > 1.2 * focused.far.nearSharpness && sharp.far > 1.2 * focused.near.farSharpness,
+        `${name} (exported): the whole range focuses both points (near ${sharp.near.toFixed(0)} > ${focused.far.nearSharpness.toFixed(0)} focused far, far ${sharp.far.toFixed(0)} > ${focused.near.farSharpness.toFixed(0)} focused near)`);
+      await page.screenshot({ path: path.join(outDir, `${name}-export-range.png`) });
+    } else if (value === stops - 1) {
+      check(sharp.far < 0.8 * wide.far, `${name} (exported): the range on the nearest stop alone blurs the far point (${sharp.far.toFixed(0)} < ${wide.far.toFixed(0)})`);
+    }
+  }
   // The viewpoint sweep plays.
   await page.locator('#play').click();
   const first = await photoSource(page);

@@ -33,6 +33,16 @@ TEST(CommandHelp, UnknownCommandNamesTheNearest) {
   EXPECT_NE(result.err.find("'refocus'"), std::string::npos) << result.err;
 }
 
+TEST(CommandHelp, ViewHelpDescribesThePagesControls) {
+  TempDir dir;
+  const auto help = runLfcam({"view", "--help"}, dir.path());
+  EXPECT_EQ(help.exitStatus, 0);
+  for (const char* words : {"click a point", "Tilted", "three numbered points", "two-ended slider", "Finer grid (2x)"})
+    EXPECT_NE(help.out.find(words), std::string::npos) << words;
+  // The example still ends it.
+  EXPECT_NE(help.out.find("Example (from the repository's root):\n  lfcam view"), std::string::npos);
+}
+
 // The example line of `lfcam COMMAND --help`, split into words (examples quote nothing).
 std::vector<std::string> exampleOf(const std::string& command, const TempDir& dir) {
   const auto help = runLfcam({command, "--help"}, dir.path());

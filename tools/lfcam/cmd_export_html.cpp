@@ -1,6 +1,6 @@
 // lfcam export-html INPUT -o PAGE.html: a self-contained "living picture" that refocuses where it
-// is clicked, with no server (living_picture.hpp); of a processed Lytro container (*-stk.lfp, an
-// Illum picture), over its own stored slices and depth map.
+// is clicked, with a precomputed focus range slider, with no server (living_picture.hpp); of a processed Lytro
+// container (*-stk.lfp, an Illum picture), over its own stored slices and depth map.
 #include <memory>
 
 #include "raw_io/lytro_container.hpp"
@@ -19,13 +19,20 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
-      "export-html", "write one self-contained HTML page that refocuses where it is clicked, with a viewpoint sweep");
+      "export-html",
+      "write one self-contained HTML page that refocuses where it is clicked, with a focus range slider and a "
+      "viewpoint sweep");
   addInputOptions(*command, options->input);
   command->add_option("-o,--output", options->output, "the page (.html)")->required();
   command->add_option("--slices", options->page.maxSlices, "focal stack depth")->check(CLI::Range(2, 255));
   command->add_option("--frames", options->page.sweepFrames, "viewpoints in the sweep")->check(CLI::Range(1, 360));
   command->add_option("--quality", options->page.jpegQuality, "JPEG quality of the embedded images")
       ->check(CLI::Range(1, 100));
+  command
+      ->add_option("--range-ends", options->page.rangeEnds,
+                   "stops of the focus range slider, slices from the farthest to the nearest: every pair is one "
+                   "precomputed photograph with all between in focus (0: no range slider; default 5)")
+      ->check(CLI::Range(0, kMaxRangeEnds));
   command->add_option("--title", options->page.title, "the page's title");
   command->callback([options, &job] {
     job = [options]() -> Status {

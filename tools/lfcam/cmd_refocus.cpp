@@ -150,7 +150,9 @@ void addRefocusCommand(CLI::App& app, Job& job) {
                          "method only (no --tilt, --focus-plane, --aperture*, --method, --supersampling or --beta)");
       std::array<ImagePoint, 3> planePoints{};
       if (!options->focusPlane.empty()) {
-        LFCAM_ASSIGN_OR_RETURN(planePoints, parseFocusPlanePoints(options->focusPlane));
+        auto parsed = parseFocusPlanePoints(options->focusPlane);
+        if (!parsed) return makeError(parsed.error().code, "--focus-plane: " + parsed.error().message);
+        planePoints = *parsed;
       }
       LFCAM_ASSIGN_OR_RETURN(auto writeOptions, imageWriteOptionsFor(options->output, options->depth));
       std::optional<std::pair<double, double>> point;

@@ -33,7 +33,19 @@ void addViewCommand(CLI::App& app, Job& job) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
-      "view", "serve an interactive viewer (click to focus, aperture, viewpoint) on a local web page");
+      "view",
+      "serve an interactive viewer on a local web page: click to focus, aperture, viewpoint, tilt, focus range");
+  command->footer(
+      "\nThe page:\n"
+      "  click a point       focus where it is sharpest; the sliders set the focus and the aperture;\n"
+      "                      drag to move the eye within the lens\n"
+      "  Focus: Tilted       three clicks place three numbered points; the photograph is focused on the plane\n"
+      "                      through them, each where it is sharpest (refocus --focus-plane); a click on a\n"
+      "                      point removes it\n"
+      "  Focus: A range      a two-ended slider keeps everything between its far and near slopes in focus\n"
+      "                      (refocus --focus-range; the first waits for the depth map, with a progress bar)\n"
+      "  Finer grid (2x)     the photograph on a grid twice as fine (refocus --upsample 2)\n"
+      "  Tilt, range and the finer grid use the whole lens from its centre.\n");
   addInputOptions(*command, options->input);
   command->add_option("--port", options->server.port, "TCP port (0: any free port; the address is printed)")
       ->check(CLI::Range(0, 65535));

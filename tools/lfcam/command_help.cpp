@@ -101,7 +101,9 @@ std::string nearestCommand(const CLI::App& app, const std::string& name) {
 void addExamples(CLI::App& app) {
   for (CLI::App* command : app.get_subcommands({})) {
     const auto example = examples().find(command->get_name());
-    if (example != examples().end()) command->footer("\nExample (from the repository's root):\n  " + example->second);
+    // After what the command's own footer says, if anything.
+    if (example != examples().end())
+      command->footer(command->get_footer() + "\nExample (from the repository's root):\n  " + example->second);
   }
 }
 

@@ -33,19 +33,6 @@ inline Result<std::pair<double, double>> parsePair(const std::string& text, cons
   return std::pair{a, b};
 }
 
-// "X1,Y1:X2,Y2:X3,Y3" -> three image points.
-inline Result<std::array<ImagePoint, 3>> parseFocusPlanePoints(const std::string& text) {
-  std::array<ImagePoint, 3> points{};
-  char end = 0;
-  const int read = std::sscanf(text.c_str(), "%lf,%lf:%lf,%lf:%lf,%lf%c", &points[0][0], &points[0][1], &points[1][0],
-                               &points[1][1], &points[2][0], &points[2][1], &end);
-  const bool finite = std::all_of(points.begin(), points.end(),
-                                  [](const ImagePoint& p) { return std::isfinite(p[0]) && std::isfinite(p[1]); });
-  if (read != 6 || !finite)
-    return makeError(ErrorCode::Usage, "--focus-plane: expected three points as X1,Y1:X2,Y2:X3,Y3, got '" + text + "'");
-  return points;
-}
-
 struct CameraOptions {
   std::optional<double> radius;
   std::string shape = "circle";

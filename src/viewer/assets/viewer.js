@@ -12,8 +12,13 @@ const state = {
   u: 0, v: 0,       // observer, view steps from the lens centre
   layer: 'photo',
   focus: null,      // [x, y] of a click waiting for its render
+  mode: 'point',    // point: a plane facing the camera; tilt: through three points; range: near to far
+  points: [],       // tilt: up to three [x, y], image pixels
+  near: 0, far: 0,  // range: slopes (near the larger)
+  upsample: 1,      // point: the photograph on a grid this many times finer
+  plane: null,      // tilt: the plane last rendered, [slope at the centre, gradient x, gradient y]
 };
-let inFlight = false, wanted = false, renders = 0, objectUrl = null;
+let inFlight = false, wanted = false, renders = 0, objectUrl = null, shownUrl = null;
 
 function fMax() { return 4 * state.info.lensRadius; }
 function fFromSlider(t) { return Math.pow(fMax(), t); }
@@ -29,28 +34,75 @@ function describeAperture() {
   return lens ? `f/${text}` : `f/${text} × the lens's`;
 }
 
+// Tilt, range and the finer grid are rendered with the whole lens from its centre.
+function wholeLens() { return state.mode !== 'point' || state.upsample > 1; }
+
 function showControls() {
   $('slope').value = state.slope;
   $('slopeOut').textContent = `${state.slope.toFixed(2)} px per view`;
-  $('fOut').textContent = describeAperture();
-  $('obsOut').textContent = state.u === 0 && state.v === 0 ? 'centre'
+  $('fOut').textContent = wholeLens() ? 'the whole lens' : describeAperture();
+  $('obsOut').textContent = wholeLens() || (state.u === 0 && state.v === 0) ? 'centre'
     : `u ${state.u.toFixed(2)}, v ${state.v.toFixed(2)} views`;
+  $('fnumber').disabled = $('centre').disabled = wholeLens();
+  $('upsample').disabled = state.mode !== 'point';
+  $('upsample').checked = state.upsample > 1;
+  $('slopeControl').hidden = state.mode !== 'point';
+  $('tiltControl').hidden = state.mode !== 'tilt';
+  $('rangeControl').hidden = state.mode !== 'range';
+  $('hint').textContent = {
+    point: 'Click a point to focus there. Drag to move your eye within the lens.',
+    tilt: 'Click three points: the photograph is focused on the plane through them, each where it is sharpest. Click a numbered point to remove it.',
+    range: 'Move the two ends: everything between the far and the near depth is in focus, the rest blurs as a lens would blur it.',
+  }[state.mode];
+  $('pointsOut').textContent = `${state.points.length} of 3`;
+  $('planeOut').textContent = state.plane && state.points.length === 3
+    ? `slope ${state.plane[0].toFixed(2)} at the centre, changing by ${(state.plane[1] * state.info.width).toFixed(2)} across the image and ${(state.plane[2] * state.info.height).toFixed(2)} down it` : '';
+  $('rangeFar').value = state.far; $('rangeNear').value = state.near;
+  const along = (d) => `calc(7px + ${(d - state.info.slopeMin) / (state.info.slopeMax - state.info.slopeMin)} * (100% - 14px))`;
+  $('rangeNear').parentElement.style.setProperty('--lo', along(state.far));
+  $('rangeNear').parentElement.style.setProperty('--hi', along(state.near));
+  $('rangeOut').textContent = `slopes ${state.far.toFixed(2)} (far) to ${state.near.toFixed(2)} (near)`;
+  showMarkers();
+}
+
+// The tilted plane's points on the photograph, numbered; clicking one removes it.
+function showMarkers() {
+  const box = $('markers');
+  box.replaceChildren();
+  if (state.mode !== 'tilt') return;
+  state.points.forEach(([x, y], i) => {
+    const marker = document.createElement('button');
+    marker.type = 'button';
+    marker.className = 'marker';
+    marker.textContent = String(i + 1);
+    marker.title = `point ${i + 1} (${x.toFixed(0)}, ${y.toFixed(0)}): click to remove`;
+    marker.style.left = `${x / state.info.width * 100}%`;
+    marker.style.top = `${y / state.info.height * 100}%`;
+    marker.addEventListener('click', () => { state.points.splice(i, 1); showControls(); });
+    box.append(marker);
+  });
 }
 
 function imageUrl() {
   if (state.layer !== 'photo') return `/api/image?layer=${state.layer}`;
-  const p = new URLSearchParams({ f: state.fNumber.toFixed(3), u: state.u.toFixed(3), v: state.v.toFixed(3) });
+  if (state.mode === 'tilt' && state.points.length === 3) return `/api/image?plane=${state.points.map(([x, y]) => `${x.toFixed(1)},${y.toFixed(1)}`).join(':')}`;
+  if (state.mode === 'range') return `/api/image?range=${state.near.toFixed(3)}:${state.far.toFixed(3)}`;
+  const p = wholeLens() ? new URLSearchParams({ upsample: String(state.upsample) })
+    : new URLSearchParams({ f: state.fNumber.toFixed(3), u: state.u.toFixed(3), v: state.v.toFixed(3) });
   if (state.focus) p.set('focus', `${state.focus[0].toFixed(1)},${state.focus[1].toFixed(1)}`);
   else p.set('slope', state.slope.toFixed(4));
   return `/api/image?${p}`;
 }
 
-// Asks for the photograph the controls describe; coalesces wishes while one is in flight.
+// Asks for the photograph the controls describe, unless it is the one shown (a tilt's first two
+// points keep the photograph of a plane facing the camera); coalesces wishes while one is in flight.
 function request() {
   if (inFlight) { wanted = true; return; }
-  inFlight = true; wanted = false;
-  $('busy').hidden = false;
+  wanted = false;
   const url = imageUrl(), started = performance.now();
+  if (url === shownUrl && state.focus === null) return;
+  inFlight = true;
+  $('busy').hidden = false;
   const clicked = state.focus !== null;
   state.focus = null;
   if (state.layer !== 'photo') watchLayer(false);
@@ -58,9 +110,13 @@ function request() {
     if (response.status === 202) { watchLayer(true); return; }
     if (!response.ok) throw new Error(`${response.status}: ${(await response.text()).trim()}`);
     const slope = parseFloat(response.headers.get('X-Lfcam-Slope'));
+    const plane = response.headers.get('X-Lfcam-Plane');
     const blob = await response.blob();
     await showBlob(blob);
-    if (clicked && Number.isFinite(slope)) { state.slope = slope; showControls(); }
+    shownUrl = url;
+    if (clicked && Number.isFinite(slope)) state.slope = slope;
+    if (plane) state.plane = plane.split(',').map(Number);
+    showControls();
     renders += 1;
     photo.dataset.renders = String(renders);
     photo.dataset.slope = String(state.slope);
@@ -92,7 +148,8 @@ function watchLayer(after202) {
   if (after202) retryWhenReady = true;
   if (polling) return;
   polling = true;
-  const key = state.layer === 'depth' ? 'depth' : 'allInFocus';
+  // A focus range waits for the depth map too.
+  const key = state.layer === 'depth' || (state.layer === 'photo' && state.mode === 'range') ? 'depth' : 'allInFocus';
   $('layerProgress').hidden = false;
   $('layerProgress').dataset.shown = String(parseInt($('layerProgress').dataset.shown || '0', 10) + 1);
   $('layerLabel').textContent = key === 'depth' ? 'estimating depth…' : 'composing the all-in-focus photograph…';
@@ -124,8 +181,27 @@ function setLayer(layer) {
   request();
 }
 
+function setMode(mode) {
+  state.mode = mode;
+  for (const radio of document.querySelectorAll('input[name=mode]')) radio.checked = radio.value === mode;
+  setLayerPhoto(); showControls(); request();
+}
+
+// The two ends of the range: the one moved pushes the other rather than crossing it.
+function moveRangeEnd(end, value) {
+  state[end] = value;
+  if (state.near < state.far) state[end === 'near' ? 'far' : 'near'] = value;
+  setMode('range');
+}
+
 function wire() {
-  $('slope').addEventListener('input', (e) => { state.slope = parseFloat(e.target.value); setLayerPhoto(); showControls(); request(); });
+  $('slope').addEventListener('input', (e) => { state.slope = parseFloat(e.target.value); setMode('point'); });
+  for (const radio of document.querySelectorAll('input[name=mode]'))
+    radio.addEventListener('change', (e) => { if (e.target.checked) setMode(e.target.value); });
+  $('resetPoints').addEventListener('click', () => { state.points = []; showControls(); });
+  $('rangeNear').addEventListener('input', (e) => moveRangeEnd('near', parseFloat(e.target.value)));
+  $('rangeFar').addEventListener('input', (e) => moveRangeEnd('far', parseFloat(e.target.value)));
+  $('upsample').addEventListener('change', (e) => { state.upsample = e.target.checked ? 2 : 1; setLayerPhoto(); showControls(); request(); });
   $('fnumber').addEventListener('input', (e) => { state.fNumber = fFromSlider(parseFloat(e.target.value)); setLayerPhoto(); showControls(); request(); });
   $('centre').addEventListener('click', () => { state.u = 0; state.v = 0; showControls(); request(); });
   $('allinfocus').addEventListener('change', (e) => setLayer(e.target.checked ? 'allinfocus' : 'photo'));
@@ -139,7 +215,7 @@ function wire() {
     photo.setPointerCapture(e.pointerId);
   });
   photo.addEventListener('pointermove', (e) => {
-    if (!press) return;
+    if (!press || wholeLens()) return;
     const dx = e.clientX - press.x, dy = e.clientY - press.y;
     if (!press.dragging && Math.hypot(dx, dy) < 4) return;
     press.dragging = true;
@@ -151,7 +227,14 @@ function wire() {
     setLayerPhoto(); showControls(); request();
   });
   photo.addEventListener('pointerup', (e) => {
-    if (press && !press.dragging) { state.focus = pixelAt(e); setLayerPhoto(); request(); }
+    if (press && !press.dragging && state.mode === 'tilt') {
+      // A fourth click starts a new plane.
+      if (state.points.length === 3) state.points = [];
+      state.points.push(pixelAt(e));
+      setLayerPhoto(); showControls(); request();
+    } else if (press && !press.dragging && state.mode === 'point') {
+      state.focus = pixelAt(e); setLayerPhoto(); request();
+    }
     photo.classList.remove('dragging');
     press = null;
   });
@@ -166,7 +249,10 @@ function setLayerPhoto() {
 fetch('/api/info').then((r) => r.json()).then((info) => {
   state.info = info;
   state.slope = Math.round(50 * (info.slopeMin + info.slopeMax)) / 100;
-  $('slope').min = info.slopeMin; $('slope').max = info.slopeMax;
+  for (const id of ['slope', 'rangeNear', 'rangeFar']) { $(id).min = info.slopeMin; $(id).max = info.slopeMax; }
+  // The range starts over the middle half of the slider's span.
+  state.far = Math.round(100 * (0.75 * info.slopeMin + 0.25 * info.slopeMax)) / 100;
+  state.near = Math.round(100 * (0.25 * info.slopeMin + 0.75 * info.slopeMax)) / 100;
   $('info').textContent = `${info.nu}×${info.nv} views of ${info.width}×${info.height}` + (info.source ? ` · ${info.source}` : '');
   wire();
   showControls();
