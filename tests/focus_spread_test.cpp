@@ -40,6 +40,29 @@ TEST(FocusSpread, SlopeFieldKernelWithATapTestMatchesTheReference) {
   }
 }
 
+// A pixel whose every ray the tap test leaves out (an estimated map that puts it behind every
+// surface its rays meet) is rendered from all its rays, not left black.
+TEST(FocusSpread, APixelWhoseEveryRayIsLeftOutTakesThemAll) {
+  std::mt19937 random(2006);
+  std::uniform_real_distribution<double> anySlope(-2.5, 2.5);
+  for (int trial = 0; trial < 10; ++trial) {
+    const LightField lightField = test::randomTrialLightField(random, trial, 6, 29);
+    const int ns = lightField.ns();
+    std::vector<double> slopes(std::size_t(ns) * lightField.nt());
+    for (double& slope : slopes) slope = anySlope(random);
+    auto slopeAt = [&](int x, int y) { return slopes[std::size_t(y) * ns + x]; };
+    auto keep = [](int, int, int, int, int x, int y) { return (x + y) % 3 != 0; };
+    const Image fast = refocusSlopeField(lightField, slopeAt, keep);
+    const Image everyRay = refocusSlopeField(lightField, slopeAt);
+    EXPECT_LT(test::worstRelativeError(fast, refocusSlopeFieldReference(lightField, slopeAt, keep)), 1e-5);
+    for (int y = 0; y < lightField.nt(); ++y)
+      for (int x = (3 - y % 3) % 3; x < ns; x += 3)
+        for (int c = 0; c < lightField.channels(); ++c)
+          ASSERT_NEAR(fast.at(x, y, c), everyRay.at(x, y, c), 1e-6 + 1e-5 * std::abs(everyRay.at(x, y, c)))
+              << "trial " << trial << ", pixel " << x << "," << y;
+  }
+}
+
 // The layered planes (a cloudy background at -1, cards at 0, 0.8 and 1.6), and the same with the
 // nearest card tinted darker: a pixel whose photograph changes with the tint holds the card's light.
 struct Scenes {

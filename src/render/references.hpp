@@ -18,7 +18,7 @@ Image refocusReference(const LightField& lightField, double slope);
 
 // The same formula with its own slope at each output pixel (x, y) (pixel indices); a pixel whose
 // slope is not finite is 0. With `keep`, only the taps (column, row) of view (u, v) for which
-// keep(u, v, row, column, x, y) holds count for pixel (x, y).
+// keep(u, v, row, column, x, y) holds count for pixel (x, y), unless it holds for none: then all do.
 using KeepTap = std::function<bool(int u, int v, int row, int column, int x, int y)>;
 Image refocusSlopeFieldReference(const LightField& lightField, const std::function<double(int x, int y)>& slopeAt,
                                  const KeepTap& keep = {});

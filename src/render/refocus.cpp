@@ -32,19 +32,24 @@ Image refocusSlopeFieldReference(const LightField& lightField, const std::functi
     for (int x = 0; x < shape.ns; ++x) {
       const double slope = slopeAt(x, y);
       if (!std::isfinite(slope)) continue;
-      std::fill(sum.begin(), sum.end(), 0.0);
       double weightSum = 0;
-      for (int v = 0; v < shape.nv; ++v) {
-        const AxisShift sy = axisShift(lightField.vFromCentre(v), slope, shape.nt);
-        for (int u = 0; u < shape.nu; ++u) {
-          const AxisShift sx = axisShift(lightField.uFromCentre(u), slope, shape.ns);
-          forEachBilinearTap(lightField, u, v, x, y, sx, sy, [&](int row, int column, double w) {
-            if (keep && !keep(u, v, row, column, x, y)) return;
-            weightSum += w;
-            for (int c = 0; c < shape.channels; ++c) sum[c] += w * lightField.at(u, v, column, row, c);
-          });
+      const auto gather = [&](bool test) {
+        std::fill(sum.begin(), sum.end(), 0.0);
+        weightSum = 0;
+        for (int v = 0; v < shape.nv; ++v) {
+          const AxisShift sy = axisShift(lightField.vFromCentre(v), slope, shape.nt);
+          for (int u = 0; u < shape.nu; ++u) {
+            const AxisShift sx = axisShift(lightField.uFromCentre(u), slope, shape.ns);
+            forEachBilinearTap(lightField, u, v, x, y, sx, sy, [&](int row, int column, double w) {
+              if (test && !keep(u, v, row, column, x, y)) return;
+              weightSum += w;
+              for (int c = 0; c < shape.channels; ++c) sum[c] += w * lightField.at(u, v, column, row, c);
+            });
+          }
         }
-      }
+      };
+      gather(bool(keep));
+      if (keep && weightSum == 0) gather(false);  // every ray left out: take them all
       // Normalise by the rays that contributed (section 5.2); no ray, no light.
       for (int c = 0; c < shape.channels; ++c) out.at(x, y, c) = weightSum > 0 ? float(sum[c] / weightSum) : 0.0f;
     }

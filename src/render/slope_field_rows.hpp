@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "lfcam/image.hpp"
@@ -24,7 +25,9 @@ struct KeepEveryTap {
 // into float32 accumulators that stay in cache while the views stream through (the order of
 // refocus.cpp's fast kernel; only the shift is per pixel here, so its bilinear coefficients are).
 // slopeAt(x, y) is the slope of output pixel (x, y) (pixel indices; not finite: the pixel is 0);
-// keep(u, v, row, column, x, y) says whether the tap at (column, row) of view (u, v) counts for it.
+// keep(u, v, row, column, x, y) says whether the tap at (column, row) of view (u, v) counts for it;
+// a pixel whose every tap it leaves out takes them all (the test misjudged that pixel: with an
+// estimated depth map, a pixel read as farther than every surface its rays meet).
 template <typename SlopeAt, typename Keep>
 void refocusSlopeFieldRows(const LightField& lightField, const SlopeAt& slopeAt, const Keep& keep, int y0, int y1,
                            Image& out) {
@@ -59,6 +62,21 @@ void refocusSlopeFieldRows(const LightField& lightField, const SlopeAt& slopeAt,
       }
     }
   }
+  if constexpr (!std::is_same_v<Keep, KeepEveryTap>)
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < ns; ++x) {
+        const double slope = slopeAt(x, y);
+        if (accumulatorRow(channels, y)[x] != 0.0f || !std::isfinite(slope)) continue;
+        for (int v = 0; v < lightField.nv(); ++v)
+          for (int u = 0; u < lightField.nu(); ++u)
+            forEachBilinearTap(lightField, u, v, x, y, axisShift(lightField.uFromCentre(u), slope, ns),
+                               axisShift(lightField.vFromCentre(v), slope, nt), [&](int row, int column, double w) {
+                                 const std::size_t at = std::size_t(row) * ns + column;
+                                 accumulatorRow(channels, y)[x] += float(w);
+                                 for (int c = 0; c < channels; ++c)
+                                   accumulatorRow(c, y)[x] += float(w) * lightField.plane(u, v, c)[at];
+                               });
+      }
   // Divide by the weight of the rays that arrived (section 5.2).
   for (int y = y0; y < y1; ++y)
     for (int c = 0; c < channels; ++c)
