@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "render/shift_and_add_rows.cpp"
-#include <hwy/cache_control.h>
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
@@ -17,81 +17,85 @@ namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Columns x with both horizontal taps inside the view are the vector loop; at most one column on
-// either side has a single tap, and the last partial vector is done one lane at a time.
-void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, const float* row1, int whole, float c00,
-                           float c01, float c10, float c11, int ns, const float* nextRow) {
+// Rows added in one pass over sum, each with its two coefficients: a row of 9 views in one pass
+// (on AVX2, with 16 registers, some coefficients are read from L1 instead).
+constexpr int maxRowsPerPass = 9;
+
+// sum[x] += the taps of rows[0, K) for x in [from, to), where every row has both taps inside.
+template <int K>
+void AddInterior(float* HWY_RESTRICT sum, const ShiftedRow* rows, int from, int to) {
   const hn::ScalableTag<float> d;
   const int lanes = int(hn::Lanes(d));
-  const int interiorBegin = std::max(0, -whole), interiorEnd = std::min(ns, ns - 1 - whole);
-  // Single-tap edges: the right tap alone at source column 0, the left tap alone at ns - 1. They
-  // come after the interior, when the rows are in L1: read first, a row's last element is a miss
-  // at full memory latency, ahead of the prefetcher (measured: a quarter of this kernel's time).
-  const auto edges = [&] {
-    if (const int x = -1 - whole; x >= 0 && x < ns) accumulator[x] += c01 * row0[0] + c11 * row1[0];
-    if (const int x = ns - 1 - whole; x >= 0 && x < ns && x >= interiorEnd)
-      accumulator[x] += c00 * row0[ns - 1] + c10 * row1[ns - 1];
-  };
-  if (interiorBegin >= interiorEnd) return edges();
-
-  // From here on, pointers start at the first interior column's source.
-  const float* source0 = row0 + (interiorBegin + whole);
-  const float* source1 = row1 + (interiorBegin + whole);
-  float* interior = accumulator + interiorBegin;
-  const int count = interiorEnd - interiorBegin;
-  // The row the next call will read, fetched while this one computes (hardware prefetchers lose
-  // these short row runs: measured, a third fewer samples in this kernel). Without one, a
-  // harmless prefetch of a row already in cache.
-  const float* ahead = nextRow ? nextRow + (interiorBegin + whole) : source0;
-  int x = 0;
-  const auto k00 = hn::Set(d, c00), k01 = hn::Set(d, c01);
-  // One prefetch per 64-byte line: the vectors of a line are one step of the loop.
-  const int step = std::max(1, 16 / lanes) * lanes;
-  if (c10 == 0.0f && c11 == 0.0f) {
-    // One source row (integer vertical shift, or the other row outside the view): half the loads.
-    const auto vectorAt = [&](int k) {
-      auto sum = hn::MulAdd(k00, hn::LoadU(d, source0 + k), hn::LoadU(d, interior + k));
-      hn::StoreU(hn::MulAdd(k01, hn::LoadU(d, source0 + k + 1), sum), d, interior + k);
-    };
-    for (; x + step <= count; x += step) {
-      hwy::Prefetch(ahead + x);
-      for (int k = x; k < x + step; k += lanes) vectorAt(k);
+  const float* source[K];
+  float c0[K], c1[K];
+  for (int k = 0; k < K; ++k) source[k] = rows[k].row + rows[k].whole, c0[k] = rows[k].c0, c1[k] = rows[k].c1;
+  int x = from;
+  for (; x + lanes <= to; x += lanes) {
+    auto total = hn::LoadU(d, sum + x);
+    for (int k = 0; k < K; ++k) {
+      total = hn::MulAdd(hn::Set(d, c0[k]), hn::LoadU(d, source[k] + x), total);
+      total = hn::MulAdd(hn::Set(d, c1[k]), hn::LoadU(d, source[k] + x + 1), total);
     }
-    for (; x + lanes <= count; x += lanes) vectorAt(x);
-    for (; x < count; ++x) interior[x] += c00 * source0[x] + c01 * source0[x + 1];
-    return edges();
+    hn::StoreU(total, d, sum + x);
   }
-  // Each tap one fused multiply-add onto the accumulator: four per vector, no separate adds.
-  const auto k10 = hn::Set(d, c10), k11 = hn::Set(d, c11);
-  const auto vectorAt = [&](int k) {
-    auto sum = hn::MulAdd(k00, hn::LoadU(d, source0 + k), hn::LoadU(d, interior + k));
-    sum = hn::MulAdd(k01, hn::LoadU(d, source0 + k + 1), sum);
-    sum = hn::MulAdd(k10, hn::LoadU(d, source1 + k), sum);
-    hn::StoreU(hn::MulAdd(k11, hn::LoadU(d, source1 + k + 1), sum), d, interior + k);
-  };
-  for (; x + step <= count; x += step) {
-    hwy::Prefetch(ahead + x);
-    for (int k = x; k < x + step; k += lanes) vectorAt(k);
+  for (; x < to; ++x) {
+    float total = sum[x];
+    for (int k = 0; k < K; ++k) total += c0[k] * source[k][x] + c1[k] * source[k][x + 1];
+    sum[x] = total;
   }
-  for (; x + lanes <= count; x += lanes) vectorAt(x);
-  for (; x < count; ++x)
-    interior[x] += (c00 * source0[x] + c01 * source0[x + 1]) + (c10 * source1[x] + c11 * source1[x + 1]);
-  edges();
 }
 
-void AccumulateBilinearRows(float* HWY_RESTRICT accumulator, const float* plane, int ns, int nt, int y0, int y1,
-                            int wholeX, float ax0, float ax1, int wholeY, float top, float bottom,
-                            const float* nextPass) {
-  for (int y = y0; y < y1; ++y) {
-    const VerticalTaps taps = verticalTaps(y, wholeY, top, bottom, nt);
-    if (taps.c0 == 0.0f) continue;
-    // The row the next row reads; on the last, the first row of the next pass, so that the pass
-    // does not start on a cold stream.
-    const float* next = y + 1 == y1 ? nextPass : taps.row1 + 1 < nt ? plane + std::size_t(taps.row1 + 1) * ns : nullptr;
-    AccumulateBilinearRow(accumulator + std::size_t(y - y0) * ns, plane + std::size_t(taps.row0) * ns,
-                          plane + std::size_t(taps.row1) * ns, wholeX, taps.c0 * ax0, taps.c0 * ax1, taps.c1 * ax0,
-                          taps.c1 * ax1, ns, next);
+// AddInterior<count>, for count in [1, maxRowsPerPass].
+template <std::size_t... K>
+void AddInteriorOf(int count, float* sum, const ShiftedRow* rows, int from, int to, std::index_sequence<K...>) {
+  using Add = void (*)(float*, const ShiftedRow*, int, int);
+  static constexpr Add add[] = {&AddInterior<int(K) + 1>...};
+  add[count - 1](sum, rows, from, to);
+}
+
+// One pass of at most maxRowsPerPass rows. Row k has both taps inside for output columns
+// [-whole, ns - 1 - whole) within [0, ns); the columns common to all are one pass, the rest of
+// each row's own, and its at most two single-tap columns, row by row.
+void AddRowsOnce(float* HWY_RESTRICT sum, const ShiftedRow* rows, int count, int ns) {
+  int from = 0, to = ns;
+  for (int k = 0; k < count; ++k) from = std::max(from, -rows[k].whole), to = std::min(to, ns - 1 - rows[k].whole);
+  if (from < to) {
+    AddInteriorOf(count, sum, rows, from, to, std::make_index_sequence<maxRowsPerPass>());
+  } else {
+    from = to = ns;  // no column common to all: each row's own below
   }
+  for (int k = 0; k < count; ++k) {
+    const ShiftedRow& row = rows[k];
+    const int begin = std::max(0, -row.whole), end = std::min(ns, ns - 1 - row.whole);
+    if (begin < std::min(from, end)) AddInterior<1>(sum, &row, begin, std::min(from, end));
+    if (std::max(to, begin) < end) AddInterior<1>(sum, &row, std::max(to, begin), end);
+    // The right tap alone at source column 0, the left tap alone at ns - 1.
+    if (const int x = -1 - row.whole; x >= 0 && x < ns) sum[x] += row.c1 * row.row[0];
+    if (const int x = ns - 1 - row.whole; x >= 0 && x < ns && x >= end) sum[x] += row.c0 * row.row[ns - 1];
+  }
+}
+
+void AddShiftedRows(float* HWY_RESTRICT sum, const ShiftedRow* rows, int count, int ns) {
+  // Passes of balanced sizes (15 rows: 8 and 7).
+  const int passes = (count + maxRowsPerPass - 1) / maxRowsPerPass;
+  for (int pass = 0, begin = 0; pass < passes; ++pass) {
+    const int end = count * (pass + 1) / passes;
+    AddRowsOnce(sum, rows + begin, end - begin, ns);
+    begin = end;
+  }
+}
+
+void AddVerticalTaps(float* HWY_RESTRICT accumulator, const float* HWY_RESTRICT upper, const float* HWY_RESTRICT lower,
+                     float top, float bottom, int count) {
+  const hn::ScalableTag<float> d;
+  const int lanes = int(hn::Lanes(d));
+  const auto kTop = hn::Set(d, top), kBottom = hn::Set(d, bottom);
+  int i = 0;
+  for (; i + lanes <= count; i += lanes) {
+    const auto sum = hn::MulAdd(kTop, hn::LoadU(d, upper + i), hn::LoadU(d, accumulator + i));
+    hn::StoreU(hn::MulAdd(kBottom, hn::LoadU(d, lower + i), sum), d, accumulator + i);
+  }
+  for (; i < count; ++i) accumulator[i] += top * upper[i] + bottom * lower[i];
 }
 
 void MultiplyRows(float* HWY_RESTRICT out, const float* HWY_RESTRICT a, const float* HWY_RESTRICT b, int count) {
@@ -121,20 +125,17 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace lfcam {
 
-HWY_EXPORT(AccumulateBilinearRow);
-HWY_EXPORT(AccumulateBilinearRows);
+HWY_EXPORT(AddShiftedRows);
+HWY_EXPORT(AddVerticalTaps);
 HWY_EXPORT(MultiplyRows);
 HWY_EXPORT(NormaliseRow);
 
-void accumulateBilinearRow(float* accumulator, const float* row0, const float* row1, int whole, float c00, float c01,
-                           float c10, float c11, int ns, const float* nextRow) {
-  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRow)(accumulator, row0, row1, whole, c00, c01, c10, c11, ns, nextRow);
+void addShiftedRows(float* sum, const ShiftedRow* rows, int count, int ns) {
+  HWY_DYNAMIC_DISPATCH(AddShiftedRows)(sum, rows, count, ns);
 }
 
-void accumulateBilinearRows(float* accumulator, const float* plane, int ns, int nt, int y0, int y1, int wholeX,
-                            float ax0, float ax1, int wholeY, float top, float bottom, const float* nextPass) {
-  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRows)
-  (accumulator, plane, ns, nt, y0, y1, wholeX, ax0, ax1, wholeY, top, bottom, nextPass);
+void addVerticalTaps(float* accumulator, const float* upper, const float* lower, float top, float bottom, int count) {
+  HWY_DYNAMIC_DISPATCH(AddVerticalTaps)(accumulator, upper, lower, top, bottom, count);
 }
 
 void multiplyRows(float* out, const float* a, const float* b, int count) {
