@@ -5,11 +5,20 @@
 // Sample (i, j) of view (u, v) lands, at slope d, on the refocused image at (i + u d, j + v d)
 // (view pixels, light_field.hpp's convention), that is at fine pixel
 //   X = (i + u d + 0.5) K - 0.5,   Y = (j + v d + 0.5) K - 0.5,
-// where it is splatted with a tent kernel of half-width h = max(1, K / 2) fine pixels (half a
-// view pixel for K >= 2): fine pixel (x, y) gains w L with
-//   w = W(u, v, i, j) max(0, 1 - |x - X| / h) max(0, 1 - |y - Y| / h)
+// where it is splatted with a tent kernel: fine pixel (x, y) gains w L with
+//   w = W(u, v, i, j) t(x - X, hx) cx(u, x mod K) t(y - Y, hy) cy(v, y mod K),
+//   t(e, h) = max(0, 1 - |e| / h)
 // (W the light field's weight, 1 where it has none), and the sums are divided by the sum of w, so
 // every pixel is the weighted mean of the samples that landed near it; a pixel none reached is 0.
+// Per axis, h is twice the farthest any fine pixel lies from the nearest landing sample of any
+// view, within [3/8, 1/2] of a view pixel (K = 1: one pixel, bilinear interpolation): narrow where
+// the views interleave, so that a pixel takes the samples on it rather than its neighbours' too,
+// yet wide enough to reach a sample midway between two fine pixels, so that no view's light is
+// lost; half a view pixel where the samples pile up. c tilts the weights of the views that a fine
+// phase draws on, c = max(0, 1 + a u) with a such that their mean u is 0: every phase sees an
+// aperture centred as the plain refocus's does, so what is out of focus falls where the plain
+// refocus puts it at every phase, instead of shifting from one fine pixel to the next (the
+// blocks of an enlargement).
 //
 // Away from the plane of the microlenses the views see the refocused plane at different
 // sub-pixel phases (u d is not a whole number of pixels), so the samples interleave and the fine

@@ -28,16 +28,65 @@ Status checkFactor(int factor) {
   return {};
 }
 
-// The tent's half-width in fine pixels: half a view pixel, and at least one fine pixel so that
-// K = 1 is bilinear interpolation.
-double tentHalfWidth(int factor) { return std::max(1.0, 0.5 * factor); }
-
 // Where sample index i of a view shifted by `shift` (the view is sampled at x + shift for output
 // x, refocus.hpp) lands on the fine grid: at fine position i K + landing. Shifts beyond the view's
 // size put every sample outside the image; clamping them keeps the arithmetic in range.
 double landing(double shift, int factor, int size) {
   shift = std::clamp(shift, -(size + 2.0), size + 2.0);
   return (0.5 - shift) * factor - 0.5;
+}
+
+// The tent at `distance` fine pixels from a sample. A weight that only rounding makes non-zero (a
+// sample right at the tent's reach) counts as zero, so that the two kernels, which add the same
+// distances in different orders, agree on which samples reach a pixel.
+double tent(double distance, double halfWidth) {
+  const double weight = 1 - std::abs(distance) / halfWidth;
+  return weight > 1e-9 ? weight : 0.0;
+}
+
+// One axis of the splat (columns: u and s; rows: v and t), upsampled_refocus.hpp's h and c.
+struct AxisSplat {
+  double halfWidth = 1;                                          // h, fine pixels
+  std::vector<double> landing;                                   // per view, landing() of its shift
+  std::vector<std::array<double, kMaxUpsampleFactor>> centring;  // c, per view and fine phase
+};
+
+AxisSplat axisSplat(const LightField& lightField, double slope, int factor, bool rows) {
+  const int views = rows ? lightField.nv() : lightField.nu(), size = rows ? lightField.nt() : lightField.ns();
+  std::vector<double> position(views);  // view steps from the aperture centre
+  AxisSplat axis;
+  for (int k = 0; k < views; ++k) {
+    position[k] = rows ? lightField.vFromCentre(k) : lightField.uFromCentre(k);
+    axis.landing.push_back(landing(-position[k] * slope, factor, size));
+  }
+  // Distance from fine phase r to view k's nearest landing sample, in [-K/2, K/2].
+  const auto apart = [&](int k, int r) {
+    const double d = r - axis.landing[k];
+    return d - std::floor(d / factor + 0.5) * factor;
+  };
+  if (factor == 1) {
+    axis.centring.assign(views, {1, 1, 1, 1});
+    return axis;
+  }
+  double farthest = 0;
+  for (int r = 0; r < factor; ++r) {
+    double nearest = factor;
+    for (int k = 0; k < views; ++k) nearest = std::min(nearest, std::abs(apart(k, r)));
+    farthest = std::max(farthest, nearest);
+  }
+  axis.halfWidth = std::clamp(2 * farthest, 0.375 * factor, 0.5 * factor);
+  axis.centring.resize(views);
+  for (int r = 0; r < factor; ++r) {
+    double first = 0, second = 0;  // moments of the views' positions under the tent's weights
+    for (int k = 0; k < views; ++k) {
+      const double w = tent(apart(k, r), axis.halfWidth);
+      first += w * position[k];
+      second += w * position[k] * position[k];
+    }
+    const double tilt = second > 0 ? -first / second : 0.0;
+    for (int k = 0; k < views; ++k) axis.centring[k][r] = std::max(0.0, 1 + tilt * position[k]);
+  }
+  return axis;
 }
 
 }  // namespace
@@ -51,23 +100,27 @@ Result<Image> refocusUpsampledReference(const LightField& lightField, double slo
   const int width = shape.ns * factor, height = shape.nt * factor;
   Image out(width, height, shape.channels);
   if (lightField.empty() || !std::isfinite(slope)) return out;
-  const double halfWidth = tentHalfWidth(factor);
+  const AxisSplat columns = axisSplat(lightField, slope, factor, false),
+                  rows = axisSplat(lightField, slope, factor, true);
   std::vector<double> sum(std::size_t(width) * height * shape.channels), weightSum(std::size_t(width) * height);
   for (int v = 0; v < shape.nv; ++v) {
-    const double landY = landing(-lightField.vFromCentre(v) * slope, factor, shape.nt);
+    const double landY = rows.landing[v];
     for (int u = 0; u < shape.nu; ++u) {
-      const double landX = landing(-lightField.uFromCentre(u) * slope, factor, shape.ns);
+      const double landX = columns.landing[u];
       for (int j = 0; j < shape.nt; ++j) {
         const double fineY = j * factor + landY;
         for (int i = 0; i < shape.ns; ++i) {
           const double fineX = i * factor + landX;
           const double w = lightField.hasWeight() ? lightField.weightPlane(u, v)[std::size_t(j) * shape.ns + i] : 1.0;
-          for (int y = int(std::ceil(fineY - halfWidth)); y <= int(std::floor(fineY + halfWidth)); ++y) {
-            const double wy = 1 - std::abs(y - fineY) / halfWidth;
-            if (y < 0 || y >= height || !(wy > 0)) continue;
-            for (int x = int(std::ceil(fineX - halfWidth)); x <= int(std::floor(fineX + halfWidth)); ++x) {
-              const double tap = w * wy * (1 - std::abs(x - fineX) / halfWidth);
-              if (x < 0 || x >= width || !(tap > 0)) continue;
+          for (int y = int(std::ceil(fineY - rows.halfWidth)); y <= int(std::floor(fineY + rows.halfWidth)); ++y) {
+            if (y < 0 || y >= height) continue;
+            const double wy = tent(y - fineY, rows.halfWidth) * rows.centring[v][y % factor];
+            if (!(wy > 0)) continue;
+            for (int x = int(std::ceil(fineX - columns.halfWidth)); x <= int(std::floor(fineX + columns.halfWidth));
+                 ++x) {
+              if (x < 0 || x >= width) continue;
+              const double tap = w * wy * tent(x - fineX, columns.halfWidth) * columns.centring[u][x % factor];
+              if (!(tap > 0)) continue;
               const std::size_t at = std::size_t(y) * width + x;
               weightSum[at] += tap;
               for (int c = 0; c < shape.channels; ++c)
@@ -105,15 +158,16 @@ struct PhaseTaps {
   std::array<float, kMaxUpsampleFactor> weight{};
 };
 
-PhaseTaps phaseTaps(double shift, int factor, int size) {
-  const double land = landing(shift, factor, size), halfWidth = tentHalfWidth(factor);
-  PhaseTaps taps;
-  for (int r = 0; r < factor; ++r) {
-    const double nearest = std::floor((r - land) / factor + 0.5);
-    taps.offset[r] = int(nearest);
-    taps.weight[r] = float(std::max(0.0, 1 - std::abs(r - land - nearest * factor) / halfWidth));
-  }
-  return taps;
+// Per view of one axis: fine phase r takes the view's nearest sample, weighted by the tent times c.
+std::vector<PhaseTaps> phaseTaps(const AxisSplat& axis, int factor) {
+  std::vector<PhaseTaps> views(axis.landing.size());
+  for (std::size_t k = 0; k < views.size(); ++k)
+    for (int r = 0; r < factor; ++r) {
+      const double nearest = std::floor((r - axis.landing[k]) / factor + 0.5);
+      views[k].offset[r] = int(nearest);
+      views[k].weight[r] = float(tent(r - axis.landing[k] - nearest * factor, axis.halfWidth) * axis.centring[k][r]);
+    }
+  return views;
 }
 
 // sum over views of the weight reaching fine index q K + r from a sample inside the view.
@@ -230,10 +284,8 @@ Result<Image> refocusUpsampled(const LightField& lightField, double slope, int f
   UpsamplePlan plan;
   plan.lightField = &lightField;
   plan.factor = factor;
-  for (int u = 0; u < shape.nu; ++u)
-    plan.columnTaps.push_back(phaseTaps(-lightField.uFromCentre(u) * slope, factor, shape.ns));
-  for (int v = 0; v < shape.nv; ++v)
-    plan.rowTaps.push_back(phaseTaps(-lightField.vFromCentre(v) * slope, factor, shape.nt));
+  plan.columnTaps = phaseTaps(axisSplat(lightField, slope, factor, false), factor);
+  plan.rowTaps = phaseTaps(axisSplat(lightField, slope, factor, true), factor);
   plan.separable = !lightField.hasWeight();
   if (plan.separable) {
     plan.columnWeight = separableWeight(plan.columnTaps, factor, shape.ns);
