@@ -156,9 +156,10 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
       // Source row y + whole + 1: the lower tap of output row y, the upper tap of row y + 1.
       for (int y = y0 - 1; y < y1; ++y) {
         const int row = y + sy.whole + 1;
-        std::fill(below, below + ns, 0.0f);
+        const OutputRow output{y >= y0 ? accumulatorRow(plane, y) : nullptr, above, top, bottom};
         // Outside the view, or the last row's lower tap when it weighs nothing: G = 0.
-        if (inside(row, nt) && (y + 1 < y1 || bottom != 0.0f)) {
+        const bool read = inside(row, nt) && (y + 1 < y1 || bottom != 0.0f);
+        if (read) {
           const std::size_t offset = std::size_t(row) * ns;
           for (std::size_t k = 0; k < live.size(); ++k) {
             const int u = plan.terms[live[k]].u, v = plan.terms[live[k]].v;
@@ -175,9 +176,8 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
             }
             shifted[k].row = source;
           }
-          addShiftedRows(below, shifted.data(), int(shifted.size()), ns);
         }
-        if (y >= y0) addVerticalTaps(accumulatorRow(plane, y), above, below, top, bottom, ns);
+        sumShiftedRows(below, shifted.data(), read ? int(shifted.size()) : 0, ns, y >= y0 ? &output : nullptr);
         std::swap(above, below);
       }
     }

@@ -21,9 +21,24 @@ namespace hn = hwy::HWY_NAMESPACE;
 // (on AVX2, with 16 registers, some coefficients are read from L1 instead).
 constexpr int maxRowsPerPass = 9;
 
-// sum[x] += the taps of rows[0, K) for x in [from, to), where every row has both taps inside.
-template <int K>
-void AddInterior(float* HWY_RESTRICT sum, const ShiftedRow* rows, int from, int to) {
+// accumulator[x] += top * above[x] + bottom * below[x] over [from, to).
+void AddVertical(const OutputRow& out, const float* HWY_RESTRICT below, int from, int to) {
+  const hn::ScalableTag<float> d;
+  const int lanes = int(hn::Lanes(d));
+  const auto top = hn::Set(d, out.top), bottom = hn::Set(d, out.bottom);
+  int x = from;
+  for (; x + lanes <= to; x += lanes) {
+    const auto sum = hn::MulAdd(top, hn::LoadU(d, out.above + x), hn::LoadU(d, out.accumulator + x));
+    hn::StoreU(hn::MulAdd(bottom, hn::LoadU(d, below + x), sum), d, out.accumulator + x);
+  }
+  for (; x < to; ++x) out.accumulator[x] += out.top * out.above[x] + out.bottom * below[x];
+}
+
+// The taps of rows[0, K) for x in [from, to), where every row has both taps inside: added to
+// sum, or (kFinal: these are all of sum's taps there) stored in sum and the output row finished
+// in the same loop, so that sum is not read back.
+template <int K, bool kFinal>
+void AddInterior(float* HWY_RESTRICT sum, const ShiftedRow* rows, int from, int to, const OutputRow* out) {
   const hn::ScalableTag<float> d;
   const int lanes = int(hn::Lanes(d));
   const float* source[K];
@@ -31,71 +46,83 @@ void AddInterior(float* HWY_RESTRICT sum, const ShiftedRow* rows, int from, int 
   for (int k = 0; k < K; ++k) source[k] = rows[k].row + rows[k].whole, c0[k] = rows[k].c0, c1[k] = rows[k].c1;
   int x = from;
   for (; x + lanes <= to; x += lanes) {
-    auto total = hn::LoadU(d, sum + x);
+    auto total = kFinal ? hn::Zero(d) : hn::LoadU(d, sum + x);
     for (int k = 0; k < K; ++k) {
       total = hn::MulAdd(hn::Set(d, c0[k]), hn::LoadU(d, source[k] + x), total);
       total = hn::MulAdd(hn::Set(d, c1[k]), hn::LoadU(d, source[k] + x + 1), total);
     }
     hn::StoreU(total, d, sum + x);
+    if (kFinal && out) {
+      const auto above = hn::LoadU(d, out->above + x), accumulator = hn::LoadU(d, out->accumulator + x);
+      const auto partial = hn::MulAdd(hn::Set(d, out->top), above, accumulator);
+      hn::StoreU(hn::MulAdd(hn::Set(d, out->bottom), total, partial), d, out->accumulator + x);
+    }
   }
   for (; x < to; ++x) {
-    float total = sum[x];
+    float total = kFinal ? 0.0f : sum[x];
     for (int k = 0; k < K; ++k) total += c0[k] * source[k][x] + c1[k] * source[k][x + 1];
     sum[x] = total;
+    if (kFinal && out) out->accumulator[x] += out->top * out->above[x] + out->bottom * total;
   }
 }
 
-// AddInterior<count>, for count in [1, maxRowsPerPass].
-template <std::size_t... K>
-void AddInteriorOf(int count, float* sum, const ShiftedRow* rows, int from, int to, std::index_sequence<K...>) {
-  using Add = void (*)(float*, const ShiftedRow*, int, int);
-  static constexpr Add add[] = {&AddInterior<int(K) + 1>...};
-  add[count - 1](sum, rows, from, to);
+// AddInterior<count, kFinal>, for count in [1, maxRowsPerPass].
+template <bool kFinal, std::size_t... K>
+void AddInteriorOf(int count, float* sum, const ShiftedRow* rows, int from, int to, const OutputRow* out,
+                   std::index_sequence<K...>) {
+  using Add = void (*)(float*, const ShiftedRow*, int, int, const OutputRow*);
+  static constexpr Add add[] = {&AddInterior<int(K) + 1, kFinal>...};
+  add[count - 1](sum, rows, from, to, out);
 }
 
-// One pass of at most maxRowsPerPass rows. Row k has both taps inside for output columns
-// [-whole, ns - 1 - whole) within [0, ns); the columns common to all are one pass, the rest of
-// each row's own, and its at most two single-tap columns, row by row.
-void AddRowsOnce(float* HWY_RESTRICT sum, const ShiftedRow* rows, int count, int ns) {
+// The columns where every one of the rows has both taps inside: row k has them for output
+// columns [-whole, ns - 1 - whole) within [0, ns). Empty: [ns, ns).
+std::pair<int, int> CommonInterior(const ShiftedRow* rows, int count, int ns) {
   int from = 0, to = ns;
   for (int k = 0; k < count; ++k) from = std::max(from, -rows[k].whole), to = std::min(to, ns - 1 - rows[k].whole);
-  if (from < to) {
-    AddInteriorOf(count, sum, rows, from, to, std::make_index_sequence<maxRowsPerPass>());
-  } else {
-    from = to = ns;  // no column common to all: each row's own below
-  }
+  return from < to ? std::pair(from, to) : std::pair(ns, ns);
+}
+
+// The taps of each row outside [from, to): the rest of its interior, and its at most two
+// single-tap columns, row by row.
+void AddOutside(float* HWY_RESTRICT sum, const ShiftedRow* rows, int count, int from, int to, int ns) {
   for (int k = 0; k < count; ++k) {
     const ShiftedRow& row = rows[k];
     const int begin = std::max(0, -row.whole), end = std::min(ns, ns - 1 - row.whole);
-    if (begin < std::min(from, end)) AddInterior<1>(sum, &row, begin, std::min(from, end));
-    if (std::max(to, begin) < end) AddInterior<1>(sum, &row, std::max(to, begin), end);
+    if (begin < std::min(from, end)) AddInterior<1, false>(sum, &row, begin, std::min(from, end), nullptr);
+    if (std::max(to, begin) < end) AddInterior<1, false>(sum, &row, std::max(to, begin), end, nullptr);
     // The right tap alone at source column 0, the left tap alone at ns - 1.
     if (const int x = -1 - row.whole; x >= 0 && x < ns) sum[x] += row.c1 * row.row[0];
     if (const int x = ns - 1 - row.whole; x >= 0 && x < ns && x >= end) sum[x] += row.c0 * row.row[ns - 1];
   }
 }
 
-void AddShiftedRows(float* HWY_RESTRICT sum, const ShiftedRow* rows, int count, int ns) {
-  // Passes of balanced sizes (15 rows: 8 and 7).
+void SumShiftedRows(float* HWY_RESTRICT sum, const ShiftedRow* rows, int count, int ns, const OutputRow* out) {
+  const auto interior = std::make_index_sequence<maxRowsPerPass>();
+  if (count >= 1 && count <= maxRowsPerPass) {
+    // One pass: its common columns take no other tap, so they are stored and finished at once.
+    const auto [from, to] = CommonInterior(rows, count, ns);
+    std::fill(sum, sum + from, 0.0f);
+    std::fill(sum + to, sum + ns, 0.0f);
+    if (from < to) AddInteriorOf<true>(count, sum, rows, from, to, out, interior);
+    AddOutside(sum, rows, count, from, to, ns);
+    if (out) {
+      AddVertical(*out, sum, 0, from);
+      AddVertical(*out, sum, to, ns);
+    }
+    return;
+  }
+  // Passes of balanced sizes (15 rows: 8 and 7), each added to sum.
+  std::fill(sum, sum + ns, 0.0f);
   const int passes = (count + maxRowsPerPass - 1) / maxRowsPerPass;
   for (int pass = 0, begin = 0; pass < passes; ++pass) {
     const int end = count * (pass + 1) / passes;
-    AddRowsOnce(sum, rows + begin, end - begin, ns);
+    const auto [from, to] = CommonInterior(rows + begin, end - begin, ns);
+    if (from < to) AddInteriorOf<false>(end - begin, sum, rows + begin, from, to, nullptr, interior);
+    AddOutside(sum, rows + begin, end - begin, from, to, ns);
     begin = end;
   }
-}
-
-void AddVerticalTaps(float* HWY_RESTRICT accumulator, const float* HWY_RESTRICT upper, const float* HWY_RESTRICT lower,
-                     float top, float bottom, int count) {
-  const hn::ScalableTag<float> d;
-  const int lanes = int(hn::Lanes(d));
-  const auto kTop = hn::Set(d, top), kBottom = hn::Set(d, bottom);
-  int i = 0;
-  for (; i + lanes <= count; i += lanes) {
-    const auto sum = hn::MulAdd(kTop, hn::LoadU(d, upper + i), hn::LoadU(d, accumulator + i));
-    hn::StoreU(hn::MulAdd(kBottom, hn::LoadU(d, lower + i), sum), d, accumulator + i);
-  }
-  for (; i < count; ++i) accumulator[i] += top * upper[i] + bottom * lower[i];
+  if (out) AddVertical(*out, sum, 0, ns);
 }
 
 void MultiplyRows(float* HWY_RESTRICT out, const float* HWY_RESTRICT a, const float* HWY_RESTRICT b, int count) {
@@ -125,17 +152,12 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace lfcam {
 
-HWY_EXPORT(AddShiftedRows);
-HWY_EXPORT(AddVerticalTaps);
+HWY_EXPORT(SumShiftedRows);
 HWY_EXPORT(MultiplyRows);
 HWY_EXPORT(NormaliseRow);
 
-void addShiftedRows(float* sum, const ShiftedRow* rows, int count, int ns) {
-  HWY_DYNAMIC_DISPATCH(AddShiftedRows)(sum, rows, count, ns);
-}
-
-void addVerticalTaps(float* accumulator, const float* upper, const float* lower, float top, float bottom, int count) {
-  HWY_DYNAMIC_DISPATCH(AddVerticalTaps)(accumulator, upper, lower, top, bottom, count);
+void sumShiftedRows(float* sum, const ShiftedRow* rows, int count, int ns, const OutputRow* out) {
+  HWY_DYNAMIC_DISPATCH(SumShiftedRows)(sum, rows, count, ns, out);
 }
 
 void multiplyRows(float* out, const float* a, const float* b, int count) {

@@ -18,15 +18,20 @@ struct ShiftedRow {
   float c0 = 0, c1 = 0;
 };
 
-// sum[x] += the taps of every row in rows[0, count) at output column x, for x in [0, ns). The
-// rows are added a few at a time (sum loaded and stored once for them all), each at its own
-// shift: one SIMD loop over the columns where all of them have both taps inside, the few columns
-// on either side row by row.
-void addShiftedRows(float* sum, const ShiftedRow* rows, int count, int ns);
+// An output row that gains the vertical taps of two horizontal sums (refocus.cpp):
+// accumulator[x] += top * above[x] + bottom * (the sum being made)[x].
+struct OutputRow {
+  float* accumulator = nullptr;
+  const float* above = nullptr;
+  float top = 0, bottom = 0;
+};
 
-// accumulator[i] += top * upper[i] + bottom * lower[i]: an output row from the horizontal sums
-// of its two source rows.
-void addVerticalTaps(float* accumulator, const float* upper, const float* lower, float top, float bottom, int count);
+// sum[x] = the taps of every row in rows[0, count) at output column x, for x in [0, ns) (0 for
+// none), then, when `out` is not null, out's row finished from it. Rows are summed a few at a
+// time (up to 9, sum loaded and stored once for them all), each at its own shift: one SIMD loop
+// over the columns where all of them have both taps inside, the few columns on either side row by
+// row. A single pass stores sum and finishes out in the same loop.
+void sumShiftedRows(float* sum, const ShiftedRow* rows, int count, int ns, const OutputRow* out);
 
 // out[i] = a[i] * b[i].
 void multiplyRows(float* out, const float* a, const float* b, int count);
