@@ -9,6 +9,7 @@
 //                         a layered-planes field of the same size when the data is absent.
 //   BM_RefocusIllum       the same for a light field of a Lytro Illum's size (15x15 views of
 //                         625x434 RGB, 732 MB), synthesised as layered planes, with its own floor.
+//   BM_RefocusWeighted    the same field with a weight plane (a fifth of it 0), as a decoded raw.
 //   BM_RefocusThreads     refocus of the antinous field on 1 and on 2 threads: the scaling.
 //   BM_RefocusPages       refocus of the antinous field on huge pages (as LightField allocates it)
 //                         and of a copy on 4 KiB pages (ratio = time / huge-page time, alternately).
@@ -151,6 +152,31 @@ void BM_RefocusIllum(benchmark::State& state) {
   state.SetLabel("15x15x625x434 RGB");
 }
 BENCHMARK(BM_RefocusIllum)->Unit(benchmark::kMillisecond)->UseManualTime();
+
+// The antinous field with a weight plane, as a decoded raw has (refocus.hpp: each tap weighs its
+// bilinear coefficient times the weight): a fifth of the samples weigh 0, as between microlenses,
+// the rest a weight in (0, 1]. Its floor counts the weights' bytes too.
+const LightField& antinousWeighted() {
+  static const LightField lightField = [] {
+    LightField copy = antinous().copy();
+    copy.enableWeight();
+    std::uint32_t state = 2005;
+    for (float& weight : copy.weights()) {
+      state = state * 1664525u + 1013904223u;  // a linear congruential sequence: cheap, fixed
+      const std::uint32_t high = state >> 24;  // uniform in [0, 255]
+      weight = high < 51 ? 0.0f : float(high) / 255.0f;
+    }
+    return copy;
+  }();
+  return lightField;
+}
+
+void BM_RefocusWeighted(benchmark::State& state) {
+  const LightField& lightField = antinousWeighted();
+  timeAgainstFloor(state, lightField, [&] { return lfcam::refocus(lightField, 0.63).pixels().data(); });
+  state.SetLabel("antinous with a weight plane");
+}
+BENCHMARK(BM_RefocusWeighted)->Unit(benchmark::kMillisecond)->UseManualTime();
 
 // Threads as the argument.
 void BM_RefocusThreads(benchmark::State& state) {

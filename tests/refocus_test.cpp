@@ -61,9 +61,10 @@ TEST(Refocus, FastMatchesReferenceOnALargerWeightedField) {
         << "slope " << slope;
 }
 
-// The SIMD row kernel on every instruction set this CPU runs (Highway's dispatch forced to each
+// The SIMD row kernels on every instruction set this CPU runs (Highway's dispatch forced to each
 // in turn), at widths around the vector lengths (4, 8, 16 lanes) so that every tail and edge
-// column path runs: odd widths, widths below one vector, one pixel wide.
+// column path runs: odd widths, widths below one vector, one pixel wide; with rows of 1 to 11
+// views, so that every number of rows summed in one pass (up to 9) and a split into two passes run.
 TEST(Refocus, EverySimdTargetMatchesReferenceAtOddWidthsAndTails) {
   std::mt19937 random(1729);
   std::uniform_real_distribution<double> anySlope(-3.0, 3.0);
@@ -73,11 +74,13 @@ TEST(Refocus, EverySimdTargetMatchesReferenceAtOddWidthsAndTails) {
     hwy::SetSupportedTargetsForTest(target);
     for (int ns : {1, 2, 3, 5, 7, 9, 15, 17, 23, 31, 33, 47}) {
       for (bool weighted : {false, true}) {
+        const int nu = 1 + (ns + (weighted ? 5 : 0)) % 11;
         const LightField lightField =
-            randomLightField({.nu = 3, .nv = 2, .ns = ns, .nt = 5 + ns % 7, .channels = 3}, random, weighted);
+            randomLightField({.nu = nu, .nv = 2, .ns = ns, .nt = 5 + ns % 7, .channels = 3}, random, weighted);
         for (double slope : {0.0, 0.5, -1.0, anySlope(random), double(ns) + 0.25}) {
           EXPECT_LT(worstRelativeError(refocus(lightField, slope), refocusReference(lightField, slope)), 1e-5)
-              << hwy::TargetName(target) << ", width " << ns << (weighted ? ", weighted" : "") << ", slope " << slope;
+              << hwy::TargetName(target) << ", " << nu << " views across, width " << ns
+              << (weighted ? ", weighted" : "") << ", slope " << slope;
         }
       }
     }

@@ -67,22 +67,34 @@ Image refocusReference(const LightField& lightField, double slope) {
 // It sums a list of terms (shift_and_add.hpp): for refocus, every view once with weight 1; for
 // the synthetic camera's apertures and quadrature (synthetic_camera.cpp), views weighted by the
 // aperture, or blends of neighbouring views at the shifts of aperture samples between them.
-// For one view the shift is the same at every pixel, so its bilinear coefficients are constants:
-// a view's contribution to an output row is four taps (two source rows, two neighbouring columns)
-// with the same four coefficients at every pixel: one straight SIMD loop over the row, with the
-// at most two columns whose taps leave the view done apart (shift_and_add_rows.hpp), so the loop
-// has no per-pixel tests. Without a weight plane the weight sum factors:
+// For one view the shift is the same at every pixel, so its bilinear coefficients are constants,
+// and the terms that share a vertical shift (a row of views, for refocus) share the vertical
+// coefficients top and bottom of every output row y, whose taps are source rows y + whole and
+// y + whole + 1. So the bilinear sum splits: first the horizontal taps of every term of the group
+// summed per source row,
+//   G(r)[x] = sum_k (ax0_k L_k(x + whole_k, r) + ax1_k L_k(x + whole_k + 1, r)),
+// then each output row from two of those: E(y) += top G(y + whole) + bottom G(y + whole + 1).
+// Each G(r) serves two output rows, so a sample costs two multiply-adds instead of four, and the
+// accumulator row is loaded and stored once per group instead of once per view
+// (shift_and_add_rows.hpp). Without a weight plane the weight sum factors:
 //   sum_{u,v} wx_u(x) wy_v(y) = (sum_u wx_u(x)) (sum_v wy_v(y)),
 // with wx_u(x) the bilinear coefficients of view column u's taps that fall inside the view, so it
 // is computed once per column and once per row instead of accumulated per pixel.
 
 namespace {
 
+// Terms [begin, end) of a plan, which share one vertical shift.
+struct TermGroup {
+  std::size_t begin = 0, end = 0;
+};
+
 struct RefocusPlan {
   const LightField* lightField = nullptr;
-  // The terms of the sum, each a view resampled at one constant shift, times a weight.
+  // The terms of the sum, each a view resampled at one constant shift, times a weight, sorted by
+  // vertical shift and grouped by it.
   std::vector<ShiftAndAddTerm> terms;
   std::vector<AxisShift> termColumnShift, termRowShift;  // per term
+  std::vector<TermGroup> groups;
   // The plain refocus (every view once, weight 1) without a weight plane: the weight sums are
   // separable, per output column and per output row.
   bool separable = false;
@@ -104,10 +116,9 @@ std::vector<float> separableWeight(const std::vector<AxisShift>& shifts, int siz
 }
 
 // Output rows [y0, y1) of the refocused photograph: the whole algorithm for one block of rows.
-// Views are the outer loop: each source row is read from memory once and reused, from cache, by
-// the two output rows it is a tap of, while the block's accumulators stay in L2. One call per
-// view and channel runs down the block's rows; the four bilinear taps of a row are one SIMD pass
-// (shift_and_add_rows.hpp).
+// Per group of terms and per plane (each channel, then the weight sum unless it is separable), the
+// source rows y0 + whole to y1 + whole stream from memory once, each view's rows in order, into
+// the horizontal sums G of the comment above; the block's accumulator plane stays in L2 meanwhile.
 void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
   const LightField& lightField = *plan.lightField;
   const int ns = lightField.ns(), nt = lightField.nt(), channels = lightField.channels();
@@ -121,60 +132,58 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
   auto accumulatorRow = [&](int plane, int y) {
     return accumulator.data() + (std::size_t(plane) * rows + (y - y0)) * ns;
   };
-  // Without a weight plane each tap weighs its coefficients alone: the weight sum accumulates a
-  // row of ones. With one, the channels accumulate w * L, products formed a row at a time.
+  // G of the source row above and of the one below the output row being summed.
+  std::vector<float> sums(2 * std::size_t(ns));
+  // Without a weight plane each tap weighs its coefficients alone: the weight sum adds rows of
+  // ones. With one, the channels add w * L, products formed a row at a time, one per term.
   std::vector<float> ones(weighted && !lightFieldWeighted ? ns : 0, 1.0f);
-  std::vector<float> product0(lightFieldWeighted ? ns : 0), product1(lightFieldWeighted ? ns : 0);
+  std::vector<float> products;
+  std::vector<std::size_t> live;  // the group's terms with a column in the view
+  std::vector<ShiftedRow> shifted;
 
-  for (std::size_t term = 0; term < plan.terms.size(); ++term) {
-    const int u = plan.terms[term].u, v = plan.terms[term].v;
-    const float termWeight = plan.terms[term].weight;
-    if (termWeight == 0.0f) continue;
-    const AxisShift sx = plan.termColumnShift[term], sy = plan.termRowShift[term];
-    // No output column has a tap in the view.
-    if (sx.whole <= -ns - 1 || sx.whole >= ns) continue;
-    const float ax0 = float(1 - sx.fraction), ax1 = float(sx.fraction);
-    // The term's weight rides on the vertical coefficients (exactly 1 for plain refocus).
-    const float top = float(1 - sy.fraction) * termWeight, bottom = float(sy.fraction) * termWeight;
-
-    if (!lightFieldWeighted) {
-      // The common case: each channel's rows in one call, which also prefetches the first
-      // source row of the call after it.
-      const auto firstRow = [&](std::size_t t, int c) {
-        const int row = std::clamp(y0 + plan.termRowShift[t].whole, 0, nt - 1);
-        return lightField.plane(plan.terms[t].u, plan.terms[t].v, c) + std::size_t(row) * ns;
-      };
-      for (int c = 0; c < channels; ++c) {
-        const float* nextPass = c + 1 < channels               ? firstRow(term, c + 1)
-                                : term + 1 < plan.terms.size() ? firstRow(term + 1, 0)
-                                                               : nullptr;
-        accumulateBilinearRows(accumulatorRow(c, y0), lightField.plane(u, v, c), ns, nt, y0, y1, sx.whole, ax0, ax1,
-                               sy.whole, top, bottom, nextPass);
-      }
-      if (!weighted) continue;
+  for (const TermGroup& group : plan.groups) {
+    const AxisShift sy = plan.termRowShift[group.begin];
+    const float top = float(1 - sy.fraction), bottom = float(sy.fraction);
+    // The terms with a column in the view, their weight riding on the horizontal coefficients.
+    live.clear(), shifted.clear();
+    for (std::size_t term = group.begin; term < group.end; ++term) {
+      const AxisShift sx = plan.termColumnShift[term];
+      const float termWeight = plan.terms[term].weight;
+      if (termWeight == 0.0f || sx.whole <= -ns - 1 || sx.whole >= ns) continue;
+      live.push_back(term);
+      shifted.push_back({nullptr, sx.whole, float(1 - sx.fraction) * termWeight, float(sx.fraction) * termWeight});
     }
-    // Row by row: the weight sum, and (with a weight plane) the channels as w * L.
-    for (int y = y0; y < y1; ++y) {
-      const VerticalTaps taps = verticalTaps(y, sy.whole, top, bottom, nt);
-      if (taps.c0 == 0.0f) continue;
-      const std::size_t offset0 = std::size_t(taps.row0) * ns, offset1 = std::size_t(taps.row1) * ns;
-      const auto accumulate = [&](int plane, const float* first, const float* second) {
-        accumulateBilinearRow(accumulatorRow(plane, y), first, second, sx.whole, taps.c0 * ax0, taps.c0 * ax1,
-                              taps.c1 * ax0, taps.c1 * ax1, ns);
-      };
-      if (!lightFieldWeighted) {
-        accumulate(channels, ones.data(), ones.data());
-        continue;
-      }
-      // Each tap's weight is the bilinear coefficient times the light field's weight
-      // (refocus.hpp), accumulated as one more channel.
-      const float* weightPlane = lightField.weightPlane(u, v);
-      accumulate(channels, weightPlane + offset0, weightPlane + offset1);
-      for (int c = 0; c < channels; ++c) {
-        const float* plane = lightField.plane(u, v, c);
-        multiplyRows(product0.data(), weightPlane + offset0, plane + offset0, ns);
-        multiplyRows(product1.data(), weightPlane + offset1, plane + offset1, ns);
-        accumulate(c, product0.data(), product1.data());
+    if (shifted.empty()) continue;
+    if (lightFieldWeighted) products.resize(shifted.size() * ns);
+    for (int plane = 0; plane < planes; ++plane) {
+      float* above = sums.data();
+      float* below = above + ns;
+      // Source row y + whole + 1: the lower tap of output row y, the upper tap of row y + 1.
+      for (int y = y0 - 1; y < y1; ++y) {
+        const int row = y + sy.whole + 1;
+        const OutputRow output{y >= y0 ? accumulatorRow(plane, y) : nullptr, above, top, bottom};
+        // Outside the view, or the last row's lower tap when it weighs nothing: G = 0.
+        const bool read = inside(row, nt) && (y + 1 < y1 || bottom != 0.0f);
+        if (read) {
+          const std::size_t offset = std::size_t(row) * ns;
+          for (std::size_t k = 0; k < live.size(); ++k) {
+            const int u = plan.terms[live[k]].u, v = plan.terms[live[k]].v;
+            const float* source = plane < channels ? lightField.plane(u, v, plane) + offset : ones.data();
+            if (lightFieldWeighted) {
+              // Each tap weighs its bilinear coefficient times the light field's weight.
+              const float* weightRow = lightField.weightPlane(u, v) + offset;
+              if (plane < channels) {
+                multiplyRows(products.data() + k * ns, weightRow, source, ns);
+                source = products.data() + k * ns;
+              } else {
+                source = weightRow;
+              }
+            }
+            shifted[k].row = source;
+          }
+        }
+        sumShiftedRows(below, shifted.data(), read ? int(shifted.size()) : 0, ns, y >= y0 ? &output : nullptr);
+        std::swap(above, below);
       }
     }
   }
@@ -191,13 +200,22 @@ Image runPlan(RefocusPlan& plan) {
   const LightField& lightField = *plan.lightField;
   const LightFieldShape& shape = lightField.shape();
   Image out(shape.ns, shape.nt, shape.channels);
+  std::stable_sort(plan.terms.begin(), plan.terms.end(),
+                   [](const ShiftAndAddTerm& a, const ShiftAndAddTerm& b) { return a.shiftY < b.shiftY; });
   for (const ShiftAndAddTerm& term : plan.terms) {
     plan.termColumnShift.push_back(shiftOf(term.shiftX, shape.ns));
     plan.termRowShift.push_back(shiftOf(term.shiftY, shape.nt));
   }
+  for (std::size_t term = 0; term < plan.terms.size(); ++term) {
+    const AxisShift& sy = plan.termRowShift[term];
+    if (plan.groups.empty() || plan.termRowShift[plan.groups.back().begin].whole != sy.whole ||
+        plan.termRowShift[plan.groups.back().begin].fraction != sy.fraction)
+      plan.groups.push_back({term, term});
+    plan.groups.back().end = term + 1;
+  }
 
-  forEachRowBlock(shape.nt, shape.ns, shape.channels + (plan.separable ? 0 : 1),
-                  [&](int y0, int y1) { refocusRows(plan, y0, y1, out); });
+  // One accumulator plane is summed into at a time.
+  forEachRowBlock(shape.nt, shape.ns, 1, [&](int y0, int y1) { refocusRows(plan, y0, y1, out); });
   return out;
 }
 

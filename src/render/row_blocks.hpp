@@ -11,8 +11,8 @@
 
 namespace lfcam {
 
-// Calls renderRows(y0, y1) over [0, rows) in blocks, in parallel; `planes` accumulator planes of
-// `width` floats per row.
+// Calls renderRows(y0, y1) over [0, rows) in blocks, in parallel; `planes`: the accumulator
+// planes of `width` floats per row that a block sums into at once.
 template <typename RenderRows>
 void forEachRowBlock(int rows, int width, int planes, RenderRows&& renderRows) {
   int blockRows = std::max(1, 32768 / std::max(1, planes * width));

@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "render/shift_and_add_rows.cpp"
-#include <hwy/cache_control.h>
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
@@ -17,81 +17,112 @@ namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Columns x with both horizontal taps inside the view are the vector loop; at most one column on
-// either side has a single tap, and the last partial vector is done one lane at a time.
-void AccumulateBilinearRow(float* HWY_RESTRICT accumulator, const float* row0, const float* row1, int whole, float c00,
-                           float c01, float c10, float c11, int ns, const float* nextRow) {
+// Rows added in one pass over sum, each with its two coefficients: a row of 9 views in one pass
+// (on AVX2, with 16 registers, some coefficients are read from L1 instead).
+constexpr int maxRowsPerPass = 9;
+
+// accumulator[x] += top * above[x] + bottom * below[x] over [from, to).
+void AddVertical(const OutputRow& out, const float* HWY_RESTRICT below, int from, int to) {
   const hn::ScalableTag<float> d;
   const int lanes = int(hn::Lanes(d));
-  const int interiorBegin = std::max(0, -whole), interiorEnd = std::min(ns, ns - 1 - whole);
-  // Single-tap edges: the right tap alone at source column 0, the left tap alone at ns - 1. They
-  // come after the interior, when the rows are in L1: read first, a row's last element is a miss
-  // at full memory latency, ahead of the prefetcher (measured: a quarter of this kernel's time).
-  const auto edges = [&] {
-    if (const int x = -1 - whole; x >= 0 && x < ns) accumulator[x] += c01 * row0[0] + c11 * row1[0];
-    if (const int x = ns - 1 - whole; x >= 0 && x < ns && x >= interiorEnd)
-      accumulator[x] += c00 * row0[ns - 1] + c10 * row1[ns - 1];
-  };
-  if (interiorBegin >= interiorEnd) return edges();
-
-  // From here on, pointers start at the first interior column's source.
-  const float* source0 = row0 + (interiorBegin + whole);
-  const float* source1 = row1 + (interiorBegin + whole);
-  float* interior = accumulator + interiorBegin;
-  const int count = interiorEnd - interiorBegin;
-  // The row the next call will read, fetched while this one computes (hardware prefetchers lose
-  // these short row runs: measured, a third fewer samples in this kernel). Without one, a
-  // harmless prefetch of a row already in cache.
-  const float* ahead = nextRow ? nextRow + (interiorBegin + whole) : source0;
-  int x = 0;
-  const auto k00 = hn::Set(d, c00), k01 = hn::Set(d, c01);
-  // One prefetch per 64-byte line: the vectors of a line are one step of the loop.
-  const int step = std::max(1, 16 / lanes) * lanes;
-  if (c10 == 0.0f && c11 == 0.0f) {
-    // One source row (integer vertical shift, or the other row outside the view): half the loads.
-    const auto vectorAt = [&](int k) {
-      auto sum = hn::MulAdd(k00, hn::LoadU(d, source0 + k), hn::LoadU(d, interior + k));
-      hn::StoreU(hn::MulAdd(k01, hn::LoadU(d, source0 + k + 1), sum), d, interior + k);
-    };
-    for (; x + step <= count; x += step) {
-      hwy::Prefetch(ahead + x);
-      for (int k = x; k < x + step; k += lanes) vectorAt(k);
-    }
-    for (; x + lanes <= count; x += lanes) vectorAt(x);
-    for (; x < count; ++x) interior[x] += c00 * source0[x] + c01 * source0[x + 1];
-    return edges();
+  const auto top = hn::Set(d, out.top), bottom = hn::Set(d, out.bottom);
+  int x = from;
+  for (; x + lanes <= to; x += lanes) {
+    const auto sum = hn::MulAdd(top, hn::LoadU(d, out.above + x), hn::LoadU(d, out.accumulator + x));
+    hn::StoreU(hn::MulAdd(bottom, hn::LoadU(d, below + x), sum), d, out.accumulator + x);
   }
-  // Each tap one fused multiply-add onto the accumulator: four per vector, no separate adds.
-  const auto k10 = hn::Set(d, c10), k11 = hn::Set(d, c11);
-  const auto vectorAt = [&](int k) {
-    auto sum = hn::MulAdd(k00, hn::LoadU(d, source0 + k), hn::LoadU(d, interior + k));
-    sum = hn::MulAdd(k01, hn::LoadU(d, source0 + k + 1), sum);
-    sum = hn::MulAdd(k10, hn::LoadU(d, source1 + k), sum);
-    hn::StoreU(hn::MulAdd(k11, hn::LoadU(d, source1 + k + 1), sum), d, interior + k);
-  };
-  for (; x + step <= count; x += step) {
-    hwy::Prefetch(ahead + x);
-    for (int k = x; k < x + step; k += lanes) vectorAt(k);
-  }
-  for (; x + lanes <= count; x += lanes) vectorAt(x);
-  for (; x < count; ++x)
-    interior[x] += (c00 * source0[x] + c01 * source0[x + 1]) + (c10 * source1[x] + c11 * source1[x + 1]);
-  edges();
+  for (; x < to; ++x) out.accumulator[x] += out.top * out.above[x] + out.bottom * below[x];
 }
 
-void AccumulateBilinearRows(float* HWY_RESTRICT accumulator, const float* plane, int ns, int nt, int y0, int y1,
-                            int wholeX, float ax0, float ax1, int wholeY, float top, float bottom,
-                            const float* nextPass) {
-  for (int y = y0; y < y1; ++y) {
-    const VerticalTaps taps = verticalTaps(y, wholeY, top, bottom, nt);
-    if (taps.c0 == 0.0f) continue;
-    // The row the next row reads; on the last, the first row of the next pass, so that the pass
-    // does not start on a cold stream.
-    const float* next = y + 1 == y1 ? nextPass : taps.row1 + 1 < nt ? plane + std::size_t(taps.row1 + 1) * ns : nullptr;
-    AccumulateBilinearRow(accumulator + std::size_t(y - y0) * ns, plane + std::size_t(taps.row0) * ns,
-                          plane + std::size_t(taps.row1) * ns, wholeX, taps.c0 * ax0, taps.c0 * ax1, taps.c1 * ax0,
-                          taps.c1 * ax1, ns, next);
+// The taps of rows[0, K) for x in [from, to), where every row has both taps inside: added to
+// sum, or (kFinal: these are all of sum's taps there) stored in sum and the output row finished
+// in the same loop, so that sum is not read back.
+template <int K, bool kFinal>
+void AddInterior(float* HWY_RESTRICT sum, const ShiftedRow* rows, int from, int to, const OutputRow* out) {
+  const hn::ScalableTag<float> d;
+  const int lanes = int(hn::Lanes(d));
+  const float* source[K];
+  float c0[K], c1[K];
+  for (int k = 0; k < K; ++k) source[k] = rows[k].row + rows[k].whole, c0[k] = rows[k].c0, c1[k] = rows[k].c1;
+  int x = from;
+  for (; x + lanes <= to; x += lanes) {
+    auto total = kFinal ? hn::Zero(d) : hn::LoadU(d, sum + x);
+    for (int k = 0; k < K; ++k) {
+      total = hn::MulAdd(hn::Set(d, c0[k]), hn::LoadU(d, source[k] + x), total);
+      total = hn::MulAdd(hn::Set(d, c1[k]), hn::LoadU(d, source[k] + x + 1), total);
+    }
+    hn::StoreU(total, d, sum + x);
+    if (kFinal && out) {
+      const auto above = hn::LoadU(d, out->above + x), accumulator = hn::LoadU(d, out->accumulator + x);
+      const auto partial = hn::MulAdd(hn::Set(d, out->top), above, accumulator);
+      hn::StoreU(hn::MulAdd(hn::Set(d, out->bottom), total, partial), d, out->accumulator + x);
+    }
   }
+  for (; x < to; ++x) {
+    float total = kFinal ? 0.0f : sum[x];
+    for (int k = 0; k < K; ++k) total += c0[k] * source[k][x] + c1[k] * source[k][x + 1];
+    sum[x] = total;
+    if (kFinal && out) out->accumulator[x] += out->top * out->above[x] + out->bottom * total;
+  }
+}
+
+// AddInterior<count, kFinal>, for count in [1, maxRowsPerPass].
+template <bool kFinal, std::size_t... K>
+void AddInteriorOf(int count, float* sum, const ShiftedRow* rows, int from, int to, const OutputRow* out,
+                   std::index_sequence<K...>) {
+  using Add = void (*)(float*, const ShiftedRow*, int, int, const OutputRow*);
+  static constexpr Add add[] = {&AddInterior<int(K) + 1, kFinal>...};
+  add[count - 1](sum, rows, from, to, out);
+}
+
+// The columns where every one of the rows has both taps inside: row k has them for output
+// columns [-whole, ns - 1 - whole) within [0, ns). Empty: [ns, ns).
+std::pair<int, int> CommonInterior(const ShiftedRow* rows, int count, int ns) {
+  int from = 0, to = ns;
+  for (int k = 0; k < count; ++k) from = std::max(from, -rows[k].whole), to = std::min(to, ns - 1 - rows[k].whole);
+  return from < to ? std::pair(from, to) : std::pair(ns, ns);
+}
+
+// The taps of each row outside [from, to): the rest of its interior, and its at most two
+// single-tap columns, row by row.
+void AddOutside(float* HWY_RESTRICT sum, const ShiftedRow* rows, int count, int from, int to, int ns) {
+  for (int k = 0; k < count; ++k) {
+    const ShiftedRow& row = rows[k];
+    const int begin = std::max(0, -row.whole), end = std::min(ns, ns - 1 - row.whole);
+    if (begin < std::min(from, end)) AddInterior<1, false>(sum, &row, begin, std::min(from, end), nullptr);
+    if (std::max(to, begin) < end) AddInterior<1, false>(sum, &row, std::max(to, begin), end, nullptr);
+    // The right tap alone at source column 0, the left tap alone at ns - 1.
+    if (const int x = -1 - row.whole; x >= 0 && x < ns) sum[x] += row.c1 * row.row[0];
+    if (const int x = ns - 1 - row.whole; x >= 0 && x < ns && x >= end) sum[x] += row.c0 * row.row[ns - 1];
+  }
+}
+
+void SumShiftedRows(float* HWY_RESTRICT sum, const ShiftedRow* rows, int count, int ns, const OutputRow* out) {
+  const auto interior = std::make_index_sequence<maxRowsPerPass>();
+  if (count >= 1 && count <= maxRowsPerPass) {
+    // One pass: its common columns take no other tap, so they are stored and finished at once.
+    const auto [from, to] = CommonInterior(rows, count, ns);
+    std::fill(sum, sum + from, 0.0f);
+    std::fill(sum + to, sum + ns, 0.0f);
+    if (from < to) AddInteriorOf<true>(count, sum, rows, from, to, out, interior);
+    AddOutside(sum, rows, count, from, to, ns);
+    if (out) {
+      AddVertical(*out, sum, 0, from);
+      AddVertical(*out, sum, to, ns);
+    }
+    return;
+  }
+  // Passes of balanced sizes (15 rows: 8 and 7), each added to sum.
+  std::fill(sum, sum + ns, 0.0f);
+  const int passes = (count + maxRowsPerPass - 1) / maxRowsPerPass;
+  for (int pass = 0, begin = 0; pass < passes; ++pass) {
+    const int end = count * (pass + 1) / passes;
+    const auto [from, to] = CommonInterior(rows + begin, end - begin, ns);
+    if (from < to) AddInteriorOf<false>(end - begin, sum, rows + begin, from, to, nullptr, interior);
+    AddOutside(sum, rows + begin, end - begin, from, to, ns);
+    begin = end;
+  }
+  if (out) AddVertical(*out, sum, 0, ns);
 }
 
 void MultiplyRows(float* HWY_RESTRICT out, const float* HWY_RESTRICT a, const float* HWY_RESTRICT b, int count) {
@@ -121,20 +152,12 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace lfcam {
 
-HWY_EXPORT(AccumulateBilinearRow);
-HWY_EXPORT(AccumulateBilinearRows);
+HWY_EXPORT(SumShiftedRows);
 HWY_EXPORT(MultiplyRows);
 HWY_EXPORT(NormaliseRow);
 
-void accumulateBilinearRow(float* accumulator, const float* row0, const float* row1, int whole, float c00, float c01,
-                           float c10, float c11, int ns, const float* nextRow) {
-  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRow)(accumulator, row0, row1, whole, c00, c01, c10, c11, ns, nextRow);
-}
-
-void accumulateBilinearRows(float* accumulator, const float* plane, int ns, int nt, int y0, int y1, int wholeX,
-                            float ax0, float ax1, int wholeY, float top, float bottom, const float* nextPass) {
-  HWY_DYNAMIC_DISPATCH(AccumulateBilinearRows)
-  (accumulator, plane, ns, nt, y0, y1, wholeX, ax0, ax1, wholeY, top, bottom, nextPass);
+void sumShiftedRows(float* sum, const ShiftedRow* rows, int count, int ns, const OutputRow* out) {
+  HWY_DYNAMIC_DISPATCH(SumShiftedRows)(sum, rows, count, ns, out);
 }
 
 void multiplyRows(float* out, const float* a, const float* b, int count) {

@@ -9,40 +9,29 @@
 
 namespace lfcam {
 
-// One view's contribution to one output row, at a constant shift: for every output column x in
-// [0, ns), with source column s = x + whole,
-//   accumulator[x] += c00 row0[s] + c01 row0[s + 1] + c10 row1[s] + c11 row1[s + 1]
-// where a tap whose column lies outside [0, ns) counts as 0 (the view ends there). row0 and row1
-// are the two source rows of the vertical taps (they may be the same row when c10 = c11 = 0).
-// nextRow, when not null, is the source row the next call will read: it is prefetched.
-void accumulateBilinearRow(float* accumulator, const float* row0, const float* row1, int whole, float c00, float c01,
-                           float c10, float c11, int ns, const float* nextRow = nullptr);
-
-// The vertical taps of output row y for a view shifted by `whole` rows plus a fraction: rows
-// y + whole and y + whole + 1 with coefficients top and bottom ((1 - fraction) and fraction, times
-// any weight), a tap outside [0, nt) or of coefficient 0 dropped. A single live tap is always
-// row0 (with row1 = row0 and c1 = 0), so that it is read once; none live: c0 = c1 = 0.
-struct VerticalTaps {
-  int row0 = 0, row1 = 0;
+// One source row of one view, sampled at a constant horizontal shift: output column x takes
+// c0 row[x + whole] + c1 row[x + whole + 1], a tap whose column lies outside [0, ns) counting as
+// 0 (the view ends there).
+struct ShiftedRow {
+  const float* row = nullptr;
+  int whole = 0;
   float c0 = 0, c1 = 0;
 };
 
-inline VerticalTaps verticalTaps(int y, int whole, float top, float bottom, int nt) {
-  const int upper = y + whole, lower = upper + 1;
-  const float c0 = upper >= 0 && upper < nt ? top : 0.0f, c1 = lower >= 0 && lower < nt ? bottom : 0.0f;
-  if (c0 == 0.0f) return {lower, lower, c1, 0.0f};
-  if (c1 == 0.0f) return {upper, upper, c0, 0.0f};
-  return {upper, lower, c0, c1};
-}
+// An output row that gains the vertical taps of two horizontal sums (refocus.cpp):
+// accumulator[x] += top * above[x] + bottom * (the sum being made)[x].
+struct OutputRow {
+  float* accumulator = nullptr;
+  const float* above = nullptr;
+  float top = 0, bottom = 0;
+};
 
-// One view's channel over output rows [y0, y1): accumulator row (y - y0) (rows of ns floats)
-// gains accumulateBilinearRow's taps of `plane` (nt rows of ns floats) at the view's constant
-// shift, whole columns wholeX with coefficients ax0, ax1, whole rows wholeY with top and bottom
-// as in verticalTaps. One call per block and channel, so that the row loop is inside the SIMD
-// code (no dispatch per row), and each row prefetches the source row the next one reads; the last
-// row prefetches nextPass (if not null), the first source row of the call that comes next.
-void accumulateBilinearRows(float* accumulator, const float* plane, int ns, int nt, int y0, int y1, int wholeX,
-                            float ax0, float ax1, int wholeY, float top, float bottom, const float* nextPass);
+// sum[x] = the taps of every row in rows[0, count) at output column x, for x in [0, ns) (0 for
+// none), then, when `out` is not null, out's row finished from it. Rows are summed a few at a
+// time (up to 9, sum loaded and stored once for them all), each at its own shift: one SIMD loop
+// over the columns where all of them have both taps inside, the few columns on either side row by
+// row. A single pass stores sum and finishes out in the same loop.
+void sumShiftedRows(float* sum, const ShiftedRow* rows, int count, int ns, const OutputRow* out);
 
 // out[i] = a[i] * b[i].
 void multiplyRows(float* out, const float* a, const float* b, int count);
