@@ -140,27 +140,30 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
   const std::size_t blocks = (std::size_t(nt) + blockRows - 1) / blockRows;
   parallelFor(0, blocks, 1, [&](std::size_t begin, std::size_t end) {
     std::vector<float> padded(std::size_t(ns) + 2 * pad), sample(ns);
-    std::vector<float> reference(std::size_t(blockRows) * ns);
+    const int channels = grey.channels();
+    std::vector<float> reference(std::size_t(channels) * blockRows * ns);
     std::vector<float> accumulator(std::size_t(kHalves) * blockRows * ns);
     for (std::size_t block = begin; block < end; ++block) {
       const int y0 = int(block) * blockRows, y1 = std::min(nt, y0 + blockRows);
       for (int l = labelBegin; l < labelEnd; ++l) {
         const double d = disparities[l];
         // The reference view brought to the aperture centre's grid (no shift when it is the centre).
-        for (int y = y0; y < y1; ++y)
-          edof::sampleShiftedRow(grey.plane(referenceU, referenceV, 0), ns, nt, y, -referenceUc * d, -referenceVc * d,
-                                 pad, padded.data(), reference.data() + std::size_t(y - y0) * ns);
+        for (int c = 0; c < channels; ++c)
+          for (int y = y0; y < y1; ++y)
+            edof::sampleShiftedRow(grey.plane(referenceU, referenceV, c), ns, nt, y, -referenceUc * d, -referenceVc * d,
+                                   pad, padded.data(), reference.data() + (std::size_t(c) * blockRows + (y - y0)) * ns);
         std::fill(accumulator.begin(), accumulator.end(), 0.0f);
         for (const StarView& view : views) {
-          for (int y = y0; y < y1; ++y) {
-            const float* referenceRow = reference.data() + std::size_t(y - y0) * ns;
-            edof::sampleShiftedRow(grey.plane(view.u, view.v, 0), ns, nt, y, -view.uc * d, -view.vc * d, pad,
-                                   padded.data(), sample.data());
-            for (int h = 0; h < kHalves; ++h)
-              if ((view.halves >> h) & 1)
-                accumulateSquaredDifference(sample.data(), referenceRow,
-                                            accumulator.data() + (std::size_t(h) * blockRows + (y - y0)) * ns, ns);
-          }
+          for (int c = 0; c < channels; ++c)
+            for (int y = y0; y < y1; ++y) {
+              const float* referenceRow = reference.data() + (std::size_t(c) * blockRows + (y - y0)) * ns;
+              edof::sampleShiftedRow(grey.plane(view.u, view.v, c), ns, nt, y, -view.uc * d, -view.vc * d, pad,
+                                     padded.data(), sample.data());
+              for (int h = 0; h < kHalves; ++h)
+                if ((view.halves >> h) & 1)
+                  accumulateSquaredDifference(sample.data(), referenceRow,
+                                              accumulator.data() + (std::size_t(h) * blockRows + (y - y0)) * ns, ns);
+            }
         }
         // The interpolation-bias weights of this label, per subset (mean over its views).
         float wx[kHalves] = {}, wy[kHalves] = {}, wxy[kHalves] = {};
@@ -299,13 +302,17 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
         const std::size_t p = y * ns + x;
         for (int k = 0; k < slices; ++k) {
           const double d = disparity[p] + (k - steps) * delta;
-          const float reference = bilinearSample(grey.plane(referenceU, referenceV, 0), ns, nt, x - referenceUc * d,
-                                                 double(y) - referenceVc * d);
           float sums[kHalves] = {};
           for (const StarView& view : views) {
-            const float difference =
-                bilinearSample(grey.plane(view.u, view.v, 0), ns, nt, x - view.uc * d, double(y) - view.vc * d) -
-                reference;
+            float squares = 0;
+            for (int c = 0; c < grey.channels(); ++c) {
+              const float reference = bilinearSample(grey.plane(referenceU, referenceV, c), ns, nt, x - referenceUc * d,
+                                                     double(y) - referenceVc * d);
+              const float difference =
+                  bilinearSample(grey.plane(view.u, view.v, c), ns, nt, x - view.uc * d, double(y) - view.vc * d) -
+                  reference;
+              squares += difference * difference;
+            }
             // The interpolation-bias term (correspondenceCost).
             float bias = 0;
             if (locking > 0) {
@@ -314,7 +321,7 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
                            (bx * bx * secondDiff.xx[p] + by * by * secondDiff.yy[p] + bx * by * secondDiff.xy[p]));
             }
             for (int h = 0; h < kHalves; ++h)
-              if ((view.halves >> h) & 1) sums[h] += difference * difference - bias;
+              if ((view.halves >> h) & 1) sums[h] += squares - bias;
           }
           for (std::size_t i = 0; i < subsets.size(); ++i)
             subsetCost[(i * slices + k) * n + p] = sums[subsets[i]] / viewsIn[subsets[i]];
@@ -531,13 +538,44 @@ DepthMap depthStages(const LightField& lightField, const LightField& grey, const
 // kNoisyPrefilterSigma, chosen on the development scenes (`depth_bench` prints both per scene).
 constexpr double kNoisyResidual = 4e-5, kNoisyPrefilterSigma = 0.55;
 
+// The matching light field of DepthExperiment::gradientWeight a: channels sqrt(1 - a) I,
+// sqrt(a) dI/dx, sqrt(a) dI/dy (central differences), so that the squared difference summed over
+// channels is (1 - a) dI^2 + a |d grad I|^2.
+LightField withGradients(const LightField& grey, double weight) {
+  LightFieldShape shape = grey.shape();
+  shape.channels = 3;
+  LightField out(shape);
+  out.metadata = grey.metadata;
+  const int ns = grey.ns(), nt = grey.nt();
+  const float intensity = float(std::sqrt(1 - weight)), gradient = float(0.5 * std::sqrt(weight));
+  parallelFor(0, shape.views(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t view = begin; view < end; ++view) {
+      const int u = int(view % grey.nu()), v = int(view / grey.nu());
+      const float* in = grey.plane(u, v, 0);
+      float *level = out.plane(u, v, 0), *dx = out.plane(u, v, 1), *dy = out.plane(u, v, 2);
+      for (int y = 0; y < nt; ++y) {
+        const float *row = in + std::size_t(y) * ns, *up = in + std::size_t(std::max(y - 1, 0)) * ns,
+                    *down = in + std::size_t(std::min(y + 1, nt - 1)) * ns;
+        for (int x = 0; x < ns; ++x) {
+          const std::size_t p = std::size_t(y) * ns + x;
+          level[p] = intensity * row[x];
+          dx[p] = gradient * (row[std::min(x + 1, ns - 1)] - row[std::max(x - 1, 0)]);
+          dy[p] = gradient * (down[x] - up[x]);
+        }
+      }
+    }
+  });
+  return out;
+}
+
 // Every view smoothed by a Gaussian of `sigma` pixels: sensor noise is white, while the views of
 // a plenoptic camera are band-limited by its microlenses, so a light smoothing removes more noise
 // than detail.
 void blurViews(LightField& grey, double sigma) {
   parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t view = begin; view < end; ++view)
-      edof::gaussianBlur(grey.plane(int(view % grey.nu()), int(view / grey.nu()), 0), grey.ns(), grey.nt(), sigma);
+      for (int c = 0; c < grey.channels(); ++c)
+        edof::gaussianBlur(grey.plane(int(view % grey.nu()), int(view / grey.nu()), c), grey.ns(), grey.nt(), sigma);
   });
 }
 
@@ -583,6 +621,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
         for (std::size_t i = 0; i < mean.size(); ++i) plane[i] -= mean[i];
       }
     });
+  if (experiment.gradientWeight > 0) grey = withGradients(grey, experiment.gradientWeight);
   const double prefilter = options.prefilterSigma;
   if (prefilter > 0) blurViews(grey, prefilter);
   double residual = 0;
