@@ -21,15 +21,23 @@
 namespace lfcam {
 namespace {
 
+// A slope per pixel of `lightField`, each drawn in [-2.5, 2.5].
+struct RandomSlopes {
+  RandomSlopes(const LightField& lightField, std::mt19937& random) : ns(lightField.ns()) {
+    std::uniform_real_distribution<double> anySlope(-2.5, 2.5);
+    slopes.resize(std::size_t(ns) * lightField.nt());
+    for (double& slope : slopes) slope = anySlope(random);
+  }
+  double operator()(int x, int y) const { return slopes[std::size_t(y) * ns + x]; }
+  int ns;
+  std::vector<double> slopes;
+};
+
 TEST(FocusSpread, SlopeFieldKernelWithATapTestMatchesTheReference) {
   std::mt19937 random(2005);
-  std::uniform_real_distribution<double> anySlope(-2.5, 2.5);
   for (int trial = 0; trial < 30; ++trial) {
     const LightField lightField = test::randomTrialLightField(random, trial, 6, 37);
-    const int ns = lightField.ns();
-    std::vector<double> slopes(std::size_t(ns) * lightField.nt());
-    for (double& slope : slopes) slope = anySlope(random);
-    auto slopeAt = [&](int x, int y) { return slopes[std::size_t(y) * ns + x]; };
+    const RandomSlopes slopeAt(lightField, random);
     // A tap test that depends on every argument.
     auto keep = [](int u, int v, int row, int column, int x, int y) {
       return (u * 7 + v * 5 + row * 3 + column + x * 11 + y * 13) % 4 != 0;
@@ -44,13 +52,10 @@ TEST(FocusSpread, SlopeFieldKernelWithATapTestMatchesTheReference) {
 // surface its rays meet) is rendered from all its rays, not left black.
 TEST(FocusSpread, APixelWhoseEveryRayIsLeftOutTakesThemAll) {
   std::mt19937 random(2006);
-  std::uniform_real_distribution<double> anySlope(-2.5, 2.5);
   for (int trial = 0; trial < 10; ++trial) {
     const LightField lightField = test::randomTrialLightField(random, trial, 6, 29);
     const int ns = lightField.ns();
-    std::vector<double> slopes(std::size_t(ns) * lightField.nt());
-    for (double& slope : slopes) slope = anySlope(random);
-    auto slopeAt = [&](int x, int y) { return slopes[std::size_t(y) * ns + x]; };
+    const RandomSlopes slopeAt(lightField, random);
     auto keep = [](int, int, int, int, int x, int y) { return (x + y) % 3 != 0; };
     const Image fast = refocusSlopeField(lightField, slopeAt, keep);
     const Image everyRay = refocusSlopeField(lightField, slopeAt);
