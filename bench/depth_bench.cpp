@@ -15,12 +15,15 @@
 //   BM_AllInFocus   allInFocus given the depth map (focal stack + blending). Same counter.
 //   BM_DepthAndAllInFocus  both, as `lfcam edof` without --depth does: the goal is < 5 s on 2 cores.
 //
-// Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--high-pass R] [--gradient A]
+// Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--subsets-together] [--high-pass R]
+//      [--gradient A]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
 //   --development-only  the table without antinous, for choosing settings (it is held out)
 //   --write DIR         also each scene's map, truth and centre view: DIR/<scene>.pfm, -truth.pfm, -centre.png
+//   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what aggregating them apart
+//   brings
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
@@ -226,6 +229,8 @@ int main(int argc, char** argv) {
       folder = argv[++i];
     } else if (argument == "--gradient" && i + 1 < argc) {
       experiment.gradientWeight = std::atof(argv[++i]);
+    } else if (argument == "--subsets-together") {
+      experiment.aggregateSubsetsApart = false;
     } else if (argument == "--high-pass" && i + 1 < argc) {
       experiment.highPassRadius = std::atoi(argv[++i]);
     } else if (argument == "--options" && i + 1 < argc) {

@@ -84,6 +84,33 @@ DepthScene simulated(std::string name, const Scene& scene, const CameraModel& mo
   return withRange(std::move(name), std::move(*lightField), std::move(disparity));
 }
 
+// `name` with a gloss on every plane but the first (the backdrop): their radiance brightens
+// linearly across the aperture, by -gain to +gain from one corner of the views to the other (a
+// sheen's highlight seen from one side; an imperfect devignetting does the same to whole views).
+// The light field is linear in radiance: the scene with those planes black, plus their light
+// alone (the backdrop black, still occluding) times each view's gain.
+DepthScene glossy(std::string name, const Scene& scene, const CameraModel& model, double gain) {
+  Texture black;
+  black.light = {0, 0, 0};
+  Scene rest = scene, alone = scene;
+  alone.planes.front().texture = black;
+  for (std::size_t i = 1; i < rest.planes.size(); ++i) rest.planes[i].texture = black;
+  DepthScene result = simulated(std::move(name), rest, model);
+  const LightField lit = simulated("", alone, model).lightField;
+  LightField& lightField = result.lightField;
+  const double cu = 0.5 * (lightField.nu() - 1), cv = 0.5 * (lightField.nv() - 1);
+  for (int v = 0; v < lightField.nv(); ++v)
+    for (int u = 0; u < lightField.nu(); ++u) {
+      const float g = float(1 + gain * 0.5 * ((u - cu) / cu + (v - cv) / cv));
+      for (int c = 0; c < lightField.channels(); ++c) {
+        float* out = lightField.plane(u, v, c);
+        const float* in = lit.plane(u, v, c);
+        for (std::size_t i = 0; i < lightField.shape().viewPixels(); ++i) out[i] += g * in[i];
+      }
+    }
+  return result;
+}
+
 // Half an elliptic cylinder with a vertical axis, bulging towards the camera: `facets` planes
 // spanning +-endDeg around the axis at axisZ, `across` wide on either side and `deep` towards the
 // camera, `height` tall.
@@ -130,6 +157,7 @@ std::vector<DepthScene> developmentScenes(int size) {
     floor.tiltXDeg = 80;
     scene.planes.push_back(floor);
     scenes.push_back(simulated("slanted floor", scene, model));
+    scenes.push_back(glossy("slanted floor, glossy", scene, model, 0.1));
   }
   {  // Half an elliptic cylinder bulging towards the camera (from 0.8 to 1.1 times the focus
      // distance), 32 facets: deep enough along z for its disparity to curve by 0.6 px.
@@ -140,6 +168,7 @@ std::vector<DepthScene> developmentScenes(int size) {
                      noise(across / 12, {0.15f, 0.1f, 0.3f}, {0.85f, 0.8f, 0.9f}, 6));
     scenes.push_back(simulated("curved surface", scene, model));
     scenes.push_back(simulated("curved surface, noisy", scene, model, true));
+    scenes.push_back(glossy("curved surface, glossy", scene, model, 0.1));
   }
   {  // A grey column bulging far towards the camera (from 0.55 to 1.0 times the focus distance) before
      // a grey wall: disparity that changes fast at grazing angles, and no hue to tell surfaces apart.
@@ -183,6 +212,7 @@ std::vector<DepthScene> developmentScenes(int size) {
     scene.planes.push_back(plane("near", {0.2 * h, 0, z}, 0.8 * h, 1.2 * h,
                                  noise(h / 8, {0.58f, 0.5f, 0.45f}, {0.62f, 0.54f, 0.49f}, 17)));
     scenes.push_back(simulated("weak texture", scene, model));
+    scenes.push_back(glossy("weak texture, glossy", scene, model, 0.1));
   }
   return scenes;
 }

@@ -14,7 +14,11 @@
 //     of a star through it, sheared by the label, over subsets of views that an occluder leaves
 //     out (four strict half-apertures, the centre row, the centre column); less the defocus cue
 //     (squared Laplacian of the photograph refocused at the label, `defocusWeight`).
-//     Views that disagree at their best match (noise, aliasing) are smoothed first
+//     Each view's brightness offset from the centre view (a sheen that changes across the
+//     aperture) is removed first: stages 2-6 run at half resolution (`offsetPasses` times, each
+//     on views the previous map aligned and corrected), the views are warped onto the centre view
+//     by that map and their difference averaged by a guided filter the map steers (`offsetRadius`,
+//     `offsetEpsilon`). Views that disagree at their best match (noise, aliasing) are smoothed
 //     (`prefilterSigma`; automatic: stages 2-7 run once, and again on smoothed views when the fine
 //     search's median residual says so).
 //  3. Aggregation: a guided filter steered by the centre view (`filterRadius`, `filterEpsilon`),
@@ -30,7 +34,8 @@
 //  7. Confidence: 1 - exp(-(mean cost - chosen cost) / m), m that margin's mean over the image.
 //
 // Cost: about labels x 34 bilinear passes over ns x nt and 8 optimisation passes of labels x ns x
-// nt; memory 2 x labels x ns x nt floats (bench/depth_bench.cpp: time, and the scores table).
+// nt, and the half-resolution passes about half as much again; memory 2 x labels x ns x nt floats
+// (bench/depth_bench.cpp: time, and the scores table).
 #pragma once
 
 #include <optional>
@@ -47,9 +52,13 @@ struct DepthOptions {
   std::optional<double> disparityMin, disparityMax;  // default: metadata, else [-2, 2]
   int labels = 0;                                    // candidate disparities; 0: one per 0.1 px, within [16, 96]
   // 2. Cost.
-  double prefilterSigma = -1;  // views smoothed by a Gaussian of this sigma (px) before matching; 0: none;
-                               // -1: automatic, 0.55 where the views are noisy, else none
-  double defocusWeight = 0.4;  // weight of the defocus cue against the correspondence cue
+  double prefilterSigma = -1;   // views smoothed by a Gaussian of this sigma (px) before matching; 0: none;
+                                // -1: automatic, 0.55 where the views are noisy, else none
+  double defocusWeight = 0.4;   // weight of the defocus cue against the correspondence cue
+  int offsetRadius = 16;        // views less their brightness offset from the centre view, averaged over
+                                // about this radius (px); 0: none
+  double offsetEpsilon = 1e-3;  // regulariser of that average's guided filter, squared disparity
+  int offsetPasses = 2;         // first maps at half resolution that align the views for it
   // 3. Aggregation.
   int filterRadius = 1;         // guided filter window: (2 r + 1)^2 pixels
   double filterEpsilon = 3e-5;  // guided filter regulariser, squared linear luminance

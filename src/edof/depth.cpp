@@ -568,6 +568,75 @@ LightField withGradients(const LightField& grey, double weight) {
   return out;
 }
 
+// Every view at half the resolution (means of 2x2 pixels): where the first maps are made.
+LightField halfResolution(const LightField& in) {
+  LightFieldShape shape = in.shape();
+  shape.ns /= 2, shape.nt /= 2;
+  LightField out(shape);
+  out.metadata = in.metadata;
+  parallelFor(0, shape.views() * std::size_t(shape.channels), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t index = begin; index < end; ++index) {
+      const int c = int(index % std::size_t(shape.channels));
+      const std::size_t view = index / std::size_t(shape.channels);
+      const int u = int(view % in.nu()), v = int(view / in.nu());
+      const float* from = in.plane(u, v, c);
+      float* to = out.plane(u, v, c);
+      for (int y = 0; y < shape.nt; ++y)
+        for (int x = 0; x < shape.ns; ++x) {
+          const float* p = from + std::size_t(2 * y) * in.ns() + 2 * x;
+          to[std::size_t(y) * shape.ns + x] = 0.25f * (p[0] + p[1] + p[in.ns()] + p[in.ns() + 1]);
+        }
+    }
+  });
+  return out;
+}
+
+// A half-resolution map at full resolution: bilinear, each disparity doubled (twice the pixels per
+// view step).
+Image fullResolution(const Image& half, int width, int height) {
+  Image out(width, height, 1);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      out.at(x, y, 0) = 2 * bilinearSample(half.plane(0), half.width(), half.height(), 0.5 * x - 0.25, 0.5 * y - 0.25);
+  return out;
+}
+
+// Each view less its brightness offset from the reference view: their difference once the view is
+// warped onto the reference by `disparity`, averaged by a guided filter that the map steers
+// (`radius`, `epsilon` in squared disparity), so that a brightness that changes smoothly across
+// the aperture (a sheen, devignetting left imperfect) cancels while texture stays, and the offsets
+// of the two sides of an occlusion edge stay apart.
+void removeViewOffsets(LightField& grey, const Image& disparity, int radius, double epsilon) {
+  const int ns = grey.ns(), nt = grey.nt();
+  const std::size_t n = grey.shape().viewPixels();
+  const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
+  const auto warp = [&](int u, int v, float* out) {
+    const float* plane = grey.plane(u, v, 0);
+    const double uc = grey.uFromCentre(u), vc = grey.vFromCentre(v);
+    for (int y = 0; y < nt; ++y)
+      for (int x = 0; x < ns; ++x) {
+        const double d = disparity.at(x, y, 0);
+        out[std::size_t(y) * ns + x] = bilinearSample(plane, ns, nt, x - uc * d, double(y) - vc * d);
+      }
+  };
+  std::vector<float> reference(n);
+  warp(referenceU, referenceV, reference.data());
+  const edof::GuidedFilter filter(disparity.plane(0), ns, nt, radius, epsilon);
+  parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> difference(n), offset(n);
+    edof::GuidedFilter::Scratch scratch;
+    for (std::size_t view = begin; view < end; ++view) {
+      const int u = int(view % grey.nu()), v = int(view / grey.nu());
+      if (u == referenceU && v == referenceV) continue;
+      warp(u, v, difference.data());
+      for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
+      filter.apply(difference.data(), offset.data(), scratch);
+      float* plane = grey.plane(u, v, 0);
+      for (std::size_t i = 0; i < n; ++i) plane[i] -= offset[i];
+    }
+  });
+}
+
 // Every view smoothed by a Gaussian of `sigma` pixels: sensor noise is white, while the views of
 // a plenoptic camera are band-limited by its microlenses, so a light smoothing removes more noise
 // than detail.
@@ -625,6 +694,21 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   const double prefilter = options.prefilterSigma;
   if (prefilter > 0) blurViews(grey, prefilter);
   double residual = 0;
+  // View offsets: first maps at half resolution, each pass matching views whose offsets the
+  // previous one removed; the last one's offsets removed from the views at full resolution.
+  if (options.offsetRadius > 0 && options.offsetPasses > 0) {
+    const LightField colour = halfResolution(lightField);
+    LightField small = halfResolution(grey);
+    const Image smallGuide = small.subApertureImage((small.nu() - 1) / 2, (small.nv() - 1) / 2);
+    std::vector<double> halved(disparities);
+    for (double& d : halved) d *= 0.5;
+    Image first;
+    for (int pass = 0; pass < options.offsetPasses; ++pass) {
+      if (pass > 0) removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4);
+      first = depthStages(colour, small, smallGuide, halved, options, experiment, &residual).disparity;
+    }
+    removeViewOffsets(grey, fullResolution(first, grey.ns(), grey.nt()), options.offsetRadius, options.offsetEpsilon);
+  }
   DepthMap map = depthStages(lightField, grey, guide, disparities, options, experiment, &residual);
   map.prefilterSigma = std::max(prefilter, 0.0);
   map.viewResidual = prefilter > 0 ? 0.0 : residual;  // of the views as given only

@@ -11,7 +11,7 @@ namespace lfcam {
 
 std::span<const DepthKnob> depthKnobs() {
   using O = DepthOptions;
-  static const std::array<DepthKnob, 16> knobs{{
+  static const std::array<DepthKnob, 19> knobs{{
       {"range", "min", "smallest disparity searched (default: metadata, else -2)", &O::disparityMin, -1e3, 1e3},
       {"range", "max", "largest disparity searched (default: metadata, else 2)", &O::disparityMax, -1e3, 1e3},
       {"range", "labels", "candidate disparities (0: one per 0.1 px, within [16, 96])", &O::labels, 0, 1024},
@@ -19,6 +19,14 @@ std::span<const DepthKnob> depthKnobs() {
        "views smoothed by a Gaussian of this sigma (px) before matching (0: none; -1: automatic, 0.55 where the views "
        "are noisy)",
        &O::prefilterSigma, -1, 10},
+      {"cost", "offset-radius",
+       "views less their brightness offset from the centre view (a sheen), averaged over about this radius (px; 0: "
+       "none)",
+       &O::offsetRadius, 0, 256},
+      {"cost", "offset-epsilon", "regulariser of the offsets' guided filter, squared disparity", &O::offsetEpsilon,
+       1e-9, 100},
+      {"cost", "offset-passes", "first maps at half resolution that align the views for the offsets", &O::offsetPasses,
+       1, 8},
       {"cost", "defocus-weight", "weight of the defocus cue against the correspondence cue", &O::defocusWeight, 0, 100},
       {"aggregation", "filter-radius", "guided filter window of the cost: (2 r + 1)^2 pixels", &O::filterRadius, 0, 64},
       {"aggregation", "filter-epsilon", "guided filter regulariser, squared linear luminance", &O::filterEpsilon, 0, 1},
