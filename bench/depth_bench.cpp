@@ -21,6 +21,7 @@
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
 //   --development-only  the table without antinous, for choosing settings (it is held out)
+//   --size N            the development scenes at N x N pixels per view (default 128)
 //   --write DIR         also each scene's map, truth and centre view: DIR/<scene>.pfm, -truth.pfm, -centre.png
 //   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what aggregating them apart
 //   brings
@@ -176,7 +177,7 @@ void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam
 // HCI antinous, held out: never used to choose a parameter.
 // With `folder` not empty, each scene's disparity, truth and centre view are written there.
 void printScores(const lfcam::DepthOptions& options, const lfcam::edof::DepthExperiment& experiment, bool heldOut,
-                 const std::string& folder) {
+                 const std::string& folder, int size) {
   auto write = [&](const std::string& scene, const lfcam::Image& disparity, const lfcam::Image& truth,
                    const lfcam::LightField& lightField) {
     if (folder.empty()) return;
@@ -191,7 +192,7 @@ void printScores(const lfcam::DepthOptions& options, const lfcam::edof::DepthExp
   };
   std::printf("%-28s %8s %8s %9s %9s %7s %9s %9s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100", "bumpiness", "seconds",
               "residual", "prefilter");
-  for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes()) {
+  for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes(size)) {
     const auto start = std::chrono::steady_clock::now();
     lfcam::DepthOptions sceneOptions = options;
     sceneOptions.disparityMin = scene.disparityMin;
@@ -220,11 +221,13 @@ int main(int argc, char** argv) {
   lfcam::edof::DepthExperiment experiment;
   bool heldOut = true;
   std::string folder;
-  int kept = 1;
+  int kept = 1, size = 128;
   for (int i = 1; i < argc; ++i) {
     const std::string argument = argv[i];
     if (argument == "--development-only") {
       heldOut = false;
+    } else if (argument == "--size" && i + 1 < argc) {
+      size = std::atoi(argv[++i]);
     } else if (argument == "--write" && i + 1 < argc) {
       folder = argv[++i];
     } else if (argument == "--gradient" && i + 1 < argc) {
@@ -241,7 +244,7 @@ int main(int argc, char** argv) {
     }
   }
   argc = kept;
-  printScores(options, experiment, heldOut, folder);
+  printScores(options, experiment, heldOut, folder, size);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

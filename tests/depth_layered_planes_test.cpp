@@ -135,6 +135,16 @@ TEST(DepthLayeredPlanes, ViewOffsetsCancelASheen) {
   EXPECT_LT(removed, matte + 1.0);
 }
 
+// Views of a few pixels: the half-resolution maps of the view offsets are 1 or 2 pixels across, or skipped.
+TEST(DepthLayeredPlanes, TinyViewsGiveAMap) {
+  for (int size : {2, 3, 4, 5, 7}) {
+    const LayeredPlanesLightField scene = renderLayeredPlanes(defaultLayeredPlanesScene(3, size));
+    auto depth = estimateDepth(scene.lightField);
+    ASSERT_TRUE(depth) << size << ": " << depth.error().message;
+    for (float d : depth->disparity.pixels()) EXPECT_TRUE(std::isfinite(d)) << size;
+  }
+}
+
 TEST(DepthLayeredPlanes, RefusesAnEmptyRange) {
   const LayeredPlanesLightField scene = renderLayeredPlanes(defaultLayeredPlanesScene(3, 16));
   EXPECT_FALSE(estimateDepth(scene.lightField, {.disparityMin = 1.0, .disparityMax = 1.0}));

@@ -695,8 +695,9 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   if (prefilter > 0) blurViews(grey, prefilter);
   double residual = 0;
   // View offsets: first maps at half resolution, each pass matching views whose offsets the
-  // previous one removed; the last one's offsets removed from the views at full resolution.
-  if (options.offsetRadius > 0 && options.offsetPasses > 0) {
+  // previous one removed; the last one's offsets removed from the views at full resolution (views
+  // under 4 pixels across: none).
+  if (options.offsetRadius > 0 && options.offsetPasses > 0 && grey.ns() >= 4 && grey.nt() >= 4) {
     const LightField colour = halfResolution(lightField);
     LightField small = halfResolution(grey);
     const Image smallGuide = small.subApertureImage((small.nu() - 1) / 2, (small.nv() - 1) / 2);
