@@ -23,8 +23,8 @@
 //   --development-only  the table without antinous, for choosing settings (it is held out)
 //   --size N            the development scenes at N x N pixels per view (default 128)
 //   --write DIR         also each scene's map, truth and centre view: DIR/<scene>.pfm, -truth.pfm, -centre.png
-//   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what aggregating them apart
-//   brings
+//   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what
+//                       aggregating them apart brings
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>

@@ -135,7 +135,8 @@ TEST(DepthLayeredPlanes, ViewOffsetsCancelASheen) {
   EXPECT_LT(removed, matte + 1.0);
 }
 
-// Views of a few pixels: the half-resolution maps of the view offsets are 1 or 2 pixels across, or skipped.
+// Views of a few pixels: the view offsets' half-resolution maps are 2 or 3 pixels across (views of
+// 4-7), or skipped (2-3).
 TEST(DepthLayeredPlanes, TinyViewsGiveAMap) {
   for (int size : {2, 3, 4, 5, 7}) {
     const LayeredPlanesLightField scene = renderLayeredPlanes(defaultLayeredPlanesScene(3, size));

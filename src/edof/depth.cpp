@@ -416,16 +416,15 @@ void fillUncertain(const Image& guide, const std::vector<float>& curvature, cons
 }
 
 // Stages 2-7 (depth.hpp) on `grey`, the sRGB luminance the views are matched on, steered by
-// `guide` (its centre view before any prefilter) and the light field's centre colours.
+// `guide` (its centre view before any prefilter) and `colours`, the centre view's sRGB colours.
 // `medianResidual`: the median over pixels of the fine search's cost at its minimum (the mean
 // squared difference between the views there), 0 without a fine search.
-DepthMap depthStages(const LightField& lightField, const LightField& grey, const Image& guide,
+DepthMap depthStages(const Image& colours, const LightField& grey, const Image& guide,
                      const std::vector<double>& disparities, const DepthOptions& options,
                      const edof::DepthExperiment& experiment, double* medianResidual) {
-  const int ns = lightField.ns(), nt = lightField.nt(), labels = int(disparities.size());
-  const std::size_t n = lightField.shape().viewPixels();
+  const int ns = grey.ns(), nt = grey.nt(), labels = int(disparities.size());
+  const std::size_t n = grey.shape().viewPixels();
   const double dmin = disparities.front(), dmax = disparities.back(), step = (dmax - dmin) / (labels - 1);
-  const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.filterRadius, 0),
                                   std::max(options.filterEpsilon, 1e-12));
   const double locking = std::max(experiment.lockingCorrection, 0.0);
@@ -515,13 +514,12 @@ DepthMap depthStages(const LightField& lightField, const LightField& grey, const
   }
   // 6. Cleanup: the edge-aware fill, occlusion edges, the weighted median, each guided by the
   // centre view's sRGB colours.
-  Image colors = lightField.subApertureImage(referenceU, referenceV);
-  for (float& v : colors.pixels()) v = srgbFromLinear(std::max(v, 0.0f));
   if (options.fillLambda > 0 && options.refineSteps > 0)
-    fillUncertain(colors, curvature, residual, options, result.disparity.plane(0));
-  edof::reclaimOcclusionEdges(colors, options.occlusionBand, result.disparity.plane(0));  // occlusion_edges.cpp
+    fillUncertain(colours, curvature, residual, options, result.disparity.plane(0));
+  edof::reclaimOcclusionEdges(colours, options.occlusionBand, result.disparity.plane(0));  // occlusion_edges.cpp
   if (options.medianRadius > 0)
-    weightedMedian(colors, options.medianRadius, float(std::max(options.medianSigma, 1e-6)), result.disparity.plane(0));
+    weightedMedian(colours, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
+                   result.disparity.plane(0));
   // 7. Confidence.
   for (std::size_t p = 0; p < n; ++p) {
     const int chosen = std::clamp(int(std::lround(label[p])), 0, labels - 1);
@@ -568,7 +566,16 @@ LightField withGradients(const LightField& grey, double weight) {
   return out;
 }
 
-// Every view at half the resolution (means of 2x2 pixels): where the first maps are made.
+// A plane of width x height at half the resolution (means of 2x2 pixels; an odd last row or
+// column left out): where the first maps of the view offsets are made.
+void halvePlane(const float* in, int width, int height, float* out) {
+  for (int y = 0; y < height / 2; ++y)
+    for (int x = 0; x < width / 2; ++x) {
+      const float* p = in + std::size_t(2 * y) * width + 2 * x;
+      out[std::size_t(y) * (width / 2) + x] = 0.25f * (p[0] + p[1] + p[width] + p[width + 1]);
+    }
+}
+
 LightField halfResolution(const LightField& in) {
   LightFieldShape shape = in.shape();
   shape.ns /= 2, shape.nt /= 2;
@@ -579,15 +586,15 @@ LightField halfResolution(const LightField& in) {
       const int c = int(index % std::size_t(shape.channels));
       const std::size_t view = index / std::size_t(shape.channels);
       const int u = int(view % in.nu()), v = int(view / in.nu());
-      const float* from = in.plane(u, v, c);
-      float* to = out.plane(u, v, c);
-      for (int y = 0; y < shape.nt; ++y)
-        for (int x = 0; x < shape.ns; ++x) {
-          const float* p = from + std::size_t(2 * y) * in.ns() + 2 * x;
-          to[std::size_t(y) * shape.ns + x] = 0.25f * (p[0] + p[1] + p[in.ns()] + p[in.ns() + 1]);
-        }
+      halvePlane(in.plane(u, v, c), in.ns(), in.nt(), out.plane(u, v, c));
     }
   });
+  return out;
+}
+
+Image halfResolution(const Image& in) {
+  Image out(in.width() / 2, in.height() / 2, in.channels());
+  for (int c = 0; c < in.channels(); ++c) halvePlane(in.plane(c), in.width(), in.height(), out.plane(c));
   return out;
 }
 
@@ -681,6 +688,13 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     for (std::size_t i = begin; i < end; ++i) samples[i] = srgbFromLinear(std::max(samples[i], 0.0f));
   });
   const Image guide = grey.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2);
+  // The centre view's colours (linear) that steer the cleanup, sRGB-encoded as the matching.
+  const Image centre = lightField.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2);
+  const auto srgb = [](Image image) {
+    for (float& v : image.pixels()) v = srgbFromLinear(std::max(v, 0.0f));
+    return image;
+  };
+  const Image colours = srgb(centre.copy());
   if (experiment.highPassRadius > 0)
     parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
       std::vector<float> mean(grey.shape().viewPixels());
@@ -698,7 +712,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   // previous one removed; the last one's offsets removed from the views at full resolution (views
   // under 4 pixels across: none).
   if (options.offsetRadius > 0 && options.offsetPasses > 0 && grey.ns() >= 4 && grey.nt() >= 4) {
-    const LightField colour = halfResolution(lightField);
+    const Image smallColours = srgb(halfResolution(centre));
     LightField small = halfResolution(grey);
     const Image smallGuide = small.subApertureImage((small.nu() - 1) / 2, (small.nv() - 1) / 2);
     std::vector<double> halved(disparities);
@@ -706,11 +720,11 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     Image first;
     for (int pass = 0; pass < options.offsetPasses; ++pass) {
       if (pass > 0) removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4);
-      first = depthStages(colour, small, smallGuide, halved, options, experiment, &residual).disparity;
+      first = depthStages(smallColours, small, smallGuide, halved, options, experiment, &residual).disparity;
     }
     removeViewOffsets(grey, fullResolution(first, grey.ns(), grey.nt()), options.offsetRadius, options.offsetEpsilon);
   }
-  DepthMap map = depthStages(lightField, grey, guide, disparities, options, experiment, &residual);
+  DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, &residual);
   map.prefilterSigma = std::max(prefilter, 0.0);
   map.viewResidual = prefilter > 0 ? 0.0 : residual;  // of the views as given only
   // Automatic: the views matched as they are, then, where they disagree at their best match by
@@ -718,7 +732,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   if (prefilter < 0 && residual > kNoisyResidual) {
     blurViews(grey, kNoisyPrefilterSigma);
     const double asGiven = map.viewResidual;
-    map = depthStages(lightField, grey, guide, disparities, options, experiment, &residual);
+    map = depthStages(colours, grey, guide, disparities, options, experiment, &residual);
     map.prefilterSigma = kNoisyPrefilterSigma;
     map.viewResidual = asGiven;
   }
