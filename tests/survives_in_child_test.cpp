@@ -1,8 +1,12 @@
 // The throwaway process that fragile parsers run in first (src/io/survives_in_child.hpp).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstdlib>
+#include <memory>
+#include <thread>
+#include <vector>
 
 #include <unistd.h>
 
@@ -26,6 +30,33 @@ TEST(SurvivesInChild, OutcomeOfEachEnding) {
                 },
                 200ms),
             ChildOutcome::TimedOut);
+}
+
+// A child forked while another thread is inside the allocator must still be able to allocate (under
+// clang 14's AddressSanitizer it waited for ever: `lfcam batch --jobs 2` reported good files as hangs).
+TEST(SurvivesInChild, ChildAllocatesWhileAnotherThreadDoes) {
+  std::atomic<bool> stop = false;
+  std::thread allocating([&] {
+    std::vector<std::unique_ptr<char[]>> blocks;
+    while (!stop) {
+      for (int i = 0; i < 512; ++i) blocks.emplace_back(new char[16 + 48 * (i % 64)]);
+      blocks.clear();  // keeps the allocator refilling and draining its caches, under its locks
+    }
+  });
+  int outcomes[3] = {};
+  for (int i = 0; i < 200; ++i) {
+    const ChildOutcome outcome = survivesInChild(
+        [] {
+          std::vector<std::unique_ptr<char[]>> blocks;
+          for (int size = 16; size < (1 << 20); size = size * 5 / 4 + 16) blocks.emplace_back(new char[size]);
+        },
+        10s);
+    ++outcomes[int(outcome)];
+  }
+  stop = true;
+  allocating.join();
+  EXPECT_EQ(outcomes[int(ChildOutcome::Survived)], 200)
+      << outcomes[int(ChildOutcome::Crashed)] << " crashed, " << outcomes[int(ChildOutcome::TimedOut)] << " timed out";
 }
 
 }  // namespace
