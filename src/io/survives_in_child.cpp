@@ -12,12 +12,12 @@
 #include <unistd.h>
 #endif
 
-// clang's AddressSanitizer runtime before LLVM 16 takes none of its own locks around fork: a child
+// clang's AddressSanitizer runtime before LLVM 18 takes none of its own locks around fork: a child
 // forked while another thread is inside its allocator waits for ever on that thread's lock (seen:
 // `lfcam batch --jobs 2` under ASan, the child stuck in the allocator's refill, reported as a 30 s
 // hang of libhdf5). Later runtimes hold these locks across fork themselves; for the older ones,
 // lfcam takes the same locks, by the runtime's own functions, as those runtimes do.
-#if defined(__clang__) && __clang_major__ < 16 && defined(__has_feature)
+#if defined(__clang__) && __clang_major__ < 18 && defined(__has_feature)
 #if __has_feature(address_sanitizer)
 #define LFCAM_LOCK_ASAN_AROUND_FORK 1
 namespace __lsan {
