@@ -234,6 +234,8 @@ int main(int argc, char** argv) {
       experiment.gradientWeight = std::atof(argv[++i]);
     } else if (argument == "--subsets-together") {
       experiment.aggregateSubsetsApart = false;
+    } else if (argument == "--no-noise-correction") {
+      experiment.noiseCorrection = false;
     } else if (argument == "--high-pass" && i + 1 < argc) {
       experiment.highPassRadius = std::atoi(argv[++i]);
     } else if (argument == "--options" && i + 1 < argc) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <random>
 
 #include "edof/depth_experiment.hpp"
 #include "lfcam/color_map.hpp"
@@ -133,6 +134,29 @@ TEST(DepthLayeredPlanes, ViewOffsetsCancelASheen) {
               asGiven, removed, matte);
   EXPECT_GT(asGiven, removed + 5.0);
   EXPECT_LT(removed, matte + 1.0);
+}
+
+// Noisy views with regions larger than the windows and no texture but noise (the checkerboard's
+// squares, 32 px): bilinear sampling halves the noise variance at half-pixel shifts, so there the
+// cost of every disparity that shifts views by half a pixel is lowest. With the noise that
+// interpolation removes added back (edof::DepthExperiment::noiseCorrection, the default) the map
+// must be better. Measured: BadPix(0.07) 19.9 % with it, 31.2 % without.
+TEST(DepthLayeredPlanes, NoiseCorrectionKeepsFlatNoisyRegionsOffHalfPixelShifts) {
+  LayeredPlanesScene scene = defaultLayeredPlanesScene(9, 128);
+  for (TexturedPlane& plane : scene.planes) plane.period *= 2;
+  LayeredPlanesLightField plain = renderLayeredPlanes(scene);
+  LightField noisy = plain.lightField.copy();
+  std::mt19937 random(7);
+  std::normal_distribution<float> gauss(0.0f, 0.02f);
+  for (float& sample : noisy.samples()) sample = std::max(sample + gauss(random), 0.0f);
+  const auto badPix = [&](bool correction) {
+    auto depth = edof::estimateDepth(noisy, {}, {.noiseCorrection = correction});
+    EXPECT_TRUE(depth) << depth.error().message;
+    return depth ? scoreDisparity(depth->disparity, plain.disparity)->badPix : 100.0;
+  };
+  const double with = badPix(true), without = badPix(false);
+  std::printf("flat noisy regions: BadPix(0.07) %.2f %% with the noise correction, %.2f %% without\n", with, without);
+  EXPECT_LT(with, without - 5.0);
 }
 
 // Views of a few pixels: the view offsets' half-resolution maps are 2 or 3 pixels across (views of

@@ -20,7 +20,8 @@
 //     by that map and their difference averaged by a guided filter the map steers (`offsetRadius`,
 //     `offsetEpsilon`). Views that disagree at their best match (noise, aliasing) are smoothed
 //     (`prefilterSigma`; automatic: stages 2-7 run once, and again on smoothed views when the fine
-//     search's median residual says so).
+//     search's median residual says so, with the noise variance that interpolating between pixels
+//     removes, estimated from that residual, added back to the cost).
 //  3. Aggregation: a guided filter steered by the centre view (`filterRadius`, `filterEpsilon`),
 //     each subset's cost apart, then the lowest subset per label.
 //  4. Regularisation: semi-global optimisation along 8 paths (`smoothness`), then a parabola

@@ -101,6 +101,28 @@ inline double interpolationBlur(double shift) {
   return 0.5 * f * (1 - f);
 }
 
+// The noise of the views matched, for the bias it gives the cost: bilinear sampling between
+// pixels averages neighbouring samples, and so lowers the variance of their noise, most at half a
+// pixel. Where the views show no texture, only noise, the cost is then lowest at shifts of half a
+// pixel, whatever the depth (large flat regions of noisy views snapped to them). `variance` is the
+// noise variance of a sample; `neighbourCorrelation` that of two neighbours along either axis
+// (0 for white noise; more once the views are smoothed).
+struct ViewNoise {
+  double variance = 0;
+  double neighbourCorrelation = 0;
+};
+
+// How much less noise variance a sample read at (x + shiftX, y + shiftY) has than one read on the
+// grid: the variance of (1 - f) a + f b over both axes, f the fraction of each shift.
+inline double interpolationNoiseLoss(const ViewNoise& noise, double shiftX, double shiftY) {
+  if (!(noise.variance > 0)) return 0;
+  const auto kept = [&](double shift) {
+    const double f = shift - std::floor(shift);
+    return 1 - 2 * f * (1 - f) * (1 - noise.neighbourCorrelation);
+  };
+  return noise.variance * (1 - kept(shiftX) * kept(shiftY));
+}
+
 // The subsets of views with at least one view (all six unless the aperture is a single row or
 // column), and how many views each has.
 std::vector<int> subsetsWithViews(const std::vector<StarView>& views, int (&viewsIn)[kHalves]) {
@@ -115,9 +137,10 @@ std::vector<int> subsetsWithViews(const std::vector<StarView>& views, int (&view
 
 // The correspondence cue for labels [labelBegin, labelEnd), n = ns * nt: the mean squared
 // difference over each subset of views with views, out[((l - labelBegin) * subsets + i) * n + p]
-// (subsetsWithViews' order). `locking` scales the interpolation-bias term removed (0: none).
+// (subsetsWithViews' order). `locking` scales the interpolation-bias term removed (0: none); the
+// noise variance that interpolation removes is added back (ViewNoise).
 void correspondenceCost(const LightField& grey, const std::vector<double>& disparities, int labelBegin, int labelEnd,
-                        double locking, float* out) {
+                        double locking, const ViewNoise& noise, float* out) {
   const int ns = grey.ns(), nt = grey.nt();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
@@ -165,15 +188,19 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
                                               accumulator.data() + (std::size_t(h) * blockRows + (y - y0)) * ns, ns);
             }
         }
-        // The interpolation-bias weights of this label, per subset (mean over its views).
-        float wx[kHalves] = {}, wy[kHalves] = {}, wxy[kHalves] = {};
+        // The interpolation-bias weights of this label, and the noise it removes, per subset (mean
+        // over its views).
+        float wx[kHalves] = {}, wy[kHalves] = {}, wxy[kHalves] = {}, noiseLoss[kHalves] = {};
+        const double referenceLoss = interpolationNoiseLoss(noise, -referenceUc * d, -referenceVc * d);
         for (const StarView& view : views) {
           const double bx = interpolationBlur(-view.uc * d), by = interpolationBlur(-view.vc * d);
+          const double loss = referenceLoss + interpolationNoiseLoss(noise, -view.uc * d, -view.vc * d);
           for (int h = 0; h < kHalves; ++h)
             if ((view.halves >> h) & 1) {
               wx[h] += float(locking * bx * bx / viewsIn[h]);
               wy[h] += float(locking * by * by / viewsIn[h]);
               wxy[h] += float(locking * bx * by / viewsIn[h]);
+              noiseLoss[h] += float(loss / viewsIn[h]);
             }
         }
         for (int y = y0; y < y1; ++y) {
@@ -185,7 +212,7 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
             for (std::size_t i = 0; i < subsets.size(); ++i) {
               const int h = subsets[i];
               const float mean = accumulator[(std::size_t(h) * blockRows + (y - y0)) * ns + x] / viewsIn[h] -
-                                 (wx[h] * cxx + wy[h] * cyy + wxy[h] * cxy);
+                                 (wx[h] * cxx + wy[h] * cyy + wxy[h] * cxy) + noiseLoss[h];
               out[(std::size_t(l - labelBegin) * subsets.size() + i) * n + row + x] = mean;
             }
           }
@@ -233,7 +260,7 @@ void defocusEnergy(const LightField& grey, double d, float* energy) {
 // Returns cost[l * n + p].
 std::vector<float> aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
                                   const edof::GuidedFilter& filter, double defocusWeight, double locking,
-                                  bool subsetsApart) {
+                                  const ViewNoise& noise, bool subsetsApart) {
   const std::size_t n = grey.shape().viewPixels();
   const int labels = int(disparities.size());
   int viewsIn[kHalves];
@@ -243,7 +270,7 @@ std::vector<float> aggregatedCost(const LightField& grey, const std::vector<doub
   std::vector<float> cost(n * labels), planes(std::size_t(kChunk) * subsets * n), energy(n);
   for (int first = 0; first < labels; first += kChunk) {
     const int last = std::min(labels, first + kChunk);
-    correspondenceCost(grey, disparities, first, last, locking, planes.data());
+    correspondenceCost(grey, disparities, first, last, locking, noise, planes.data());
     if (!subsetsApart)
       for (int l = first; l < last; ++l)
         lowestSubset(planes.data() + std::size_t(l - first) * subsets * n, subsets, n, n,
@@ -282,7 +309,8 @@ std::vector<float> aggregatedCost(const LightField& grey, const std::vector<doub
 // pixel (measured on antinous, fine-search radius 8: BadPix(0.07) 14.2 -> 11.5 %, BadPix(0.03)
 // 40.1 -> 28.9 %; issue 6, fourth round, in the history of docs/design.md).
 void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
-                     int steps, double locking, bool aggregateHalves, float* curvatureOut, float* residualOut) {
+                     int steps, double locking, const ViewNoise& noise, bool aggregateHalves, float* curvatureOut,
+                     float* residualOut) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
@@ -302,6 +330,7 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
         const std::size_t p = y * ns + x;
         for (int k = 0; k < slices; ++k) {
           const double d = disparity[p] + (k - steps) * delta;
+          const double referenceLoss = interpolationNoiseLoss(noise, -referenceUc * d, -referenceVc * d);
           float sums[kHalves] = {};
           for (const StarView& view : views) {
             float squares = 0;
@@ -320,8 +349,9 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
               bias = float(locking *
                            (bx * bx * secondDiff.xx[p] + by * by * secondDiff.yy[p] + bx * by * secondDiff.xy[p]));
             }
+            const float loss = float(referenceLoss + interpolationNoiseLoss(noise, -view.uc * d, -view.vc * d));
             for (int h = 0; h < kHalves; ++h)
-              if ((view.halves >> h) & 1) sums[h] += squares - bias;
+              if ((view.halves >> h) & 1) sums[h] += squares - bias + loss;
           }
           for (std::size_t i = 0; i < subsets.size(); ++i)
             subsetCost[(i * slices + k) * n + p] = sums[subsets[i]] / viewsIn[subsets[i]];
@@ -417,11 +447,12 @@ void fillUncertain(const Image& guide, const std::vector<float>& curvature, cons
 
 // Stages 2-7 (depth.hpp) on `grey`, the sRGB luminance the views are matched on, steered by
 // `guide` (its centre view before any prefilter) and `colours`, the centre view's sRGB colours.
-// `medianResidual`: the median over pixels of the fine search's cost at its minimum (the mean
-// squared difference between the views there), 0 without a fine search.
+// `noise`: that of `grey`'s samples, whose bias the costs take off. `medianResidual`: the median
+// over pixels of the fine search's cost at its minimum (the mean squared difference between the
+// views there), 0 without a fine search.
 DepthMap depthStages(const Image& colours, const LightField& grey, const Image& guide,
                      const std::vector<double>& disparities, const DepthOptions& options,
-                     const edof::DepthExperiment& experiment, double* medianResidual) {
+                     const edof::DepthExperiment& experiment, const ViewNoise& noise, double* medianResidual) {
   const int ns = grey.ns(), nt = grey.nt(), labels = int(disparities.size());
   const std::size_t n = grey.shape().viewPixels();
   const double dmin = disparities.front(), dmax = disparities.back(), step = (dmax - dmin) / (labels - 1);
@@ -431,8 +462,8 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // 2. Cost: the correspondence cue over each subset of views, less the defocus cue (the
   // full-aperture photograph at each label, sharpest where it is right); 3. aggregation: guided
   // filter per slice, steered by the reference view; the lowest subset.
-  std::vector<float> cost =
-      aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, experiment.aggregateSubsetsApart);
+  std::vector<float> cost = aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, noise,
+                                           experiment.aggregateSubsetsApart);
 
   // Pixel-major for the optimisation; and the typical depth of a cost minimum (mean over pixels
   // of mean - min), the scale of the penalties and of the confidence.
@@ -500,7 +531,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     // A quarter of the correction in the fine search: its slices, a fraction of a label apart,
     // see far smaller differences of blur (measured on antinous: 1 there is worse than none).
     refineDisparity(grey, refineFilter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps,
-                    0.25 * std::max(experiment.lockingCorrection, 0.0), experiment.refineAggregateHalves,
+                    0.25 * std::max(experiment.lockingCorrection, 0.0), noise, experiment.refineAggregateHalves,
                     curvature.data(), residual.data());
     // The fine search may step past the ends of the range searched; the map stays inside it.
     for (std::size_t p = 0; p < n; ++p)
@@ -535,6 +566,20 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
 // (from 2.4e-4; pixel-scale texture reads as noisy too); they are then smoothed by
 // kNoisyPrefilterSigma, chosen on the development scenes (`depth_bench` prints both per scene).
 constexpr double kNoisyResidual = 4e-5, kNoisyPrefilterSigma = 0.55;
+
+// The noise of views smoothed by a Gaussian of `sigma`, from the residual of their match as given:
+// that is the mean squared difference of two samples' noise at the best match, about twice the
+// variance of one (less where interpolation lowered it, so this errs low). Smoothing multiplies the
+// variance by the sum of the squared taps along each axis and correlates neighbours.
+ViewNoise smoothedNoise(double residual, double sigma) {
+  const std::vector<float> taps = edof::gaussianTaps(sigma);
+  double lag0 = 0, lag1 = 0;
+  for (std::size_t i = 0; i < taps.size(); ++i) {
+    lag0 += double(taps[i]) * taps[i];
+    if (i + 1 < taps.size()) lag1 += double(taps[i]) * taps[i + 1];
+  }
+  return {0.5 * residual * lag0 * lag0, lag1 / lag0};
+}
 
 // The matching light field of DepthExperiment::gradientWeight a: channels sqrt(1 - a) I,
 // sqrt(a) dI/dx, sqrt(a) dI/dy (central differences), so that the squared difference summed over
@@ -720,11 +765,11 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     Image first;
     for (int pass = 0; pass < options.offsetPasses; ++pass) {
       if (pass > 0) removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4);
-      first = depthStages(smallColours, small, smallGuide, halved, options, experiment, &residual).disparity;
+      first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual).disparity;
     }
     removeViewOffsets(grey, fullResolution(first, grey.ns(), grey.nt()), options.offsetRadius, options.offsetEpsilon);
   }
-  DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, &residual);
+  DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, {}, &residual);
   map.prefilterSigma = std::max(prefilter, 0.0);
   map.viewResidual = prefilter > 0 ? 0.0 : residual;  // of the views as given only
   // Automatic: the views matched as they are, then, where they disagree at their best match by
@@ -732,7 +777,8 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   if (prefilter < 0 && residual > kNoisyResidual) {
     blurViews(grey, kNoisyPrefilterSigma);
     const double asGiven = map.viewResidual;
-    map = depthStages(colours, grey, guide, disparities, options, experiment, &residual);
+    const ViewNoise noise = experiment.noiseCorrection ? smoothedNoise(asGiven, kNoisyPrefilterSigma) : ViewNoise{};
+    map = depthStages(colours, grey, guide, disparities, options, experiment, noise, &residual);
     map.prefilterSigma = kNoisyPrefilterSigma;
     map.viewResidual = asGiven;
   }

@@ -24,6 +24,9 @@ struct DepthExperiment {
   // at 0.8, but the development mean 2.50 -> 2.62 % and 2.98 % (noisy people 5.17 % at 0.8), the
   // automatic prefilter's threshold not scaled for it: `depth_bench --gradient A`.
   double gradientWeight = 0;
+  // The noise variance that bilinear sampling removes added back to the cost of noisy views
+  // (depth.cpp, ViewNoise); off: `depth_bench --no-noise-correction`.
+  bool noiseCorrection = true;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,

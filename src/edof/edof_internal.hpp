@@ -27,6 +27,8 @@ LightField luminanceLightField(const LightField& lightField);
 // `plane` smoothed in place by a sampled Gaussian of standard deviation `sigma` pixels (taps out
 // to 3 sigma, at least one), separable, borders clamped. sigma <= 0 leaves it as it is.
 void gaussianBlur(float* plane, int width, int height, double sigma);
+// The normalised taps of gaussianBlur's kernel, from -radius to radius.
+std::vector<float> gaussianTaps(double sigma);
 
 // Squared 4-neighbour Laplacian of channel 0, borders clamped: a focus energy per pixel.
 void squaredLaplacian(const Image& image, float* out);

@@ -171,13 +171,19 @@ void GuidedFilter::apply(const float* in, float* out, Scratch& scratch) const {
   }
 }
 
-void gaussianBlur(float* plane, int width, int height, double sigma) {
-  if (!(sigma > 0)) return;
+std::vector<float> gaussianTaps(double sigma) {
   const int radius = std::max(1, int(std::ceil(3 * sigma)));
   std::vector<float> taps(2 * radius + 1);
   double total = 0;
   for (int k = -radius; k <= radius; ++k) total += taps[k + radius] = float(std::exp(-0.5 * k * k / (sigma * sigma)));
   for (float& tap : taps) tap = float(tap / total);
+  return taps;
+}
+
+void gaussianBlur(float* plane, int width, int height, double sigma) {
+  if (!(sigma > 0)) return;
+  const std::vector<float> taps = gaussianTaps(sigma);
+  const int radius = int(taps.size() / 2);
   std::vector<float> across(std::size_t(width) * height);
   for (int y = 0; y < height; ++y) {
     const float* row = plane + std::size_t(y) * width;
