@@ -143,7 +143,7 @@ TEST(DepthLayeredPlanes, ViewOffsetsCancelASheen) {
 // must be better. Measured: BadPix(0.07) 19.9 % with it, 31.2 % without.
 TEST(DepthLayeredPlanes, NoiseCorrectionKeepsFlatNoisyRegionsOffHalfPixelShifts) {
   LayeredPlanesScene scene = defaultLayeredPlanesScene(9, 128);
-  for (TexturedPlane& plane : scene.planes) plane.period *= 2;
+  for (TexturedPlane& plane : scene.planes) plane.period *= 4;
   LayeredPlanesLightField plain = renderLayeredPlanes(scene);
   LightField noisy = plain.lightField.copy();
   std::mt19937 random(7);
@@ -157,6 +157,25 @@ TEST(DepthLayeredPlanes, NoiseCorrectionKeepsFlatNoisyRegionsOffHalfPixelShifts)
   const double with = badPix(true), without = badPix(false);
   std::printf("flat noisy regions: BadPix(0.07) %.2f %% with the noise correction, %.2f %% without\n", with, without);
   EXPECT_LT(with, without - 5.0);
+}
+
+// Coarse texture (features four times the default's): with penalties scaled image-wide, a
+// confident card's disparity runs over the faint evidence of the coarse background beside it; with
+// penalties that follow the cost's contrast near each pixel (DepthOptions::contrastRadius, the
+// default) the map must be better. Measured: BadPix(0.07) 13.0 % against 17.1 % (features twice the
+// default's: 3.8 against 4.1 %; three times: 4.3 against 5.3 %).
+TEST(DepthLayeredPlanes, PenaltiesFollowingLocalContrastKeepCoarseTextureApart) {
+  LayeredPlanesScene scene = defaultLayeredPlanesScene(9, 128);
+  for (TexturedPlane& plane : scene.planes) plane.period *= 4;
+  const LayeredPlanesLightField rendered = renderLayeredPlanes(scene);
+  const auto badPix = [&](int contrastRadius) {
+    auto depth = estimateDepth(rendered.lightField, {.contrastRadius = contrastRadius});
+    EXPECT_TRUE(depth) << depth.error().message;
+    return depth ? scoreDisparity(depth->disparity, rendered.disparity)->badPix : 100.0;
+  };
+  const double local = badPix(4), imageWide = badPix(0);
+  std::printf("coarse texture: BadPix(0.07) %.2f %% with local penalties, %.2f %% image-wide\n", local, imageWide);
+  EXPECT_LT(local, imageWide - 2.0);
 }
 
 // Views of a few pixels: the view offsets' half-resolution maps are 2 or 3 pixels across (views of

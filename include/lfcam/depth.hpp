@@ -24,8 +24,9 @@
 //     removes, estimated from that residual, added back to the cost).
 //  3. Aggregation: a guided filter steered by the centre view (`filterRadius`, `filterEpsilon`),
 //     each subset's cost apart, then the lowest subset per label.
-//  4. Regularisation: semi-global optimisation along 8 paths (`smoothness`), then a parabola
-//     through the aggregated cost places each pixel between labels.
+//  4. Regularisation: semi-global optimisation along 8 paths (`smoothness`), the penalties scaled
+//     at each pixel by the cost's contrast near it and over the image (`contrastRadius`), then a
+//     parabola through the aggregated cost places each pixel between labels.
 //  5. Refinement: a fine search of the stage-2 cost around the map's local mean, a fraction of a
 //     label apart (`refineSteps`, `refineRadius`, `refineSmoothRadius`), removing the labels'
 //     steps on slanted surfaces and the bias of interpolated views towards whole-pixel shifts.
@@ -65,6 +66,7 @@ struct DepthOptions {
   double filterEpsilon = 3e-5;  // guided filter regulariser, squared linear luminance
   // 4. Regularisation.
   double smoothness = 0.4;  // scales both jump penalties of the optimisation; 0 disables it
+  int contrastRadius = 4;   // window over which the cost's contrast sets the penalties' scale; 0: image-wide
   // 5. Refinement.
   int refineSteps = 2;         // fine search: steps per label on each side; 0 disables it
   int refineRadius = 1;        // guided filter window of the fine search: (2 r + 1)^2 pixels

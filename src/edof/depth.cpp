@@ -488,6 +488,27 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
 
   // 4. Regularisation: semi-global optimisation, then the read-out between labels.
   std::vector<float> label(n);
+  // Penalties that follow the cost's contrast near each pixel: image-wide ones outweigh the faint
+  // evidence of weak texture, so a confident surface's disparity runs over a weakly textured one
+  // beside it for as long as that evidence takes to add up to a jump (halos several pixels wide
+  // where texture is coarse). Each pixel's costs are scaled by sqrt(image contrast / local
+  // contrast), the penalties' scale the geometric mean of both; the parabola below does not see
+  // the scaling, the confidence undoes it.
+  std::vector<float> gain(n, 1.0f);
+  if (options.smoothness > 0 && options.contrastRadius > 0) {
+    std::vector<float> contrast(n), local(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      const float* c = &volume[p * labels];
+      contrast[p] = meanCost[p] - *std::min_element(c, c + labels);
+    }
+    boxFilter(contrast.data(), local.data(), ns, nt, options.contrastRadius);
+    parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t p = begin; p < end; ++p) {
+        gain[p] = float(std::sqrt(scale / std::max(double(local[p]), 1e-3 * scale)));
+        for (int l = 0; l < labels; ++l) volume[p * labels + l] *= gain[p];
+      }
+    });
+  }
   if (options.smoothness > 0) {
     // A small step penalty: slanted surfaces climb one label at a time (the fine search below
     // then smooths the steps); a large one for jumps, lowered across intensity edges.
@@ -554,7 +575,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // 7. Confidence.
   for (std::size_t p = 0; p < n; ++p) {
     const int chosen = std::clamp(int(std::lround(label[p])), 0, labels - 1);
-    const double depthOfMinimum = meanCost[p] - volume[p * labels + chosen];
+    const double depthOfMinimum = meanCost[p] - volume[p * labels + chosen] / gain[p];
     result.confidence.plane(0)[p] = float(std::clamp(1.0 - std::exp(-std::max(depthOfMinimum, 0.0) / scale), 0.0, 1.0));
   }
   return result;

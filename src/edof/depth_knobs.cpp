@@ -11,7 +11,7 @@ namespace lfcam {
 
 std::span<const DepthKnob> depthKnobs() {
   using O = DepthOptions;
-  static const std::array<DepthKnob, 19> knobs{{
+  static const std::array<DepthKnob, 20> knobs{{
       {"range", "min", "smallest disparity searched (default: metadata, else -2)", &O::disparityMin, -1e3, 1e3},
       {"range", "max", "largest disparity searched (default: metadata, else 2)", &O::disparityMax, -1e3, 1e3},
       {"range", "labels", "candidate disparities (0: one per 0.1 px, within [16, 96])", &O::labels, 0, 1024},
@@ -32,6 +32,9 @@ std::span<const DepthKnob> depthKnobs() {
       {"aggregation", "filter-epsilon", "guided filter regulariser, squared linear luminance", &O::filterEpsilon, 0, 1},
       {"regularisation", "smoothness", "scale of both jump penalties of the optimisation (0: none)", &O::smoothness, 0,
        100},
+      {"regularisation", "contrast-radius",
+       "window whose cost contrast, with the image's, scales the penalties at a pixel (0: the image's only)",
+       &O::contrastRadius, 0, 64},
       {"refinement", "refine-steps", "fine search: steps per label on each side (0: none)", &O::refineSteps, 0, 16},
       {"refinement", "refine-radius", "guided filter window of the fine search: (2 r + 1)^2 pixels", &O::refineRadius,
        0, 64},
