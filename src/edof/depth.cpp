@@ -588,18 +588,23 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
 // kNoisyPrefilterSigma, chosen on the development scenes (`depth_bench` prints both per scene).
 constexpr double kNoisyResidual = 4e-5, kNoisyPrefilterSigma = 0.55;
 
-// The noise of views smoothed by a Gaussian of `sigma`, from the residual of their match as given:
-// that is the mean squared difference of two samples' noise at the best match, about twice the
-// variance of one (less where interpolation lowered it, so this errs low). Smoothing multiplies the
-// variance by the sum of the squared taps along each axis and correlates neighbours.
-ViewNoise smoothedNoise(double residual, double sigma) {
+// The noise of views smoothed by a Gaussian of `sigma`, from `residual`, the median cost of their
+// match as given: at the right disparity, the noise variance V of the reference's sample plus that
+// of an interpolated view's, V kept(fx) kept(fy). With the fractions of the shifts spread evenly,
+// kept averages 2/3 along an axis the view is shifted on and 1 along one it is not, so the residual
+// is V (1 + the mean of those products over the star's views). Smoothing multiplies the variance
+// by the sum of the squared taps along each axis and correlates neighbours.
+ViewNoise smoothedNoise(double residual, double sigma, const std::vector<StarView>& views) {
+  double kept = 0;
+  for (const StarView& view : views) kept += (view.uc != 0 ? 2.0 / 3 : 1.0) * (view.vc != 0 ? 2.0 / 3 : 1.0);
+  kept /= double(std::max<std::size_t>(views.size(), 1));
   const std::vector<float> taps = edof::gaussianTaps(sigma);
   double lag0 = 0, lag1 = 0;
   for (std::size_t i = 0; i < taps.size(); ++i) {
     lag0 += double(taps[i]) * taps[i];
     if (i + 1 < taps.size()) lag1 += double(taps[i]) * taps[i + 1];
   }
-  return {0.5 * residual * lag0 * lag0, lag1 / lag0};
+  return {residual / (1 + kept) * lag0 * lag0, lag1 / lag0};
 }
 
 // The matching light field of DepthExperiment::gradientWeight a: channels sqrt(1 - a) I,
@@ -798,7 +803,10 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   if (prefilter < 0 && residual > kNoisyResidual) {
     blurViews(grey, kNoisyPrefilterSigma);
     const double asGiven = map.viewResidual;
-    const ViewNoise noise = experiment.noiseCorrection ? smoothedNoise(asGiven, kNoisyPrefilterSigma) : ViewNoise{};
+    const ViewNoise noise =
+        experiment.noiseCorrection
+            ? smoothedNoise(asGiven, kNoisyPrefilterSigma, starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2))
+            : ViewNoise{};
     map = depthStages(colours, grey, guide, disparities, options, experiment, noise, &residual);
     map.prefilterSigma = kNoisyPrefilterSigma;
     map.viewResidual = asGiven;
