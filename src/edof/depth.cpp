@@ -447,9 +447,9 @@ void fillUncertain(const Image& guide, const std::vector<float>& curvature, cons
 
 // Stages 2-7 (depth.hpp) on `grey`, the sRGB luminance the views are matched on, steered by
 // `guide` (its centre view before any prefilter) and `colours`, the centre view's sRGB colours.
-// `noise`: that of `grey`'s samples, whose loss under interpolation the costs add back. `medianResidual`: the median
-// over pixels of the fine search's cost at its minimum (the mean squared difference between the
-// views there), 0 without a fine search.
+// `noise`: that of `grey`'s samples, whose loss under interpolation the costs add back.
+// `medianResidual`: the median over pixels of the fine search's cost at its minimum (the mean
+// squared difference between the views there), 0 without a fine search.
 DepthMap depthStages(const Image& colours, const LightField& grey, const Image& guide,
                      const std::vector<double>& disparities, const DepthOptions& options,
                      const edof::DepthExperiment& experiment, const ViewNoise& noise, double* medianResidual) {
