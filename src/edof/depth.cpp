@@ -307,7 +307,7 @@ std::vector<float> aggregatedCost(const LightField& grey, const std::vector<doub
 // aggregated on its own and the best subset taken per slice afterwards: a window then keeps to one
 // subset, where the minimum of per-pixel costs picks whichever subset is lowest by chance at each
 // pixel (measured on antinous, fine-search radius 8: BadPix(0.07) 14.2 -> 11.5 %, BadPix(0.03)
-// 40.1 -> 28.9 %; issue 6, fourth round, in the history of docs/design.md).
+// 40.1 -> 28.9 %; issue 6, commit 0915025).
 void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
                      int steps, double locking, const ViewNoise& noise, bool aggregateHalves, float* curvatureOut,
                      float* residualOut) {
