@@ -55,8 +55,13 @@ TEST(SurvivesInChild, ChildAllocatesWhileAnotherThreadDoes) {
   }
   stop = true;
   allocating.join();
-  EXPECT_EQ(outcomes[int(ChildOutcome::Survived)], 200)
-      << outcomes[int(ChildOutcome::Crashed)] << " crashed, " << outcomes[int(ChildOutcome::TimedOut)] << " timed out";
+  EXPECT_EQ(outcomes[int(ChildOutcome::Crashed)], 0);
+  // Under clang 14's ASan the quarantine's lock stays out of reach (survives_in_child.hpp): a child
+  // forked while the other thread holds it times out (seen: 1 of 200 in about one run in six, gdb
+  // showing the child in Quarantine::Drain). Everywhere else every child must survive.
+  const int allowedTimeouts = childMayWaitOnALockHeldAtFork() ? 5 : 0;
+  EXPECT_LE(outcomes[int(ChildOutcome::TimedOut)], allowedTimeouts)
+      << outcomes[int(ChildOutcome::Survived)] << " of 200 survived";
 }
 
 }  // namespace

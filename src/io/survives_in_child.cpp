@@ -56,6 +56,14 @@ pid_t forkKeepingAllocatorUsable() {
 
 }  // namespace
 
+bool childMayWaitOnALockHeldAtFork() {
+#if defined(LFCAM_LOCK_ASAN_AROUND_FORK)
+  return true;
+#else
+  return false;
+#endif
+}
+
 ChildOutcome survivesInChild(const std::function<void()>& work, std::chrono::milliseconds timeout) {
 #if defined(__unix__)
   const pid_t child = forkKeepingAllocatorUsable();

@@ -18,4 +18,10 @@ enum class ChildOutcome { Survived, Crashed, TimedOut };
 // unavailable, `work` is not run and the outcome is Survived.
 ChildOutcome survivesInChild(const std::function<void()>& work, std::chrono::milliseconds timeout);
 
+// True in a build whose runtime leaves a lock out of reach across fork: clang < 18's
+// AddressSanitizer, whose quarantine lock (taken when a thread's freed memory joins the global
+// quarantine) no entry point lets lfcam hold. A child forked while another thread holds it waits
+// for ever and ends TimedOut, a good file refused: rare, and only in sanitized builds.
+bool childMayWaitOnALockHeldAtFork();
+
 }  // namespace lfcam::io
