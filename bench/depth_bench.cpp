@@ -31,7 +31,6 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -166,29 +165,14 @@ BENCHMARK(BM_DepthOcclusionEdges)->Unit(benchmark::kMillisecond)->UseRealTime()-
 BENCHMARK(BM_AllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_DepthAndAllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 
-// The share (%) of the BadPix(0.07) pixels, inside scoreHci's 15-pixel border, that the map puts
-// farther than the truth: a method's errors fall on both sides, a bias or a second surface (a
-// reflection's virtual image) on one.
-double fartherShare(const lfcam::Image& estimate, const lfcam::Image& truth) {
-  constexpr int kBorder = 15;
-  long bad = 0, farther = 0;
-  for (int y = kBorder; y < truth.height() - kBorder; ++y)
-    for (int x = kBorder; x < truth.width() - kBorder; ++x) {
-      const float error = estimate.at(x, y, 0) - truth.at(x, y, 0);
-      if (!(std::abs(error) > 0.07f)) continue;
-      ++bad;
-      farther += error < 0;
-    }
-  return bad > 0 ? 100.0 * double(farther) / double(bad) : 0.0;
-}
-
 // One row of the scores table.
 void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam::Image& truth, double seconds) {
   auto scores = lfcam::scoreHci(depth.disparity, truth);
+  auto strict = lfcam::scoreDisparity(depth.disparity, truth, 0.07);
   if (!scores) return (void)std::printf("%-28s %s\n", name.c_str(), scores.error().message.c_str());
   std::printf("%-28s %8.2f %8.2f %9.3f %9.3f %7.2f %9.2g %9.2f %8.0f\n", name.c_str(), scores->badPix007,
               scores->badPix003, scores->mse100, scores->bumpiness, seconds, depth.viewResidual, depth.prefilterSigma,
-              fartherShare(depth.disparity, truth));
+              strict ? strict->fartherShare : 0.0);
 }
 
 // Every scene's HCI scores with today's defaults (disparity_scores.hpp; 15-pixel border; bumpiness

@@ -33,6 +33,24 @@ TEST(DisparityScores, BadPixAndMseCountErrorsAboveEachThreshold) {
   EXPECT_EQ(scores->pixels, 1600);
 }
 
+TEST(DisparityScores, FartherShareCountsTheBadPixelsBelowTheTruth) {
+  const Image truth = imageOf(40, 40, [](int, int) { return 0.5; });
+  // Rows 0-9 farther by 0.1, rows 10-19 nearer by 0.1, the rest right: half of the bad are farther;
+  // with the nearer rows only within the threshold, all of them.
+  const Image estimate = imageOf(40, 40, [](int, int y) { return y < 10 ? 0.4 : y < 20 ? 0.6 : 0.5; });
+  auto both = scoreDisparity(estimate, truth, 0.07, 0);
+  ASSERT_TRUE(both) << both.error().message;
+  EXPECT_NEAR(both->badPix, 50.0, 1e-9);
+  EXPECT_NEAR(both->fartherShare, 50.0, 1e-9);
+  const Image farOnly = imageOf(40, 40, [](int, int y) { return y < 10 ? 0.4 : y < 20 ? 0.55 : 0.5; });
+  auto one = scoreDisparity(farOnly, truth, 0.07, 0);
+  ASSERT_TRUE(one) << one.error().message;
+  EXPECT_NEAR(one->fartherShare, 100.0, 1e-9);
+  auto none = scoreDisparity(truth, truth, 0.07, 0);
+  ASSERT_TRUE(none) << none.error().message;
+  EXPECT_EQ(none->fartherShare, 0.0);
+}
+
 TEST(DisparityScores, PlanarMaskKeepsPlanesAndLeavesOutTheBandOfAnEdge) {
   const Image mask = planarMask(imageOf(64, 48, stepScene));
   for (int x = 2; x < 62; ++x) {               // the repeated image border bends a slant in the outer two pixels

@@ -26,6 +26,9 @@ namespace lfcam {
 struct DisparityScores {
   double badPix = 0;
   double mse100 = 0;
+  // The share (%) of the bad pixels that the estimate puts farther than the truth (lower
+  // disparity): a method's errors fall on both sides, a bias or a second surface on one.
+  double fartherShare = 0;
   long pixels = 0;
 };
 // Usage error when the sizes differ or no pixel has ground truth inside the border.

@@ -71,7 +71,7 @@ Plane truthPlane(const Image& truth) {
 Result<DisparityScores> scoreDisparity(const Image& estimate, const Image& truth, double threshold, int border) {
   LFCAM_TRY(sameSize(estimate, truth));
   DisparityScores scores;
-  long bad = 0;
+  long bad = 0, farther = 0;
   double squares = 0;
   for (int y = border; y < truth.height() - border; ++y)
     for (int x = border; x < truth.width() - border; ++x) {
@@ -80,11 +80,13 @@ Result<DisparityScores> scoreDisparity(const Image& estimate, const Image& truth
       const double e = estimate.at(x, y, 0);
       const double error = std::isfinite(e) ? std::abs(e - t) : std::abs(t) + 1;
       bad += error > threshold;
+      farther += error > threshold && e < t;  // false for a missing estimate
       squares += error * error;
       ++scores.pixels;
     }
   if (scores.pixels == 0) return makeError(ErrorCode::Usage, "scores: no pixel with ground truth inside the border");
   scores.badPix = 100.0 * double(bad) / double(scores.pixels);
+  scores.fartherShare = bad > 0 ? 100.0 * double(farther) / double(bad) : 0.0;
   scores.mse100 = 100.0 * squares / double(scores.pixels);
   return scores;
 }
