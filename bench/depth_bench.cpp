@@ -1,7 +1,9 @@
 // Depth and all-in-focus speed on the HCI "antinous" light field (9x9 views, 512x512 RGB), with
 // the table of depth scores printed first: every development scene (depth_scenes.hpp), on which
 // the defaults are chosen, and antinous, held out (never used to choose a parameter); its last
-// column, "farther", the share (%) of each scene's BadPix(0.07) pixels put farther than the truth.
+// columns: "farther", the share (%) of each scene's BadPix(0.07) pixels put farther than the truth;
+// "steep", the share (%) of its pixels on steep slants (steepSlantsOnly), and "steep BP" their
+// BadPix(0.07).
 //   BM_Refocus      one full-colour refocus: the floor, the unit of work of both operations.
 //   BM_Depth        estimateDepth with default options. Counter ratio = time / refocus time.
 //   BM_DepthWithoutFill  the same without the edge-aware fill (fillLambda = 0); counter
@@ -16,8 +18,8 @@
 //   BM_AllInFocus   allInFocus given the depth map (focal stack + blending). Same counter.
 //   BM_DepthAndAllInFocus  both, as `lfcam edof` without --depth does: the goal is < 5 s on 2 cores.
 //
-// Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--subsets-together] [--high-pass R]
-//      [--gradient A]
+// Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
+//      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--high-pass R] [--gradient A]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
@@ -26,11 +28,14 @@
 //   --write DIR         also each scene's map, truth and centre view: DIR/<scene>.pfm, -truth.pfm, -centre.png
 //   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what
 //                       aggregating them apart brings
+//   --no-noise-correction  without the noise variance that interpolation removes added back
+//   --no-defocus-ceiling   the defocus cue not capped at twice the centre view's (DepthExperiment)
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -165,14 +170,40 @@ BENCHMARK(BM_DepthOcclusionEdges)->Unit(benchmark::kMillisecond)->UseRealTime()-
 BENCHMARK(BM_AllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_DepthAndAllInFocus)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 
+// The truth on steep slants only, NaN elsewhere (scoreDisparity skips those pixels): where the
+// disparity changes by kSteep to kJump px per pixel towards a 4-neighbour (by the larger of the
+// central differences across and down), and no neighbour lies across a jump.
+lfcam::Image steepSlantsOnly(const lfcam::Image& truth) {
+  constexpr float kSteep = 0.02f, kJump = 0.3f;
+  lfcam::Image steep(truth.width(), truth.height(), 1);
+  for (float& value : steep.pixels()) value = NAN;
+  for (int y = 1; y + 1 < truth.height(); ++y)
+    for (int x = 1; x + 1 < truth.width(); ++x) {
+      const float centre = truth.at(x, y, 0);
+      const float neighbours[4] = {truth.at(x - 1, y, 0), truth.at(x + 1, y, 0), truth.at(x, y - 1, 0),
+                                   truth.at(x, y + 1, 0)};
+      bool smooth = std::isfinite(centre);
+      for (float n : neighbours) smooth = smooth && std::isfinite(n) && std::abs(n - centre) < kJump;
+      const float slope =
+          std::max(std::abs(neighbours[1] - neighbours[0]), std::abs(neighbours[3] - neighbours[2])) / 2;
+      if (smooth && slope >= kSteep) steep.at(x, y, 0) = centre;
+    }
+  return steep;
+}
+
 // One row of the scores table.
 void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam::Image& truth, double seconds) {
   auto scores = lfcam::scoreHci(depth.disparity, truth);
   auto strict = lfcam::scoreDisparity(depth.disparity, truth, 0.07);
+  auto steep = lfcam::scoreDisparity(depth.disparity, steepSlantsOnly(truth), 0.07);
   if (!scores) return (void)std::printf("%-28s %s\n", name.c_str(), scores.error().message.c_str());
-  std::printf("%-28s %8.2f %8.2f %9.3f %9.3f %7.2f %9.2g %9.2f %8.0f\n", name.c_str(), scores->badPix007,
+  std::printf("%-28s %8.2f %8.2f %9.3f %9.3f %7.2f %9.2g %9.2f %8.0f", name.c_str(), scores->badPix007,
               scores->badPix003, scores->mse100, scores->bumpiness, seconds, depth.viewResidual, depth.prefilterSigma,
               strict ? strict->fartherShare : 0.0);
+  if (steep && strict)
+    std::printf(" %6.1f %8.2f\n", 100.0 * double(steep->pixels) / double(strict->pixels), steep->badPix);
+  else
+    std::printf(" %6s %8s\n", "0", "-");
 }
 
 // Every scene's HCI scores with today's defaults (disparity_scores.hpp; 15-pixel border; bumpiness
@@ -193,8 +224,8 @@ void printScores(const lfcam::DepthOptions& options, const lfcam::edof::DepthExp
       if (auto written = lfcam::writeImage(folder + "/" + file, *image); !written)
         std::fprintf(stderr, "depth_bench: %s\n", written.error().message.c_str());
   };
-  std::printf("%-28s %8s %8s %9s %9s %7s %9s %9s %8s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100", "bumpiness",
-              "seconds", "residual", "prefilter", "farther");
+  std::printf("%-28s %8s %8s %9s %9s %7s %9s %9s %8s %6s %8s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100",
+              "bumpiness", "seconds", "residual", "prefilter", "farther", "steep", "steep BP");
   for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes(size)) {
     const auto start = std::chrono::steady_clock::now();
     lfcam::DepthOptions sceneOptions = options;
@@ -239,6 +270,8 @@ int main(int argc, char** argv) {
       experiment.aggregateSubsetsApart = false;
     } else if (argument == "--no-noise-correction") {
       experiment.noiseCorrection = false;
+    } else if (argument == "--no-defocus-ceiling") {
+      experiment.defocusCeiling = false;
     } else if (argument == "--high-pass" && i + 1 < argc) {
       experiment.highPassRadius = std::atoi(argv[++i]);
     } else if (argument == "--options" && i + 1 < argc) {

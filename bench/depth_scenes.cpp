@@ -148,7 +148,7 @@ std::vector<DepthScene> developmentScenes(int size) {
   const Scene people = *builtinScene("people", model);
   scenes.push_back(simulated("people", people, model));
   scenes.push_back(simulated("people, Lytro-like noise", people, model, true));
-  {  // A floor rising steeply away from the camera, as antinous's, before a wall.
+  {  // A floor at a grazing angle (80 degrees) before a wall.
     Scene scene = emptyScene(model);
     scene.planes.push_back(backdrop(model, 2.2 * d, 3));
     const double h = halfField(model, 1.3 * d);
@@ -158,6 +158,26 @@ std::vector<DepthScene> developmentScenes(int size) {
     scene.planes.push_back(floor);
     scenes.push_back(simulated("slanted floor", scene, model));
     scenes.push_back(glossy("slanted floor, glossy", scene, model, 0.1));
+  }
+  {  // A floor and a wall beside the camera, running from near it to a backdrop: disparity that
+     // changes by 0.04 px per pixel at 128 px per view (the slanted floor above: 0.004; HCI
+     // antinous's floor and the sides of its statue: 0.02 to 0.08 at 512 px). Also with dim texture
+     // of 3 % contrast, as the weak texture's 4 %, before the backdrop's strong texture.
+    Scene scene = emptyScene(model);
+    scene.planes.push_back(backdrop(model, 2.2 * d, 21));
+    const double offset = 0.56 * halfField(model, d);  // from the camera's axis
+    Plane floor = plane("floor", {0, offset, 1.4 * d}, 2 * d, 1.7 * d,
+                        noise(offset / 8, {0.35f, 0.25f, 0.15f}, {0.85f, 0.75f, 0.6f}, 22));
+    floor.tiltXDeg = 90;
+    Plane wall = plane("wall", {offset, 0, 1.4 * d}, 1.7 * d, 2 * d,
+                       noise(offset / 8, {0.15f, 0.3f, 0.35f}, {0.6f, 0.8f, 0.85f}, 23));
+    wall.tiltYDeg = 90;
+    scene.planes.push_back(floor);
+    scene.planes.push_back(wall);
+    scenes.push_back(simulated("steep slants", scene, model));
+    scene.planes[1].texture = noise(offset / 8, {0.28f, 0.25f, 0.2f}, {0.3f, 0.27f, 0.22f}, 22);
+    scene.planes[2].texture = noise(offset / 8, {0.28f, 0.28f, 0.3f}, {0.3f, 0.3f, 0.32f}, 23);
+    scenes.push_back(simulated("steep slants, weak texture", scene, model));
   }
   {  // Half an elliptic cylinder bulging towards the camera (from 0.8 to 1.1 times the focus
      // distance), 32 facets: deep enough along z for its disparity to curve by 0.6 px.

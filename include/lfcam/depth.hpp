@@ -13,7 +13,8 @@
 //  2. Cost per label: squared differences of sRGB luminance between the centre view and the views
 //     of a star through it, sheared by the label, over subsets of views that an occluder leaves
 //     out (four strict half-apertures, the centre row, the centre column); less the defocus cue
-//     (squared Laplacian of the photograph refocused at the label, `defocusWeight`).
+//     (squared Laplacian of the photograph refocused at the label, at most twice the centre
+//     view's, `defocusWeight`).
 //     Each view's brightness offset from the centre view (a sheen that changes across the
 //     aperture) is removed first: stages 2-6 run at half resolution (`offsetPasses` times, each
 //     on views the previous map aligned and corrected), the views are warped onto the centre view

@@ -246,28 +246,48 @@ void aggregatePlanes(const edof::GuidedFilter& filter, float* planes, std::size_
   });
 }
 
-// The defocus cue at disparity d: the squared Laplacian of the full-aperture photograph.
-void defocusEnergy(const LightField& grey, double d, float* energy) {
+// The defocus cue's ceiling, as a multiple of the centre view's own squared Laplacian (below).
+// Chosen on the development scenes at 128 and 256 px per view: 1.5, 2 and 3 gave means of 2.43,
+// 2.45 and 2.59 % at 128 (the steep weak-textured floor and wall 4.11, 3.86, 5.35 %) and 3.65,
+// 3.56, 3.41 % at 256 (none: 3.02 and 3.55 %).
+constexpr float kDefocusCeiling = 2.0f;
+
+// The defocus cue at disparity d: the squared Laplacian of the full-aperture photograph, at most
+// kDefocusCeiling times the centre view's (`centreEnergy`). Refocusing averages shifted copies of
+// the views, so it cannot make a Lambertian scene sharper than the centre view, whose small
+// aperture has everything in focus. Yet a photograph refocused far from a strong edge shows it
+// as a staircase of nine shifted copies (the aperture is sampled by views, not continuous), whose
+// Laplacian spills onto weak texture beside it and there outweighs the texture's own, in focus:
+// without the ceiling, a weakly textured floor and wall slanted by 0.04 px per pixel before a
+// strongly textured backdrop took the range's nearest label along the backdrop's edge (11.98 %
+// BadPix(0.07); with it 3.86 %).
+// Without `centreEnergy`, no ceiling (DepthExperiment::defocusCeiling).
+void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, float* energy) {
   const Image photo = refocus(grey, d);
   edof::squaredLaplacian(photo, energy);
+  if (!centreEnergy) return;
+  const std::size_t n = grey.shape().viewPixels();
+  for (std::size_t p = 0; p < n; ++p) energy[p] = std::min(energy[p], kDefocusCeiling * centreEnergy[p]);
 }
 
 // Steps 2-3: per label, the correspondence cost of each subset of views less the defocus cue,
 // aggregated, and the lowest subset kept. With `subsetsApart` each subset's slice is aggregated
 // before the lowest is taken (the guided filter is linear, so the defocus cue is aggregated as
 // on its own), as the fine search does (refineDisparity); else the lowest is taken per pixel
-// first. Labels go in chunks so that only chunk x subsets slices are held besides the volume.
-// Returns cost[l * n + p].
+// first. `ceiling`: the defocus cue capped (defocusEnergy). Labels go in chunks so that only chunk
+// x subsets slices are held besides the volume. Returns cost[l * n + p].
 std::vector<float> aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
                                   const edof::GuidedFilter& filter, double defocusWeight, double locking,
-                                  const ViewNoise& noise, bool subsetsApart) {
+                                  const ViewNoise& noise, bool subsetsApart, bool ceiling) {
   const std::size_t n = grey.shape().viewPixels();
   const int labels = int(disparities.size());
   int viewsIn[kHalves];
   const std::size_t subsets =
       subsetsWithViews(starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2), viewsIn).size();
   constexpr int kChunk = 4;
-  std::vector<float> cost(n * labels), planes(std::size_t(kChunk) * subsets * n), energy(n);
+  std::vector<float> cost(n * labels), planes(std::size_t(kChunk) * subsets * n), energy(n), centreEnergy(n);
+  if (defocusWeight > 0 && ceiling)
+    edof::squaredLaplacian(grey.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2), centreEnergy.data());
   for (int first = 0; first < labels; first += kChunk) {
     const int last = std::min(labels, first + kChunk);
     correspondenceCost(grey, disparities, first, last, locking, noise, planes.data());
@@ -283,7 +303,7 @@ std::vector<float> aggregatedCost(const LightField& grey, const std::vector<doub
     };
     if (defocusWeight > 0)
       for (int l = first; l < last; ++l) {
-        defocusEnergy(grey, disparities[l], energy.data());
+        defocusEnergy(grey, disparities[l], ceiling ? centreEnergy.data() : nullptr, energy.data());
         const float weight = float(defocusWeight);
         parallelFor(0, perLabel, 1, [&](std::size_t begin, std::size_t end) {
           for (std::size_t i = begin; i < end; ++i) {
@@ -463,7 +483,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // full-aperture photograph at each label, sharpest where it is right); 3. aggregation: guided
   // filter per slice, steered by the reference view; the lowest subset.
   std::vector<float> cost = aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, noise,
-                                           experiment.aggregateSubsetsApart);
+                                           experiment.aggregateSubsetsApart, experiment.defocusCeiling);
 
   // Pixel-major for the optimisation; and the typical depth of a cost minimum (mean over pixels
   // of mean - min), the scale of the penalties and of the confidence.

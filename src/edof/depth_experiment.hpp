@@ -27,6 +27,8 @@ struct DepthExperiment {
   // The noise variance that bilinear sampling removes added back to the cost of noisy views
   // (depth.cpp, ViewNoise); off: `depth_bench --no-noise-correction`.
   bool noiseCorrection = true;
+  // The defocus cue capped at kDefocusCeiling times the centre view's own (depth.cpp).
+  bool defocusCeiling = true;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,
