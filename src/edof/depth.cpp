@@ -256,8 +256,8 @@ constexpr float kDefocusCeiling = 2.0f;
 // kDefocusCeiling times the centre view's (`centreEnergy`). Refocusing averages shifted copies of
 // the views, so it cannot make a Lambertian scene sharper than the centre view, whose small
 // aperture has everything in focus. Yet a photograph refocused far from a strong edge shows it
-// as a staircase of nine shifted copies (the aperture is sampled by views, not continuous), whose
-// Laplacian spills onto weak texture beside it and there outweighs the texture's own, in focus:
+// as a staircase of shifted copies, one per row or column of views (the aperture is sampled, not
+// continuous), whose Laplacian spills onto weak texture beside it and outweighs the texture's own:
 // without the ceiling, a weakly textured floor and wall slanted by 0.04 px per pixel before a
 // strongly textured backdrop took the range's nearest label along the backdrop's edge (11.98 %
 // BadPix(0.07); with it 3.86 %).

@@ -27,7 +27,8 @@ struct DepthExperiment {
   // The noise variance that bilinear sampling removes added back to the cost of noisy views
   // (depth.cpp, ViewNoise); off: `depth_bench --no-noise-correction`.
   bool noiseCorrection = true;
-  // The defocus cue capped at kDefocusCeiling times the centre view's own (depth.cpp).
+  // The defocus cue capped at kDefocusCeiling times the centre view's own (depth.cpp); off:
+  // `depth_bench --no-defocus-ceiling`.
   bool defocusCeiling = true;
 };
 
