@@ -1,7 +1,9 @@
 // The weighted median by selection (src/edof/weighted_median.cpp) against the sorting reference,
-// on random windows with ties, zero weights and the sizes the depth map's median uses.
+// on random windows with ties, zero weights and the sizes the depth map's median uses; the depth
+// map's guided median, flat and slanted.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <utility>
 #include <vector>
@@ -38,6 +40,55 @@ TEST(WeightedMedian, HeavyWeightWins) {
   EXPECT_EQ(weightedMedianSelect(window, 10.3f), 3.0f);
   std::vector<std::pair<float, float>> even = {{1.0f, 1.0f}, {2.0f, 1.0f}};
   EXPECT_EQ(weightedMedianSelect(even, 2.0f), 1.0f);  // the lower one reaches half first
+}
+
+// A guide of two colours split at column `edge`, the same in every channel.
+Image twoColours(int size, int edge) {
+  Image guide(size, size, 3);
+  for (int c = 0; c < 3; ++c)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) guide.at(x, y, c) = x < edge ? 0.2f : 0.8f;
+  return guide;
+}
+
+// A surface slanted by 0.05 px per pixel with a colour edge on it (a painted line, a shadow): at the
+// edge, a pixel's like-coloured neighbours all lie on one side. The flat median takes their
+// disparity, more than 0.07 off; the slanted one carries each along the slope and keeps the ramp.
+TEST(GuidedWeightedMedian, SlantedKeepsARampAtAColourEdge) {
+  const int size = 40, edge = 20, radius = 5;
+  const Image guide = twoColours(size, edge);
+  std::vector<float> ramp(std::size_t(size) * size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) ramp[std::size_t(y) * size + x] = 0.05f * float(x);
+  std::vector<float> flat = ramp, slanted = ramp;
+  guidedWeightedMedian(guide, radius, 0.05f, false, flat.data());
+  guidedWeightedMedian(guide, radius, 0.05f, true, slanted.data());
+  const std::size_t atEdge = std::size_t(edge) * size + edge;
+  EXPECT_GT(std::abs(flat[atEdge] - ramp[atEdge]), 0.07f);
+  float worst = 0;
+  for (int y = 5; y < size - 5; ++y)
+    for (int x = 5; x < size - 5; ++x) {
+      const std::size_t p = std::size_t(y) * size + x;
+      worst = std::max(worst, std::abs(slanted[p] - ramp[p]));
+    }
+  EXPECT_LT(worst, 1e-4f);
+}
+
+// Beside a jump the map has no slope to follow: the slanted median does what the flat one does.
+TEST(GuidedWeightedMedian, SlantedIsFlatBesideAJump) {
+  const int size = 32;
+  const Image guide = twoColours(size, size / 2);
+  std::vector<float> step(std::size_t(size) * size);
+  std::mt19937 random(3);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) step[std::size_t(y) * size + x] = (x < size / 2 ? 0.0f : 1.0f) + noise(random);
+  std::vector<float> flat = step, slanted = step;
+  guidedWeightedMedian(guide, 5, 0.05f, false, flat.data());
+  guidedWeightedMedian(guide, 5, 0.05f, true, slanted.data());
+  for (int y = 0; y < size; ++y)
+    for (int x = size / 2 - 3; x < size / 2 + 3; ++x)
+      EXPECT_EQ(slanted[std::size_t(y) * size + x], flat[std::size_t(y) * size + x]) << x << ", " << y;
 }
 
 }  // namespace

@@ -33,7 +33,8 @@
 //     steps on slanted surfaces and the bias of interpolated views towards whole-pixel shifts.
 //  6. Cleanup: an edge-aware fill of unsure pixels from sure ones of the same colour (`fillLambda`,
 //     `fillSigma`), background given back beside nearer surfaces (`occlusionBand`), a weighted
-//     median guided by the centre view (`medianRadius`, `medianSigma`).
+//     median guided by the centre view, each neighbour carried along the map's slope
+//     (`medianRadius`, `medianSigma`).
 //  7. Confidence: 1 - exp(-(mean cost - chosen cost) / m), m that margin's mean over the image.
 //
 // Cost: about labels x 34 bilinear passes over ns x nt and 8 optimisation passes of labels x ns x

@@ -403,49 +403,6 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
   });
 }
 
-// Weighted median of the disparity over a (2 r + 1)^2 window, each neighbour weighted by its
-// likeness to the pixel in the guide (sRGB colour), exp(-|I_p - I_q|^2 / (2 sigma^2)): removes
-// isolated mistakes and pulls occlusion edges back onto the colour edges (Ma et al. 2013). In
-// colour, not luminance, so that a thin structure of another hue but the same brightness as what
-// lies behind it keeps its own disparity.
-void weightedMedian(const Image& guide, int radius, float sigma, float* disparity) {
-  const int ns = guide.width(), nt = guide.height(), channels = guide.channels();
-  const std::vector<float> input(disparity, disparity + std::size_t(ns) * nt);
-  // The weights from a table of the squared colour distance in steps of 1/4096 (an exp per
-  // neighbour would cost more than the selection); beyond 1 the weight is exp(-1 / (2 sigma^2)).
-  constexpr int kSteps = 4096;
-  std::vector<float> table(kSteps + 1);
-  for (int i = 0; i <= kSteps; ++i) table[i] = std::exp(-(float(i) / kSteps) / (2 * sigma * sigma));
-  parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
-    std::vector<std::pair<float, float>> window;
-    for (std::size_t y = begin; y < end; ++y)
-      for (int x = 0; x < ns; ++x) {
-        const std::size_t p = y * ns + x;
-        window.clear();
-        float total = 0;
-        for (int dy = -radius; dy <= radius; ++dy) {
-          const long yy = long(y) + dy;
-          if (yy < 0 || yy >= nt) continue;
-          for (int dx = -radius; dx <= radius; ++dx) {
-            const int xx = x + dx;
-            if (xx < 0 || xx >= ns) continue;
-            const std::size_t q = std::size_t(yy) * ns + xx;
-            float squares = 0;
-            for (int c = 0; c < channels; ++c) {
-              const float difference = guide.plane(c)[q] - guide.plane(c)[p];
-              squares += difference * difference;
-            }
-            if (!(squares < 1.0f)) squares = 1.0f;  // also NaN
-            const float weight = table[int(squares * kSteps + 0.5f)];
-            window.emplace_back(input[q], weight);
-            total += weight;
-          }
-        }
-        disparity[p] = edof::weightedMedianSelect(window, total);
-      }
-  });
-}
-
 // Edge-aware fill of the pixels whose fine search was unsure (depth.hpp, step 6): each disparity
 // weighted by the curvature of its fine-search cost at the minimum (flat where there is no
 // texture) over the cost left there (high where no disparity makes the views agree, as at
@@ -590,8 +547,8 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     fillUncertain(colours, curvature, residual, options, result.disparity.plane(0));
   edof::reclaimOcclusionEdges(colours, options.occlusionBand, result.disparity.plane(0));  // occlusion_edges.cpp
   if (options.medianRadius > 0)
-    weightedMedian(colours, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
-                   result.disparity.plane(0));
+    edof::guidedWeightedMedian(colours, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
+                               experiment.slantedMedian, result.disparity.plane(0));
   // 7. Confidence.
   for (std::size_t p = 0; p < n; ++p) {
     const int chosen = std::clamp(int(std::lround(label[p])), 0, labels - 1);

@@ -64,6 +64,15 @@ void globalSmooth(const float* guide, int guideChannels, int width, int height, 
 // The reference sorts; the fast one selects by three-way partitions (weighted_median.cpp).
 float weightedMedianSorted(std::vector<std::pair<float, float>>& window, float total);
 float weightedMedianSelect(std::vector<std::pair<float, float>>& window, float total);
+// Weighted median of a disparity map (width x height of `guide`, an sRGB colour image) over a
+// (2 radius + 1)^2 window, each neighbour weighted by its likeness to the pixel in the guide,
+// exp(-|I_p - I_q|^2 / (2 sigma^2)): removes isolated mistakes and pulls occlusion edges back onto
+// the colour edges (Ma et al. 2013). In colour, not luminance, so that a thin structure of another
+// hue but the same brightness as what lies behind it keeps its own disparity. With `slanted`, each
+// neighbour's disparity is first carried to the pixel along the map's local slope (none beside a
+// jump): on a slanted surface a window whose like-coloured neighbours lie on one side (a colour
+// edge, a shadow) would otherwise take their nearer or farther disparity (weighted_median.cpp).
+void guidedWeightedMedian(const Image& guide, int radius, float sigma, bool slanted, float* disparity);
 
 // Occlusion edges (occlusion_edges.cpp). Chessboard distance from each pixel to the nearest jump
 // (both pixels of a 4-neighbour pair whose disparities differ by more than `jump`), capped at
