@@ -247,9 +247,9 @@ void aggregatePlanes(const edof::GuidedFilter& filter, float* planes, std::size_
 }
 
 // The defocus cue's ceiling, as a multiple of the centre view's own squared Laplacian (below).
-// Chosen on the development scenes at 128 and 256 px per view: 1.5, 2 and 3 gave means of 2.43,
-// 2.45 and 2.59 % at 128 (the steep weak-textured floor and wall 4.11, 3.86, 5.35 %) and 3.65,
-// 3.56, 3.41 % at 256 (none: 3.02 and 3.55 %).
+// Chosen on the development scenes at 128 and 256 px per view, before the slanted median: 1.5, 2
+// and 3 gave means of 2.43, 2.45 and 2.59 % at 128 (the steep weak-textured floor and wall 4.11,
+// 3.86, 5.35 %) and 3.65, 3.56, 3.41 % at 256 (none: 3.02 and 3.55 %).
 constexpr float kDefocusCeiling = 2.0f;
 
 // The defocus cue at disparity d: the squared Laplacian of the full-aperture photograph, at most
@@ -259,8 +259,8 @@ constexpr float kDefocusCeiling = 2.0f;
 // as a staircase of shifted copies, one per row or column of views (the aperture is sampled, not
 // continuous), whose Laplacian spills onto weak texture beside it and outweighs the texture's own:
 // without the ceiling, a weakly textured floor and wall slanted by 0.04 px per pixel before a
-// strongly textured backdrop took the range's nearest label along the backdrop's edge (11.98 %
-// BadPix(0.07); with it 3.86 %).
+// strongly textured backdrop took the range's nearest label along the backdrop's edge (11.82 %
+// BadPix(0.07); with it 3.28 %: `depth_bench --development-only --no-defocus-ceiling`).
 // Without `centreEnergy`, no ceiling (DepthExperiment::defocusCeiling).
 void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, float* energy) {
   const Image photo = refocus(grey, d);
