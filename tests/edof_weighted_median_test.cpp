@@ -74,7 +74,32 @@ TEST(GuidedWeightedMedian, SlantedKeepsARampAtAColourEdge) {
   EXPECT_LT(worst, 1e-4f);
 }
 
-// Beside a jump the map has no slope to follow: the slanted median does what the flat one does.
+// A surface slanted by 0.05 px per pixel that ends at a jump to a flat background of another
+// colour (the far end of a floor, the side of a column): beside the jump a pixel's like-coloured
+// neighbours all lie inwards. The flat median takes their disparity; the slanted one carries them
+// along the slope measured a few pixels away on the same surface and keeps the ramp to its end.
+TEST(GuidedWeightedMedian, SlantedKeepsARampUpToAJump) {
+  const int size = 40, edge = 20, radius = 5;
+  const Image guide = twoColours(size, edge);
+  std::vector<float> map(std::size_t(size) * size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) map[std::size_t(y) * size + x] = x < edge ? 0.0f : 1.0f + 0.05f * float(x - edge);
+  std::vector<float> flat = map, slanted = map;
+  guidedWeightedMedian(guide, radius, 0.05f, false, flat.data());
+  guidedWeightedMedian(guide, radius, 0.05f, true, slanted.data());
+  const std::size_t besideJump = std::size_t(size / 2) * size + edge;
+  EXPECT_GT(std::abs(flat[besideJump] - map[besideJump]), 0.07f);
+  float worst = 0;  // up to the jump, away from the image's border
+  for (int y = radius; y < size - radius; ++y)
+    for (int x = edge; x < size - radius; ++x) {
+      const std::size_t p = std::size_t(y) * size + x;
+      worst = std::max(worst, std::abs(slanted[p] - map[p]));
+    }
+  EXPECT_LT(worst, 1e-4f);
+}
+
+// Beside a jump between two surfaces facing the camera, the slopes measured on either side are
+// the map's noise, under the minimum: the slanted median does what the flat one does.
 TEST(GuidedWeightedMedian, SlantedIsFlatBesideAJump) {
   const int size = 32;
   const Image guide = twoColours(size, size / 2);

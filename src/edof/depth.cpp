@@ -259,8 +259,8 @@ constexpr float kDefocusCeiling = 2.0f;
 // as a staircase of shifted copies, one per row or column of views (the aperture is sampled, not
 // continuous), whose Laplacian spills onto weak texture beside it and outweighs the texture's own:
 // without the ceiling, a weakly textured floor and wall slanted by 0.04 px per pixel before a
-// strongly textured backdrop took the range's nearest label along the backdrop's edge (11.82 %
-// BadPix(0.07); with it 3.28 %: `depth_bench --development-only --no-defocus-ceiling`).
+// strongly textured backdrop took the range's nearest label along the backdrop's edge (5.57 %
+// BadPix(0.07); with it 1.33 %: `depth_bench --development-only --no-defocus-ceiling`).
 // Without `centreEnergy`, no ceiling (DepthExperiment::defocusCeiling).
 void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, float* energy) {
   const Image photo = refocus(grey, d);

@@ -69,9 +69,10 @@ float weightedMedianSelect(std::vector<std::pair<float, float>>& window, float t
 // exp(-|I_p - I_q|^2 / (2 sigma^2)): removes isolated mistakes and pulls occlusion edges back onto
 // the colour edges (Ma et al. 2013). In colour, not luminance, so that a thin structure of another
 // hue but the same brightness as what lies behind it keeps its own disparity. With `slanted`, each
-// neighbour's disparity is first carried to the pixel along the map's local slope (none beside a
-// jump): on a slanted surface a window whose like-coloured neighbours lie on one side (a colour
-// edge, a shadow) would otherwise take their nearer or farther disparity (weighted_median.cpp).
+// neighbour's disparity is first carried to the pixel along the map's local slope (beside a jump,
+// the slope of the same surface a few pixels away): on a slanted surface a window whose
+// like-coloured neighbours lie on one side (a colour edge, a shadow, an occlusion edge) would
+// otherwise take their nearer or farther disparity (weighted_median.cpp).
 void guidedWeightedMedian(const Image& guide, int radius, float sigma, bool slanted, float* disparity);
 
 // Occlusion edges (occlusion_edges.cpp). Chessboard distance from each pixel to the nearest jump
