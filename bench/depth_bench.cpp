@@ -19,7 +19,7 @@
 //   BM_DepthAndAllInFocus  both, as `lfcam edof` without --depth does: the goal is < 5 s on 2 cores.
 //
 // Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
-//      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-median] [--high-pass R]
+//      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
 //      [--gradient A]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
@@ -31,7 +31,7 @@
 //                       aggregating them apart brings
 //   --no-noise-correction  without the noise variance that interpolation removes added back
 //   --no-defocus-ceiling   the defocus cue not capped at twice the centre view's (DepthExperiment)
-//   --flat-median       the weighted median without the map's slope (DepthExperiment)
+//   --flat-cleanup      the weighted median and the occlusion edges without the map's slope
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
@@ -274,8 +274,8 @@ int main(int argc, char** argv) {
       experiment.noiseCorrection = false;
     } else if (argument == "--no-defocus-ceiling") {
       experiment.defocusCeiling = false;
-    } else if (argument == "--flat-median") {
-      experiment.slantedMedian = false;
+    } else if (argument == "--flat-cleanup") {
+      experiment.slantedCleanup = false;
     } else if (argument == "--high-pass" && i + 1 < argc) {
       experiment.highPassRadius = std::atoi(argv[++i]);
     } else if (argument == "--options" && i + 1 < argc) {

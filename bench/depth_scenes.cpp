@@ -179,6 +179,27 @@ std::vector<DepthScene> developmentScenes(int size) {
     scene.planes[2].texture = noise(offset / 8, {0.28f, 0.28f, 0.3f}, {0.3f, 0.3f, 0.32f}, 23);
     scenes.push_back(simulated("steep slants, weak texture", scene, model));
   }
+  {  // Cards standing on a floor as steep as the one above: occlusion edges whose background is
+     // slanted, behind and beside a nearer surface (as the floor around HCI antinous's statue).
+    Scene scene = emptyScene(model);
+    scene.planes.push_back(backdrop(model, 2.2 * d, 24));
+    const double offset = 0.56 * halfField(model, d);
+    Plane floor = plane("floor", {0, offset, 1.4 * d}, 2 * d, 1.7 * d,
+                        noise(offset / 8, {0.35f, 0.25f, 0.15f}, {0.85f, 0.75f, 0.6f}, 25));
+    floor.tiltXDeg = 90;
+    scene.planes.push_back(floor);
+    const struct {
+      double x, z, height;
+      Rgb dark, light;
+    } cards[] = {{-0.45, 0.9, 0.9, {0.5f, 0.1f, 0.1f}, {0.95f, 0.6f, 0.4f}},
+                 {0.35, 1.3, 1.1, {0.1f, 0.3f, 0.1f}, {0.6f, 0.9f, 0.5f}}};
+    for (const auto& card : cards) {
+      const double h = halfField(model, card.z * d), tall = card.height * h;
+      scene.planes.push_back(plane("card", {card.x * h, offset - tall / 2, card.z * d}, 0.35 * h, tall,
+                                   noise(h / 8, card.dark, card.light, 26 + std::uint64_t(card.z * 10))));
+    }
+    scenes.push_back(simulated("cards on a steep floor", scene, model));
+  }
   {  // Half an elliptic cylinder bulging towards the camera (from 0.8 to 1.1 times the focus
      // distance), 32 facets: deep enough along z for its disparity to curve by 0.6 px.
     Scene scene = emptyScene(model);

@@ -69,7 +69,7 @@ TEST(OcclusionEdges, FattenedBackgroundReturnsToTheBackground) {
       for (int c = 0; c < 3; ++c) guide.at(x, y, c) = colour[c];
       map[std::size_t(y) * size + x] = inside(x, y, x0 - 2, x1 + 2) ? 1.0f : -1.0f;
     }
-  reclaimOcclusionEdges(guide, 3, map.data());
+  reclaimOcclusionEdges(guide, 3, true, map.data());
   int wrong = 0;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) wrong += map[std::size_t(y) * size + x] != (inside(x, y, x0, x1) ? 1.0f : -1.0f);
@@ -81,15 +81,45 @@ TEST(OcclusionEdges, FattenedBackgroundReturnsToTheBackground) {
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) eroded[std::size_t(y) * size + x] = inside(x, y, x0 + 2, x1 - 2) ? 1.0f : -1.0f;
   std::vector<float> same = eroded;
-  reclaimOcclusionEdges(guide, 3, same.data());
+  reclaimOcclusionEdges(guide, 3, true, same.data());
   EXPECT_EQ(same, eroded);
   // Band 0: off.
   std::vector<float> fattened(map.size());
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) fattened[std::size_t(y) * size + x] = inside(x, y, x0 - 2, x1 + 2) ? 1.0f : -1.0f;
   same = fattened;
-  reclaimOcclusionEdges(guide, 0, same.data());
+  reclaimOcclusionEdges(guide, 0, true, same.data());
   EXPECT_EQ(same, fattened);
+}
+
+// The same on a slanted background (a floor behind a statue: 0.03 px per pixel across): the
+// pixels given back take the background's disparity where they are, its voters carried along its
+// slope; without the slope they take the voters' median, which lies a few pixels outwards.
+TEST(OcclusionEdges, FattenedBackgroundFollowsItsSlope) {
+  const int size = 64, x0 = 20, x1 = 44;
+  Image guide(size, size, 3);
+  std::vector<float> map(std::size_t(size) * size);
+  auto inside = [](int x, int y, int lo, int hi) { return x >= lo && x < hi && y >= lo && y < hi; };
+  auto background = [](int x) { return -1.0f + 0.03f * float(x); };
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const bool square = inside(x, y, x0, x1);
+      for (int c = 0; c < 3; ++c) guide.at(x, y, c) = square ? 0.9f : 0.3f;
+      map[std::size_t(y) * size + x] = inside(x, y, x0 - 2, x1 + 2) ? 2.0f : background(x);
+    }
+  std::vector<float> flat = map;
+  reclaimOcclusionEdges(guide, 3, true, map.data());
+  reclaimOcclusionEdges(guide, 3, false, flat.data());
+  float worst = 0, worstFlat = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t p = std::size_t(y) * size + x;
+      const float truth = inside(x, y, x0, x1) ? 2.0f : background(x);
+      worst = std::max(worst, std::abs(map[p] - truth));
+      worstFlat = std::max(worstFlat, std::abs(flat[p] - truth));
+    }
+  EXPECT_LT(worst, 1e-3f);
+  EXPECT_GT(worstFlat, 0.07f);
 }
 
 // A bar 2 px wide (disparity 1) of another colour than the background (-1): every one of its
@@ -108,13 +138,13 @@ TEST(OcclusionEdges, ThinBarOfItsOwnColourKeepsItsDisparity) {
       map[std::size_t(y) * size + x] = bar ? 1.0f : -1.0f;
     }
   const std::vector<float> before = map;
-  reclaimOcclusionEdges(guide, 3, map.data());
+  reclaimOcclusionEdges(guide, 3, true, map.data());
   EXPECT_EQ(map, before);
   // A bar of the background's colour is taken back: it is the fattening the step is for.
   for (int y = 0; y < size; ++y)
     for (int x = x0; x < x1; ++x)
       for (int c = 0; c < 3; ++c) guide.at(x, y, c) = guide.at(0, y, c);
-  reclaimOcclusionEdges(guide, 3, map.data());
+  reclaimOcclusionEdges(guide, 3, true, map.data());
   for (float v : map) ASSERT_EQ(v, -1.0f);
 }
 

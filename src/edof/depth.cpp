@@ -545,10 +545,11 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // centre view's sRGB colours.
   if (options.fillLambda > 0 && options.refineSteps > 0)
     fillUncertain(colours, curvature, residual, options, result.disparity.plane(0));
-  edof::reclaimOcclusionEdges(colours, options.occlusionBand, result.disparity.plane(0));  // occlusion_edges.cpp
+  edof::reclaimOcclusionEdges(colours, options.occlusionBand, experiment.slantedCleanup,
+                              result.disparity.plane(0));  // occlusion_edges.cpp
   if (options.medianRadius > 0)
     edof::guidedWeightedMedian(colours, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
-                               experiment.slantedMedian, result.disparity.plane(0));
+                               experiment.slantedCleanup, result.disparity.plane(0));
   // 7. Confidence.
   for (std::size_t p = 0; p < n; ++p) {
     const int chosen = std::clamp(int(std::lround(label[p])), 0, labels - 1);

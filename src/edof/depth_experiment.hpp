@@ -30,9 +30,9 @@ struct DepthExperiment {
   // The defocus cue capped at kDefocusCeiling times the centre view's own (depth.cpp); off:
   // `depth_bench --no-defocus-ceiling`.
   bool defocusCeiling = true;
-  // The weighted median carries each neighbour along the map's slope (guidedWeightedMedian); off:
-  // `depth_bench --flat-median`.
-  bool slantedMedian = true;
+  // The weighted median and the occlusion edges carry disparities along the map's slope
+  // (guidedWeightedMedian, reclaimOcclusionEdges); off: `depth_bench --flat-cleanup`.
+  bool slantedCleanup = true;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,

@@ -64,6 +64,14 @@ void globalSmooth(const float* guide, int guideChannels, int width, int height, 
 // The reference sorts; the fast one selects by three-way partitions (weighted_median.cpp).
 float weightedMedianSorted(std::vector<std::pair<float, float>>& window, float total);
 float weightedMedianSelect(std::vector<std::pair<float, float>>& window, float total);
+// The local slope of a disparity map, px per view step per pixel along x and y, 0 where none
+// can be trusted (map_slopes.cpp: measured away from jumps, carried to a jump's side from the
+// same surface nearby).
+struct MapSlopes {
+  std::vector<float> x, y;
+};
+MapSlopes mapSlopes(const float* disparity, int width, int height);
+
 // Weighted median of a disparity map (width x height of `guide`, an sRGB colour image) over a
 // (2 radius + 1)^2 window, each neighbour weighted by its likeness to the pixel in the guide,
 // exp(-|I_p - I_q|^2 / (2 sigma^2)): removes isolated mistakes and pulls occlusion edges back onto
@@ -81,8 +89,9 @@ void guidedWeightedMedian(const Image& guide, int radius, float sigma, bool slan
 std::vector<int> jumpDistance(const float* disparity, int width, int height, float jump, int cap);
 // Pixels within `band` of a jump of the map (width x height of `guide`, an sRGB colour image) move
 // to a farther surface when its pixels beyond the band outweigh their own surface's by colour
-// likeness: the weighted median of those, with at least one full vote (a thin structure keeps its own).
-void reclaimOcclusionEdges(const Image& guide, int band, float* disparity);
+// likeness: the weighted median of those, with at least one full vote (a thin structure keeps its own);
+// with `slanted`, each carried to the pixel along the map's slope where it was (mapSlopes).
+void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* disparity);
 
 // Semi-global optimisation (Hirschmueller 2008) of a cost volume stored pixel-major:
 // cost[(y * width + x) * labels + l]. Sums, over 8 path directions, the path costs

@@ -10,7 +10,10 @@
 // farther surface when that surface's voters outweigh its own: the nearer surface does not
 // extend past its own colour edge. Only moves to a farther surface: a nearer surface's own edge
 // pixels, textured, keep what the cost said (allowing both ways made the layered planes' MSE
-// worse, 8.1 -> 11.7, measured with a jump of 0.3 and voter radius 6).
+// worse, 8.1 -> 11.7, measured with a jump of 0.3 and voter radius 6). The voters' disparities
+// are carried to the pixel along their surface's slope (mapSlopes): a floor seen behind a statue
+// changes by up to 0.4 px across the voters' window (development means 1.96 -> 1.93 % at 128 px
+// per view, 3.36 -> 3.30 % at 256; steep slants with weak texture 1.33 -> 0.86 %).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -66,11 +69,12 @@ std::vector<int> jumpDistance(const float* disparity, int width, int height, flo
   return distance;
 }
 
-void reclaimOcclusionEdges(const Image& guide, int band, float* disparity) {
+void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* disparity) {
   const int width = guide.width(), height = guide.height(), channels = guide.channels();
   if (band <= 0 || width < 1 || height < 1) return;
   const std::vector<int> distance = jumpDistance(disparity, width, height, kJump, band);
   const std::vector<float> input(disparity, disparity + std::size_t(width) * height);
+  const MapSlopes slopes = slanted ? mapSlopes(input.data(), width, height) : MapSlopes{};
   auto likeness = [&](std::size_t p, std::size_t q) {
     float squares = 0;
     for (int c = 0; c < channels; ++c) {
@@ -97,7 +101,9 @@ void reclaimOcclusionEdges(const Image& guide, int band, float* disparity) {
             } else if (input[q] < input[p] - kJump) {
               const float weight = likeness(p, q);
               fartherWeight += weight;
-              farther.emplace_back(input[q], weight);
+              const float carried =
+                  slanted ? input[q] + slopes.x[q] * float(x - xx) + slopes.y[q] * float(long(y) - yy) : input[q];
+              farther.emplace_back(carried, weight);
             }
           }
         if (fartherWeight > own && fartherWeight > kMinimumVotes)
