@@ -74,7 +74,7 @@ struct DepthOptions {
   int refineRadius = 1;        // guided filter window of the fine search: (2 r + 1)^2 pixels
   int refineSmoothRadius = 2;  // local mean of the map the fine search starts from; 0: none
   // 6. Cleanup.
-  double fillLambda = 0.5;    // edge-aware fill (needs refineSteps > 0); 0 disables it
+  double fillLambda = 0.25;   // edge-aware fill (needs refineSteps > 0); 0 disables it
   double fillSigma = 0.01;    // centre-view (sRGB) colour difference that weakens a link to 1/e
   int occlusionBand = 3;      // background beside nearer surfaces reclaimed within it; 0: off
   int medianRadius = 5;       // weighted median window; 0 disables it
