@@ -512,6 +512,12 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   }
 
   DepthMap result{Image(ns, nt, 1), Image(ns, nt, 1), dmin, dmax, labels};
+  // The fine search may step past the ends of the range searched, and the cleanup, carrying
+  // disparities along slopes, reach past them; the map stays inside it.
+  const auto keepInRange = [&] {
+    for (std::size_t p = 0; p < n; ++p)
+      result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
+  };
   for (std::size_t p = 0; p < n; ++p) result.disparity.plane(0)[p] = float(dmin + label[p] * step);
   // 5. Refinement: the fine search around the optimised map.
   std::vector<float> curvature(n, 1.0f), residual(n, 0.0f);
@@ -534,9 +540,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     refineDisparity(grey, refineFilter, result.disparity.plane(0), step / options.refineSteps, options.refineSteps,
                     0.25 * std::max(experiment.lockingCorrection, 0.0), noise, experiment.refineAggregateHalves,
                     curvature.data(), residual.data());
-    // The fine search may step past the ends of the range searched; the map stays inside it.
-    for (std::size_t p = 0; p < n; ++p)
-      result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
+    keepInRange();
   }
   *medianResidual = 0;
   if (options.refineSteps > 0) {
@@ -553,6 +557,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   if (options.medianRadius > 0)
     edof::guidedWeightedMedian(colours, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
                                experiment.slantedCleanup, result.disparity.plane(0));
+  keepInRange();
   // 7. Confidence.
   for (std::size_t p = 0; p < n; ++p) {
     const int chosen = std::clamp(int(std::lround(label[p])), 0, labels - 1);
