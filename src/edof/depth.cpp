@@ -259,8 +259,9 @@ constexpr float kDefocusCeiling = 2.0f;
 // as a staircase of shifted copies, one per row or column of views (the aperture is sampled, not
 // continuous), whose Laplacian spills onto weak texture beside it and outweighs the texture's own:
 // without the ceiling, a weakly textured floor and wall slanted by 0.04 px per pixel before a
-// strongly textured backdrop took the range's nearest label along the backdrop's edge (5.57 %
-// BadPix(0.07); with it 1.33 %: `depth_bench --development-only --no-defocus-ceiling`).
+// strongly textured backdrop took the range's nearest label along the backdrop's edge (11.98 %
+// BadPix(0.07), with it 3.86 %, when it was chosen; since the cleanup follows slopes, which mends
+// most of that, 1.26 against 0.96 %: `depth_bench --development-only --no-defocus-ceiling`).
 // Without `centreEnergy`, no ceiling (DepthExperiment::defocusCeiling).
 void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, float* energy) {
   const Image photo = refocus(grey, d);
