@@ -1,7 +1,8 @@
 // The filters of src/edof/filters.cpp against plain references on random inputs: boxFilter
 // (double running sums) against the window average pixel by pixel; the guided filter (its own
 // float box sums for small radii, boxFilter beyond) against He et al.'s formula with those plain
-// averages; depth's row sampler against bilinearSample.
+// averages; depth's row sampler against bilinearSample; the quadratic fit against a least-squares
+// fit per pixel.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 
 #include "core/bilinear.hpp"
 #include "core/parabola.hpp"
+#include "core/quadratic_filter.hpp"
 #include "edof/edof_internal.hpp"
 
 namespace lfcam::edof {
@@ -77,6 +79,78 @@ TEST(BoxFilter, MatchesThePlainWindowMeanOnRandomInputs) {
     for (std::size_t i = 0; i < in.size(); ++i)
       ASSERT_NEAR(out[i], reference[i], 2e-6) << "trial " << trial << " pixel " << i << " radius " << radius;
   }
+}
+
+// Reference: per pixel, the least-squares fit of c0 + c1 x + c2 y + c3 x^2 + c4 y^2 + c5 xy +
+// c6 x^2 y + c7 x y^2 + c8 x^2 y^2 (the product of quadratics in x and y) to the window, the
+// image's edge pixels repeated beyond it, solved by Gauss-Jordan elimination in double; its value
+// at the centre, c0.
+double fittedCentre(const std::vector<float>& in, int width, int height, int x, int y, int radius) {
+  double normal[9][10] = {};
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const double basis[9] = {1,
+                               double(dx),
+                               double(dy),
+                               double(dx * dx),
+                               double(dy * dy),
+                               double(dx * dy),
+                               double(dx * dx * dy),
+                               double(dx * dy * dy),
+                               double(dx * dx * dy * dy)};
+      const double value =
+          in[std::size_t(std::clamp(y + dy, 0, height - 1)) * width + std::clamp(x + dx, 0, width - 1)];
+      for (int i = 0; i < 9; ++i) {
+        for (int j = 0; j < 9; ++j) normal[i][j] += basis[i] * basis[j];
+        normal[i][9] += basis[i] * value;
+      }
+    }
+  for (int i = 0; i < 9; ++i) {
+    int pivot = i;
+    for (int r = i + 1; r < 9; ++r)
+      if (std::abs(normal[r][i]) > std::abs(normal[pivot][i])) pivot = r;
+    std::swap(normal[i], normal[pivot]);
+    for (int r = 0; r < 9; ++r)
+      if (r != i) {
+        const double factor = normal[r][i] / normal[i][i];
+        for (int c = i; c < 10; ++c) normal[r][c] -= factor * normal[i][c];
+      }
+  }
+  return normal[0][9] / normal[0][0];
+}
+
+TEST(QuadraticFitFilter, MatchesALeastSquaresFitPerPixelOnRandomInputs) {
+  std::mt19937 generator(12);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (int trial = 0; trial < 12; ++trial) {
+    const int width = 1 + int(generator() % 40), height = 1 + int(generator() % 40);
+    const int radius = 2 + int(generator() % 3);
+    std::vector<float> in(std::size_t(width) * height), out(in.size());
+    for (float& v : in) v = uniform(generator);
+    quadraticFitFilter(in.data(), out.data(), width, height, radius);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        ASSERT_NEAR(out[std::size_t(y) * width + x], fittedCentre(in, width, height, x, y, radius), 2e-5)
+            << "trial " << trial << " at " << x << ", " << y << " radius " << radius;
+  }
+}
+
+TEST(QuadraticFitFilter, KeepsACurvedSurfaceWhereABoxMeanSags) {
+  // A dome, disparity 1 - 0.01 (x^2 + y^2) about the centre: the box mean over 5 x 5 lies 0.04
+  // below it; the quadratic fit on it.
+  const int size = 32;
+  std::vector<float> dome(std::size_t(size) * size), fitted(dome.size()), mean(dome.size());
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      dome[std::size_t(y) * size + x] = 1.0f - 0.01f * float((x - 16) * (x - 16) + (y - 16) * (y - 16));
+  quadraticFitFilter(dome.data(), fitted.data(), size, size, 2);
+  boxFilter(dome.data(), mean.data(), size, size, 2);
+  for (int y = 2; y < size - 2; ++y)
+    for (int x = 2; x < size - 2; ++x) {
+      const std::size_t p = std::size_t(y) * size + x;
+      ASSERT_NEAR(fitted[p], dome[p], 1e-4) << x << ", " << y;
+      ASSERT_NEAR(mean[p], dome[p] - 0.04f, 1e-4) << x << ", " << y;
+    }
 }
 
 TEST(GuidedFilter, MatchesTheFormulaWithPlainMeansOnRandomInputs) {

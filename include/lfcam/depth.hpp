@@ -28,9 +28,10 @@
 //  4. Regularisation: semi-global optimisation along 8 paths (`smoothness`), the penalties scaled
 //     at each pixel by the cost's contrast near it and over the image (`contrastRadius`), then a
 //     parabola through the aggregated cost places each pixel between labels.
-//  5. Refinement: a fine search of the stage-2 cost around the map's local mean, a fraction of a
-//     label apart (`refineSteps`, `refineRadius`, `refineSmoothRadius`), removing the labels'
-//     steps on slanted surfaces and the bias of interpolated views towards whole-pixel shifts.
+//  5. Refinement: a fine search of the stage-2 cost around a local quadratic fit of the map, a
+//     fraction of a label apart (`refineSteps`, `refineRadius`, `refineSmoothRadius`), removing
+//     the labels' steps on slanted surfaces and the bias of interpolated views towards whole-pixel
+//     shifts.
 //  6. Cleanup: an edge-aware fill of unsure pixels from sure ones of the same colour (`fillLambda`,
 //     `fillSigma`), background given back beside nearer surfaces (`occlusionBand`), a weighted
 //     median guided by the centre view, each neighbour carried along the map's slope
@@ -72,7 +73,7 @@ struct DepthOptions {
   // 5. Refinement.
   int refineSteps = 2;         // fine search: steps per label on each side; 0 disables it
   int refineRadius = 1;        // guided filter window of the fine search: (2 r + 1)^2 pixels
-  int refineSmoothRadius = 2;  // local mean of the map the fine search starts from; 0: none
+  int refineSmoothRadius = 2;  // local quadratic fit of the map the fine search starts from; 0 or 1: none
   // 6. Cleanup.
   double fillLambda = 0.25;   // edge-aware fill (needs refineSteps > 0); 0 disables it
   double fillSigma = 0.01;    // centre-view (sRGB) colour difference that weakens a link to 1/e
