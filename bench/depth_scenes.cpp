@@ -210,6 +210,10 @@ std::vector<DepthScene> developmentScenes(int size) {
     scenes.push_back(simulated("curved surface", scene, model));
     scenes.push_back(simulated("curved surface, noisy", scene, model, true));
     scenes.push_back(glossy("curved surface, glossy", scene, model, 0.1));
+    // Varnished: towards its sides, seen at grazing angles, it mirrors the backdrop (Fresnel), whose
+    // virtual image lies behind the surface.
+    for (std::size_t i = 1; i < scene.planes.size(); ++i) scene.planes[i].reflectance = 0.04;
+    scenes.push_back(simulated("curved surface, varnished", scene, model));
   }
   {  // A grey column bulging far towards the camera (from 0.55 to 1.0 times the focus distance) before
      // a grey wall: disparity that changes fast at grazing angles, and no hue to tell surfaces apart.

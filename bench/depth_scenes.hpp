@@ -24,7 +24,8 @@ struct DepthScene {
 // changes fast (also with weak texture), cards standing on such a floor, a curved surface (half an elliptic cylinder of
 // 32 facets), a grey column bulging far towards the camera before a grey wall, thin bars before a wall, fine texture,
 // weak texture (4 % contrast); the grazing floor, the surface and the weak texture's near card also glossy (brightness
-// -10 % to +10 % across the aperture). 9x9 views of `size` x `size`.
+// -10 % to +10 % across the aperture); the surface also varnished (a mirror reflectance of 0.04 rising towards grazing
+// angles, Fresnel). 9x9 views of `size` x `size`.
 std::vector<DepthScene> developmentScenes(int size = 128);
 
 }  // namespace lfcam::bench

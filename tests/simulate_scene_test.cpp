@@ -1,10 +1,12 @@
-// Scene files and built-in scenes: parsing, errors that name the file and the key, textures.
+// Scene files and built-in scenes: parsing, errors that name the file and the key, textures; the
+// tracer's mirror reflection.
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "lfcam/image_io.hpp"
 #include "lfcam/scene.hpp"
+#include "simulate/tracing.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {
@@ -31,7 +33,7 @@ TEST(SimulateScene, ParsesAFullSceneFile) {
                  "black_level": 32, "read_noise": 2.5, "hot_pixels": 0.001, "seed": 9}
     },
     "planes": [{"name": "card", "centre_mm": [0, 0, 550], "size_mm": [40, 30], "tilt_deg": [10, -5],
-                "texture": {"type": "chart", "min_frequency": 0.5, "max_frequency": 4, "groups": 5}}],
+                "reflectance": 0.04, "texture": {"type": "chart", "min_frequency": 0.5, "max_frequency": 4, "groups": 5}}],
     "lights": [{"position_mm": [1, 2, 900], "radius_mm": 0.2, "radiance": 5}]
   })");
   ASSERT_TRUE(scene) << scene.error().message;
@@ -45,6 +47,7 @@ TEST(SimulateScene, ParsesAFullSceneFile) {
   ASSERT_EQ(scene->planes.size(), 1u);
   EXPECT_EQ(scene->planes[0].texture.kind, TextureKind::Chart);
   EXPECT_EQ(scene->planes[0].tiltXDeg, 10);
+  EXPECT_EQ(scene->planes[0].reflectance, 0.04);
   ASSERT_EQ(scene->lights.size(), 1u);
   EXPECT_EQ(scene->lights[0].radiance[1], 5.0f);
 }
@@ -72,6 +75,7 @@ TEST(SimulateScene, ErrorsNameTheFileAndTheKey) {
   expectError(R"({"planes": [{"centre_mm": [0, 0, 5], "texture": {"type": "image", "file": "missing.png"}}]})",
               "planes[0].texture.file");
   expectError(R"({"lights": [{"position_mm": [0, 0, 5], "radiance": [1, 2]}]})", "lights[0].radiance");
+  expectError(R"({"planes": [{"centre_mm": [0, 0, 5], "reflectance": 1.5}]})", "planes[0].reflectance");
   expectError(R"({"builtin": "zoo"})", "builtin");
   expectError(R"({"colour": 1})", "colour: unknown key");
 }
@@ -130,6 +134,34 @@ TEST(SimulateScene, ProceduralTextures) {
   edge.kind = TextureKind::Edge;
   EXPECT_EQ(edge.evaluate(10, 50, 100, 100), edge.dark);
   EXPECT_EQ(edge.evaluate(90, 50, 100, 100), edge.light);
+}
+
+// A white card of reflectance 0.04 before a grey background: facing the ray it shows 96 % of its
+// white and 4 % of the grey behind the camera; turned 80 degrees away, Schlick's
+// 0.04 + 0.96 (1 - cos 80)^5 = 0.418 of what it mirrors, the grey that lies beyond it.
+TEST(SimulateTrace, ReflectiveCardMirrorsMoreAtGrazingAngles) {
+  for (double tilt : {0.0, 80.0}) {
+    Scene scene;
+    scene.background = {0.5f, 0.5f, 0.5f};
+    Plane card;
+    card.centreMm = {0, 0, 1000};
+    card.widthMm = card.heightMm = 1000;
+    card.tiltYDeg = tilt;
+    card.texture.kind = TextureKind::Constant;
+    card.texture.light = {1, 1, 1};
+    card.reflectance = 0.04;
+    scene.planes.push_back(card);
+    const simulate_detail::PreparedScene prepared(scene, CameraModel::paperPrototype());
+    const simulate_detail::Hit hit = prepared.trace({0, 0, 0}, {0, 0, 1});
+    const double cosine = std::cos(tilt * M_PI / 180), fresnel = 0.04 + 0.96 * std::pow(1 - cosine, 5);
+    EXPECT_NEAR(hit.radiance[0], (1 - fresnel) * 1.0 + fresnel * 0.5, 1e-5) << tilt;
+    EXPECT_NEAR(hit.depth, 1000, 1e-6) << tilt;
+    card.reflectance = 0;
+    scene.planes = {card};
+    EXPECT_NEAR(
+        simulate_detail::PreparedScene(scene, CameraModel::paperPrototype()).trace({0, 0, 0}, {0, 0, 1}).radiance[0],
+        1.0, 1e-6);
+  }
 }
 
 }  // namespace

@@ -57,6 +57,10 @@ struct Plane {
   double tiltXDeg = 0;  // about the plane's horizontal axis: positive turns its top away
   double tiltYDeg = 0;  // about its vertical axis: positive turns its right side away
   Texture texture;
+  // Mirror reflectance at normal incidence, rising towards grazing angles (Schlick's
+  // approximation of Fresnel's equations): 0.04 for glass, marble or varnish. The texture shows
+  // through the rest; what the plane reflects is traced one bounce.
+  double reflectance = 0;
 };
 
 struct PointLight {

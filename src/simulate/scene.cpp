@@ -342,6 +342,7 @@ Result<Scene> parseScene(const std::string& text, const std::string& where, cons
       LFCAM_TRY(o.numbers("tilt_deg", tilt, -89, 89));
       plane.tiltXDeg = tilt[0];
       plane.tiltYDeg = tilt[1];
+      LFCAM_TRY(o.number("reflectance", plane.reflectance, 0, 1));
       if (o.has("texture")) {
         LFCAM_ASSIGN_OR_RETURN(auto texture, parseTexture(o.at("texture"), where, o.keyPath("texture"), baseFolder));
         plane.texture = std::move(texture);

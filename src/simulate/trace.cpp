@@ -36,7 +36,7 @@ PreparedScene::PreparedScene(const Scene& scene, const CameraModel& camera)
   for (const PointLight& light : scene.lights) lights.push_back(light);
 }
 
-Hit PreparedScene::trace(const Vec3& origin, const Vec3& direction) const {
+Hit PreparedScene::trace(const Vec3& origin, const Vec3& direction, int bounces) const {
   Hit best;
   best.t = std::numeric_limits<double>::infinity();
   const PreparedPlane* bestPlane = nullptr;
@@ -73,6 +73,16 @@ Hit PreparedScene::trace(const Vec3& origin, const Vec3& direction) const {
     best.radiance = plane.texture.evaluate(bestX + bestPlane->halfWidth, bestY + bestPlane->halfHeight, plane.widthMm,
                                            plane.heightMm);
     best.depth = origin.z + direction.z * best.t;
+    if (plane.reflectance > 0 && bounces > 0) {
+      // Schlick: F = F0 + (1 - F0) (1 - cos i)^5; the mirrored ray leaves just off the plane.
+      const Vec3 unit = normalize(direction);
+      const double cosine = std::min(std::abs(dot(unit, bestPlane->normal)), 1.0);
+      const double fresnel = plane.reflectance + (1 - plane.reflectance) * std::pow(1 - cosine, 5);
+      const Vec3 mirrored = unit - bestPlane->normal * (2 * dot(unit, bestPlane->normal));
+      const Vec3 hit = origin + direction * best.t;
+      const Rgb seen = trace(hit + mirrored * 1e-6, mirrored, bounces - 1).radiance;
+      for (int c = 0; c < 3; ++c) best.radiance[c] = float((1 - fresnel) * best.radiance[c] + fresnel * seen[c]);
+    }
   } else {
     best.radiance = background;
     best.depth = std::numeric_limits<double>::infinity();

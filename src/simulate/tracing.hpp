@@ -37,8 +37,9 @@ class PreparedScene {
  public:
   // `scene` must outlive this object.
   PreparedScene(const Scene& scene, const CameraModel& camera);
-  // The first surface along origin + t direction, t > 0 (object space).
-  Hit trace(const Vec3& origin, const Vec3& direction) const;
+  // The first surface along origin + t direction, t > 0 (object space); a reflective one adds
+  // what it mirrors, `bounces` deep.
+  Hit trace(const Vec3& origin, const Vec3& direction, int bounces = 1) const;
   // The ray that leaves the main lens at (lensX, lensY) and, on the image side, passes through
   // (imageX, imageY) at the distance F where the focus plane is imaged.
   Hit traceThroughLens(double lensX, double lensY, double imageX, double imageY) const;
