@@ -1,7 +1,8 @@
 #include "core/quadratic_filter.hpp"
 
-#include <algorithm>
 #include <cstddef>
+
+#include "core/separable_filter.hpp"
 
 namespace lfcam {
 
@@ -14,22 +15,7 @@ std::vector<float> quadraticFitTaps(int radius) {
 }
 
 void quadraticFitFilter(const float* in, float* out, int width, int height, int radius) {
-  const std::vector<float> taps = quadraticFitTaps(radius);
-  std::vector<float> horizontal(std::size_t(width) * height);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      float sum = 0;
-      for (int k = -radius; k <= radius; ++k)
-        sum += taps[k + radius] * in[std::size_t(y) * width + std::clamp(x + k, 0, width - 1)];
-      horizontal[std::size_t(y) * width + x] = sum;
-    }
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      float sum = 0;
-      for (int k = -radius; k <= radius; ++k)
-        sum += taps[k + radius] * horizontal[std::size_t(std::clamp(y + k, 0, height - 1)) * width + x];
-      out[std::size_t(y) * width + x] = sum;
-    }
+  separableFilter(in, out, width, height, quadraticFitTaps(radius));
 }
 
 }  // namespace lfcam

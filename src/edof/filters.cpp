@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/separable_filter.hpp"
 #include "edof/edof_internal.hpp"
 #include "lfcam/parallel.hpp"
 
@@ -182,24 +183,7 @@ std::vector<float> gaussianTaps(double sigma) {
 
 void gaussianBlur(float* plane, int width, int height, double sigma) {
   if (!(sigma > 0)) return;
-  const std::vector<float> taps = gaussianTaps(sigma);
-  const int radius = int(taps.size() / 2);
-  std::vector<float> across(std::size_t(width) * height);
-  for (int y = 0; y < height; ++y) {
-    const float* row = plane + std::size_t(y) * width;
-    for (int x = 0; x < width; ++x) {
-      float sum = 0;
-      for (int k = -radius; k <= radius; ++k) sum += taps[k + radius] * row[std::clamp(x + k, 0, width - 1)];
-      across[std::size_t(y) * width + x] = sum;
-    }
-  }
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      float sum = 0;
-      for (int k = -radius; k <= radius; ++k)
-        sum += taps[k + radius] * across[std::size_t(std::clamp(y + k, 0, height - 1)) * width + x];
-      plane[std::size_t(y) * width + x] = sum;
-    }
+  separableFilter(plane, plane, width, height, gaussianTaps(sigma));
 }
 
 void squaredLaplacian(const Image& image, float* out) {
