@@ -481,7 +481,7 @@ try {
     await testViewer(context, 'antinous', antinous, hciTruth, { depth: false });
     await testExport(context, 'antinous', antinous, hciTruth);
   } else {
-    console.log(`skip hci-antinous: ${antinous || 'no shared data folder given'} is absent`);
+    console.log(`skip hci-antinous: ${antinous ? `${antinous} is absent` : 'no shared data folder given'}`);
   }
   // Lytro containers, when the shared data is there.
   const lytro = sharedData && path.join(sharedData, 'lytro-lfp');
@@ -489,7 +489,7 @@ try {
     await testLytroPage(context, 'lytro-f01-stack', path.join(lytro, 'IMG_0001-stk.lfp'));
     await testLytroPage(context, 'lytro-illum', path.join(lytro, 'demo.LFP'));
   } else {
-    console.log(`skip Lytro containers: ${lytro || 'no shared data folder given'} is absent`);
+    console.log(`skip Lytro containers: ${lytro ? `${lytro} is absent` : 'no shared data folder given'}`);
   }
 } catch (error) {
   console.log(`FAIL ${error.stack || error}`);
