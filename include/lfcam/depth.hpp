@@ -36,6 +36,8 @@
 //     `fillSigma`), background given back beside nearer surfaces (`occlusionBand`), a weighted
 //     median guided by the centre view, each neighbour carried along the map's slope
 //     (`medianRadius`, `medianSigma`).
+//     Steps 5 and 6 run `refineRounds` times, each fine search around the map the round before
+//     cleaned, at half its spacing (the quadratic fit in the first round only).
 //  7. Confidence: 1 - exp(-(mean cost - chosen cost) / m), m that margin's mean over the image.
 //
 // Cost: about labels x 34 bilinear passes over ns x nt and 8 optimisation passes of labels x ns x
@@ -73,7 +75,8 @@ struct DepthOptions {
   // 5. Refinement.
   int refineSteps = 2;         // fine search: steps per label on each side; 0 disables it
   int refineRadius = 1;        // guided filter window of the fine search: (2 r + 1)^2 pixels
-  int refineSmoothRadius = 2;  // local quadratic fit of the map the fine search starts from; 0 or 1: none
+  int refineSmoothRadius = 2;  // local quadratic fit of the map the first fine search starts from; 0 or 1: none
+  int refineRounds = 2;        // rounds of fine search and cleanup (steps 5-6), each at half the spacing before
   // 6. Cleanup.
   double fillLambda = 0.25;   // edge-aware fill (needs refineSteps > 0); 0 disables it
   double fillSigma = 0.01;    // centre-view (sRGB) colour difference that weakens a link to 1/e

@@ -11,7 +11,7 @@ namespace lfcam {
 
 std::span<const DepthKnob> depthKnobs() {
   using O = DepthOptions;
-  static const std::array<DepthKnob, 20> knobs{{
+  static const std::array<DepthKnob, 21> knobs{{
       {"range", "min", "smallest disparity searched (default: metadata, else -2)", &O::disparityMin, -1e3, 1e3},
       {"range", "max", "largest disparity searched (default: metadata, else 2)", &O::disparityMax, -1e3, 1e3},
       {"range", "labels", "candidate disparities (0: one per 0.1 px, within [16, 96])", &O::labels, 0, 1024},
@@ -41,6 +41,10 @@ std::span<const DepthKnob> depthKnobs() {
       {"refinement", "refine-smooth-radius",
        "window radius of the quadratic fit to the map the fine search starts from (0 or 1: none)",
        &O::refineSmoothRadius, 0, 64},
+      {"refinement", "refine-rounds",
+       "rounds of fine search and cleanup, each from the map the last cleaned, at half its spacing (needs "
+       "refine-steps > 0)",
+       &O::refineRounds, 1, 8},
       {"cleanup", "fill-lambda", "edge-aware fill strength (needs refine-steps > 0; 0: none)", &O::fillLambda, 0, 1e4},
       {"cleanup", "fill-sigma", "centre-view colour difference that weakens a fill link to 1/e", &O::fillSigma, 1e-6,
        10},

@@ -115,8 +115,8 @@ TEST(CliDepth, EverySettingFromAnOptionsFileOrAFlagThatWins) {
   // Every setting of the table is a flag, shown with its stage in --help.
   const auto help = runLfcam({"depth", "--help"}, dir.path());
   for (const char* flag : {"--labels", "--defocus-weight", "--filter-radius", "--filter-epsilon", "--smoothness",
-                           "--refine-steps", "--refine-radius", "--refine-smooth-radius", "--fill-lambda",
-                           "--fill-sigma", "--occlusion-band", "--median-radius", "--median-sigma"})
+                           "--refine-steps", "--refine-radius", "--refine-smooth-radius", "--refine-rounds",
+                           "--fill-lambda", "--fill-sigma", "--occlusion-band", "--median-radius", "--median-sigma"})
     EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
 }
 
