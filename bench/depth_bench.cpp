@@ -20,7 +20,7 @@
 //
 // Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
-//      [--gradient A]
+//      [--gradient A] [--reclaim-first-round-only]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
@@ -32,6 +32,7 @@
 //   --no-noise-correction  without the noise variance that interpolation removes added back
 //   --no-defocus-ceiling   the defocus cue not capped at twice the centre view's (DepthExperiment)
 //   --flat-cleanup      the weighted median and the occlusion edges without the map's slope
+//   --reclaim-first-round-only  the occlusion edges in the first round of refinement and cleanup only
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
@@ -276,6 +277,8 @@ int main(int argc, char** argv) {
       experiment.defocusCeiling = false;
     } else if (argument == "--flat-cleanup") {
       experiment.slantedCleanup = false;
+    } else if (argument == "--reclaim-first-round-only") {
+      experiment.reclaimEveryRound = false;
     } else if (argument == "--high-pass" && i + 1 < argc) {
       experiment.highPassRadius = std::atoi(argv[++i]);
     } else if (argument == "--options" && i + 1 < argc) {

@@ -567,7 +567,9 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     // 6. Cleanup: the edge-aware fill, occlusion edges, the weighted median, each guided by the
     // centre view's sRGB colours.
     if (options.fillLambda > 0 && options.refineSteps > 0) fillUncertain(colours, curvature, residual, options, map);
-    edof::reclaimOcclusionEdges(colours, options.occlusionBand, experiment.slantedCleanup, map);  // occlusion_edges.cpp
+    if (round == 0 || experiment.reclaimEveryRound)
+      edof::reclaimOcclusionEdges(colours, options.occlusionBand, experiment.slantedCleanup,
+                                  map);  // occlusion_edges.cpp
     if (options.medianRadius > 0)
       edof::guidedWeightedMedian(colours, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
                                  experiment.slantedCleanup, map);

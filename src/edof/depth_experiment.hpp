@@ -33,6 +33,10 @@ struct DepthExperiment {
   // The weighted median and the occlusion edges carry disparities along the map's slope
   // (guidedWeightedMedian, reclaimOcclusionEdges); off: `depth_bench --flat-cleanup`.
   bool slantedCleanup = true;
+  // The occlusion edges' reclaim in every round of refinement and cleanup, not the first only;
+  // the first only: `depth_bench --reclaim-first-round-only` (design.md, "Depth": it keeps narrow
+  // near parts on antinous, and was a tie on the development scenes).
+  bool reclaimEveryRound = true;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,

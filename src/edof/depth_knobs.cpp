@@ -39,7 +39,7 @@ std::span<const DepthKnob> depthKnobs() {
       {"refinement", "refine-radius", "guided filter window of the fine search: (2 r + 1)^2 pixels", &O::refineRadius,
        0, 64},
       {"refinement", "refine-smooth-radius",
-       "window radius of the quadratic fit to the map the fine search starts from (0 or 1: none)",
+       "window radius of the quadratic fit to the map the first fine search starts from (0 or 1: none)",
        &O::refineSmoothRadius, 0, 64},
       {"refinement", "refine-rounds",
        "rounds of fine search and cleanup, each from the map the last cleaned, at half its spacing (needs "
