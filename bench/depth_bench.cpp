@@ -20,12 +20,13 @@
 //
 // Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
-//      [--gradient A] [--reclaim-first-round-only]
+//      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--scene TEXT]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
 //   --development-only  the table without antinous, for choosing settings (it is held out)
 //   --size N            the development scenes at N x N pixels per view (default 128)
+//   --scene TEXT        only the development scenes whose name contains TEXT
 //   --write DIR         also each scene's map, truth and centre view: DIR/<scene>.pfm, -truth.pfm, -centre.png
 //   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what
 //                       aggregating them apart brings
@@ -33,6 +34,7 @@
 //   --no-defocus-ceiling   the defocus cue not capped at twice the centre view's (DepthExperiment)
 //   --flat-cleanup      the weighted median and the occlusion edges without the map's slope
 //   --reclaim-first-round-only  the occlusion edges in the first round of refinement and cleanup only
+//   --no-reclaim-cost-check  the later rounds' occlusion edges without the cost volume's veto
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
@@ -214,7 +216,7 @@ void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam
 // HCI antinous, held out: never used to choose a parameter.
 // With `folder` not empty, each scene's disparity, truth and centre view are written there.
 void printScores(const lfcam::DepthOptions& options, const lfcam::edof::DepthExperiment& experiment, bool heldOut,
-                 const std::string& folder, int size) {
+                 const std::string& folder, int size, const std::string& only) {
   auto write = [&](const std::string& scene, const lfcam::Image& disparity, const lfcam::Image& truth,
                    const lfcam::LightField& lightField) {
     if (folder.empty()) return;
@@ -230,6 +232,7 @@ void printScores(const lfcam::DepthOptions& options, const lfcam::edof::DepthExp
   std::printf("%-28s %8s %8s %9s %9s %7s %9s %9s %8s %6s %8s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100",
               "bumpiness", "seconds", "residual", "prefilter", "farther", "steep", "steep BP");
   for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes(size)) {
+    if (scene.name.find(only) == std::string::npos) continue;
     const auto start = std::chrono::steady_clock::now();
     lfcam::DepthOptions sceneOptions = options;
     sceneOptions.disparityMin = scene.disparityMin;
@@ -257,7 +260,7 @@ int main(int argc, char** argv) {
   lfcam::DepthOptions options;
   lfcam::edof::DepthExperiment experiment;
   bool heldOut = true;
-  std::string folder;
+  std::string folder, only;
   int kept = 1, size = 128;
   for (int i = 1; i < argc; ++i) {
     const std::string argument = argv[i];
@@ -265,6 +268,8 @@ int main(int argc, char** argv) {
       heldOut = false;
     } else if (argument == "--size" && i + 1 < argc) {
       size = std::atoi(argv[++i]);
+    } else if (argument == "--scene" && i + 1 < argc) {
+      only = argv[++i];
     } else if (argument == "--write" && i + 1 < argc) {
       folder = argv[++i];
     } else if (argument == "--gradient" && i + 1 < argc) {
@@ -277,6 +282,8 @@ int main(int argc, char** argv) {
       experiment.defocusCeiling = false;
     } else if (argument == "--flat-cleanup") {
       experiment.slantedCleanup = false;
+    } else if (argument == "--no-reclaim-cost-check") {
+      experiment.reclaimCostCheck = false;
     } else if (argument == "--reclaim-first-round-only") {
       experiment.reclaimEveryRound = false;
     } else if (argument == "--high-pass" && i + 1 < argc) {
@@ -289,7 +296,7 @@ int main(int argc, char** argv) {
     }
   }
   argc = kept;
-  printScores(options, experiment, heldOut, folder, size);
+  printScores(options, experiment, heldOut, folder, size, only);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -137,6 +137,20 @@ Scene emptyScene(const CameraModel& model) {
 
 }  // namespace
 
+DepthScene narrowNearParts(int size) {
+  const CameraModel model = camera(size);
+  const double d = model.mainLens.focusDistanceMm;
+  Scene scene = emptyScene(model);
+  scene.planes.push_back(backdrop(model, 2.2 * d, 31));
+  const double z = 0.55 * d, h = halfField(model, z), pixel = 2 * h / size;
+  const Texture marble = noise(h / 24, {0.45f, 0.4f, 0.35f}, {0.95f, 0.9f, 0.85f}, 32);
+  const double widths[] = {3, 4, 6, 8};
+  for (int i = 0; i < 4; ++i)
+    scene.planes.push_back(plane("finger", {(-0.5 + 0.25 * i) * h, -0.2 * h, z}, widths[i] * pixel, 1.1 * h, marble));
+  scene.planes.push_back(plane("arm", {-0.1 * h, 0.55 * h, 1.05 * z}, 1.5 * h, 5 * pixel, marble));
+  return simulated("narrow near parts", scene, model);
+}
+
 std::vector<DepthScene> developmentScenes(int size) {
   std::vector<DepthScene> scenes;
   {
@@ -238,6 +252,7 @@ std::vector<DepthScene> developmentScenes(int size) {
     scenes.push_back(simulated("thin structures", scene, model));
     scenes.push_back(simulated("thin structures, noisy", scene, model, true));
   }
+  scenes.push_back(narrowNearParts(size));
   {  // Texture at the scale of a pixel, and of half a pixel, on two cards.
     Scene scene = emptyScene(model);
     const double far = 1.8 * d, hf = halfField(model, far);

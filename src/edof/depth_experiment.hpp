@@ -34,9 +34,11 @@ struct DepthExperiment {
   // (guidedWeightedMedian, reclaimOcclusionEdges); off: `depth_bench --flat-cleanup`.
   bool slantedCleanup = true;
   // The occlusion edges' reclaim in every round of refinement and cleanup, not the first only;
-  // the first only: `depth_bench --reclaim-first-round-only` (design.md, "Depth": it keeps narrow
-  // near parts on antinous, and was a tie on the development scenes).
+  // the first only: `depth_bench --reclaim-first-round-only` (design.md, "Depth").
   bool reclaimEveryRound = true;
+  // After the first round, a reclaim move only where the cost volume agrees (depth.cpp,
+  // kReclaimCostMargin); without: `depth_bench --no-reclaim-cost-check`.
+  bool reclaimCostCheck = true;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -91,7 +92,10 @@ std::vector<int> jumpDistance(const float* disparity, int width, int height, flo
 // to a farther surface when its pixels beyond the band outweigh their own surface's by colour
 // likeness: the weighted median of those, with at least one full vote (a thin structure keeps its own);
 // with `slanted`, each carried to the pixel along the map's slope where it was (mapSlopes).
-void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* disparity);
+// `costAllows(p, from, to)`, when given, may veto a move of pixel p from disparity `from` to `to`.
+using ReclaimCheck = std::function<bool(std::size_t p, float from, float to)>;
+void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* disparity,
+                           const ReclaimCheck& costAllows = {});
 
 // Semi-global optimisation (Hirschmueller 2008) of a cost volume stored pixel-major:
 // cost[(y * width + x) * labels + l]. Sums, over 8 path directions, the path costs

@@ -74,7 +74,8 @@ std::vector<int> jumpDistance(const float* disparity, int width, int height, flo
   return distance;
 }
 
-void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* disparity) {
+void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* disparity,
+                           const ReclaimCheck& costAllows) {
   const int width = guide.width(), height = guide.height(), channels = guide.channels();
   if (band <= 0 || width < 1 || height < 1) return;
   const std::vector<int> distance = jumpDistance(disparity, width, height, kJump, band);
@@ -112,8 +113,10 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
               farther.emplace_back(carried, weight);
             }
           }
-        if (fartherWeight > own && fartherWeight > kMinimumVotes)
-          disparity[p] = weightedMedianSelect(farther, fartherWeight);
+        if (fartherWeight > own && fartherWeight > kMinimumVotes) {
+          const float to = weightedMedianSelect(farther, fartherWeight);
+          if (!costAllows || costAllows(p, input[p], to)) disparity[p] = to;
+        }
       }
   });
 }
