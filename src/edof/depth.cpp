@@ -531,11 +531,6 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
       result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
   };
   for (std::size_t p = 0; p < n; ++p) result.disparity.plane(0)[p] = float(dmin + label[p] * step);
-  // 5-6. Refinement and cleanup, `refineRounds` times: each round's fine search starts from the
-  // map the previous round cleaned, a window's slices then follow the surface where the first
-  // round's outliers (a slant's far end, a curved surface's outline) had bent them, and searches
-  // at half the previous spacing (two rounds against one: development means 1.98 -> 1.65 % at
-  // 128 px, 3.02 -> 2.60 % at 256; a third round at a quarter: 1.94 % at 128).
   // The cost volume's word on a move of the occlusion edges' reclaim after the first round: its
   // aggregated cost (as the optimisation saw it) at the farther disparity may exceed that at the
   // pixel's own by at most kReclaimCostMargin times the pixel's cost contrast. Run again from the
@@ -551,6 +546,11 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     const double contrast = gain[p] * meanCost[p] - *std::min_element(c, c + labels);
     return at(to) - at(from) <= kReclaimCostMargin * contrast;
   };
+  // 5-6. Refinement and cleanup, `refineRounds` times: each round's fine search starts from the
+  // map the previous round cleaned, a window's slices then follow the surface where the first
+  // round's outliers (a slant's far end, a curved surface's outline) had bent them, and searches
+  // at half the previous spacing (two rounds against one: development means 1.98 -> 1.65 % at
+  // 128 px, 3.02 -> 2.60 % at 256; a third round at a quarter: 1.94 % at 128).
   std::vector<float> curvature(n, 1.0f), residual(n, 0.0f);
   *medianResidual = 0;
   const edof::GuidedFilter refineFilter(guide.plane(0), ns, nt, std::max(options.refineRadius, 0),
