@@ -217,7 +217,7 @@ TEST(OcclusionEdges, LayeredPlanesLoseTheirFattenedBorders) {
 }
 
 // Narrow near parts (fingers before a far wall, bench/depth_scenes.hpp) through estimateDepth: the
-// later rounds' reclaim, vetoed where the cost volume disagrees, no longer eats them.
+// later rounds' reclaim, vetoed where the cost volume disagrees, eats less of them.
 TEST(OcclusionEdges, CostCheckKeepsNarrowNearParts) {
   const bench::DepthScene scene = bench::narrowNearParts(128);
   const DepthOptions options{.disparityMin = scene.disparityMin, .disparityMax = scene.disparityMax};

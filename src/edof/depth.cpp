@@ -431,9 +431,10 @@ void fillUncertain(const Image& guide, const std::vector<float>& curvature, cons
 
 // The later rounds' veto of the occlusion edges' reclaim (depthStages), chosen on the development
 // scenes as the only margin not worse at either size: mean BadPix(0.07) without the veto 2.37 %
-// at 128 px per view, 2.77 % at 256; margin 0.5: 2.18, 2.82 %; 1: 2.21, 2.77 %; 2: 2.37, 2.76 %
-// (narrow near parts 15.4 -> 12.7 % at 128, 6.0 -> 5.4 % at 256). The same veto in the first
-// round too, margin 1: 2.00 and 2.82 % (the glossy weak card 8.8 -> 10.6 % at 256: there the
+// at 128 px per view, 2.77 % at 256 (`depth_bench --no-reclaim-cost-check [--size 256]`); margin 1:
+// 2.21, 2.77 % (narrow near parts 15.4 -> 12.7 % at 128, 6.0 -> 5.4 % at 256). Measured with a
+// temporary switch, not kept: margin 0.5: 2.18, 2.82 %; 2: 2.37, 2.76 %; the same veto in the
+// first round too, margin 1: 2.00 and 2.82 % (the glossy weak card 8.8 -> 10.6 % at 256: there the
 // aggregated cost itself carries the fattening the first reclaim removes).
 constexpr double kReclaimCostMargin = 1.0;
 
