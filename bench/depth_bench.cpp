@@ -20,7 +20,8 @@
 //
 // Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
-//      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--scene TEXT]
+//      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--no-first-round-cost-check]
+//      [--scene TEXT]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
@@ -34,7 +35,8 @@
 //   --no-defocus-ceiling   the defocus cue not capped at twice the centre view's (DepthExperiment)
 //   --flat-cleanup      the weighted median and the occlusion edges without the map's slope
 //   --reclaim-first-round-only  the occlusion edges in the first round of refinement and cleanup only
-//   --no-reclaim-cost-check  the later rounds' occlusion edges without the cost volume's veto
+//   --no-reclaim-cost-check  the occlusion edges without the cost volume's veto
+//   --no-first-round-cost-check  the veto in the later rounds only, not on the first's narrow parts
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
@@ -284,6 +286,8 @@ int main(int argc, char** argv) {
       experiment.slantedCleanup = false;
     } else if (argument == "--no-reclaim-cost-check") {
       experiment.reclaimCostCheck = false;
+    } else if (argument == "--no-first-round-cost-check") {
+      experiment.firstRoundCostCheck = false;
     } else if (argument == "--reclaim-first-round-only") {
       experiment.reclaimEveryRound = false;
     } else if (argument == "--high-pass" && i + 1 < argc) {

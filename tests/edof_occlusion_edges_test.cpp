@@ -153,7 +153,8 @@ TEST(OcclusionEdges, ThinBarOfItsOwnColourKeepsItsDisparity) {
 
 // A strip 5 px wide (disparity 1) of the background's colour: every pixel lies within the band,
 // so the background's voters take it, unless the cost check vetoes the move; the check is asked
-// with the pixel's own disparity and the farther one.
+// with the pixel's own disparity, the farther one, and no voter of the strip's own (it is narrower
+// than the band). A strip 11 px wide has such voters, in its middle beyond the band.
 TEST(OcclusionEdges, CostCheckMayVetoAMove) {
   const int size = 48, x0 = 21, x1 = 26;
   Image guide(size, size, 3);
@@ -166,9 +167,9 @@ TEST(OcclusionEdges, CostCheckMayVetoAMove) {
   const std::vector<float> before = map;
   std::vector<float> vetoed = map;
   std::atomic<int> asked = 0, misplaced = 0;  // asked from several threads
-  reclaimOcclusionEdges(guide, 3, true, vetoed.data(), [&](std::size_t p, float from, float to) {
+  reclaimOcclusionEdges(guide, 3, true, vetoed.data(), [&](std::size_t p, float from, float to, int ownVoters) {
     const int x = int(p % size);
-    misplaced += !(x >= x0 && x < x1 && from == 1.0f && to == -1.0f);
+    misplaced += !(x >= x0 && x < x1 && from == 1.0f && to == -1.0f && ownVoters == 0);
     ++asked;
     return x == x0;  // only the strip's first column may move
   });
@@ -180,6 +181,17 @@ TEST(OcclusionEdges, CostCheckMayVetoAMove) {
   reclaimOcclusionEdges(guide, 3, true, map.data());
   for (float v : map) ASSERT_EQ(v, -1.0f);
   EXPECT_NE(map, before);
+  std::vector<float> wide(std::size_t(size) * size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) wide[std::size_t(y) * size + x] = x >= 16 && x < 27 ? 1.0f : -1.0f;
+  std::atomic<int> askedWide = 0, withoutVoters = 0;
+  reclaimOcclusionEdges(guide, 3, true, wide.data(), [&](std::size_t, float, float, int ownVoters) {
+    ++askedWide;
+    withoutVoters += ownVoters == 0;
+    return false;
+  });
+  EXPECT_GT(askedWide, 0);
+  EXPECT_EQ(withoutVoters, 0);
 }
 
 // On the layered planes (textured cards over a cloudy background), through estimateDepth: fewer
@@ -217,7 +229,8 @@ TEST(OcclusionEdges, LayeredPlanesLoseTheirFattenedBorders) {
 }
 
 // Narrow near parts (fingers before a far wall, bench/depth_scenes.hpp) through estimateDepth: the
-// later rounds' reclaim, vetoed where the cost volume disagrees, eats less of them.
+// reclaim, vetoed where the cost volume disagrees (in the first round on parts narrower than the
+// band, in the later ones everywhere), eats less of them.
 TEST(OcclusionEdges, CostCheckKeepsNarrowNearParts) {
   const bench::DepthScene scene = bench::narrowNearParts(128);
   const DepthOptions options{.disparityMin = scene.disparityMin, .disparityMax = scene.disparityMax};

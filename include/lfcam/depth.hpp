@@ -37,8 +37,9 @@
 //     median guided by the centre view, each neighbour carried along the map's slope
 //     (`medianRadius`, `medianSigma`).
 //     Steps 5 and 6 run `refineRounds` times, each fine search around the map the round before
-//     cleaned, at half its spacing (the quadratic fit in the first round only); after the first,
-//     background is given back only where the stage-3 cost does not say otherwise.
+//     cleaned, at half its spacing (the quadratic fit in the first round only). Background is
+//     given back only where the stage-3 cost does not say otherwise: in the first round on parts
+//     narrower than the band, after it everywhere.
 //  7. Confidence: 1 - exp(-(mean cost - chosen cost) / m), m that margin's mean over the image.
 //
 // Cost: about labels x 34 bilinear passes over ns x nt and 8 optimisation passes of labels x ns x

@@ -429,13 +429,15 @@ void fillUncertain(const Image& guide, const std::vector<float>& curvature, cons
                      float(options.fillLambda), float(std::max(options.fillSigma, 1e-6)), /*iterations=*/3);
 }
 
-// The later rounds' veto of the occlusion edges' reclaim (depthStages), chosen on the development
-// scenes as the only margin not worse at either size: mean BadPix(0.07) without the veto 2.37 %
-// at 128 px per view, 2.77 % at 256 (`depth_bench --no-reclaim-cost-check [--size 256]`); margin 1:
-// 2.21, 2.77 % (narrow near parts 15.4 -> 12.7 % at 128, 6.0 -> 5.4 % at 256). Measured with a
-// temporary switch, not kept: margin 0.5: 2.18, 2.82 %; 2: 2.37, 2.76 %; the same veto in the
-// first round too, margin 1: 2.00 and 2.82 % (the glossy weak card 8.8 -> 10.6 % at 256: there the
-// aggregated cost itself carries the fattening the first reclaim removes).
+// The cost volume's veto of the occlusion edges' reclaim (depthStages), asked after the first round,
+// and in the first for parts narrower than the band only. The margin, for the later rounds, chosen
+// on the development scenes as the only one not worse at either size: mean BadPix(0.07) without the
+// veto 2.37 % at 128 px per view, 2.77 % at 256 (`depth_bench --no-reclaim-cost-check [--size 256]`);
+// margin 1: 2.21, 2.77 % (`--no-first-round-cost-check`; narrow near parts 15.4 -> 12.7 % at 128,
+// 6.0 -> 5.4 % at 256). Measured with a temporary switch, not kept: margin 0.5:
+// 2.18, 2.82 %; 2: 2.37, 2.76 %; the same veto for every pixel of the first round too: 2.00 and
+// 2.82 % (the glossy weak card 8.8 -> 10.6 % at 256: there the aggregated cost itself carries the
+// fattening the first reclaim removes).
 constexpr double kReclaimCostMargin = 1.0;
 
 // Stages 2-7 (depth.hpp) on `grey`, the sRGB luminance the views are matched on, steered by
@@ -532,11 +534,15 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
       result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
   };
   for (std::size_t p = 0; p < n; ++p) result.disparity.plane(0)[p] = float(dmin + label[p] * step);
-  // The cost volume's word on a move of the occlusion edges' reclaim after the first round: its
-  // aggregated cost (as the optimisation saw it) at the farther disparity may exceed that at the
-  // pixel's own by at most kReclaimCostMargin times the pixel's cost contrast. Run again from the
-  // boundary the first round left, the reclaim ate narrow near parts of the background's colour
-  // (a finger's width within its band), which the cost, on their texture, tells apart.
+  // The cost volume's word on a move of the occlusion edges' reclaim: its aggregated cost (as the
+  // optimisation saw it) at the farther disparity may exceed that at the pixel's own by at most
+  // kReclaimCostMargin times the pixel's cost contrast. Run again from the boundary the first round
+  // left, the reclaim ate narrow near parts of the background's colour (a finger's width within its
+  // band), which the cost, on their texture, tells apart. In the first round only for a part
+  // narrower than the band (no voter of its own surface beyond it): elsewhere the first reclaim
+  // removes fattening that the aggregated cost carries too (development means 2.21 -> 2.02 % at 128
+  // px per view, 2.78 -> 2.61 % at 256: narrow near parts 12.7 -> 9.1 % and 5.4 -> 4.0 %, the glossy
+  // weak card 8.9 -> 7.1 % at 256; without: `depth_bench --no-first-round-cost-check`).
   const auto costAllows = [&](std::size_t p, float from, float to) {
     const float* c = &volume[p * labels];
     const auto at = [&](float d) {
@@ -591,10 +597,13 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     // 6. Cleanup: the edge-aware fill, occlusion edges, the weighted median, each guided by the
     // centre view's sRGB colours.
     if (options.fillLambda > 0 && options.refineSteps > 0) fillUncertain(colours, curvature, residual, options, map);
-    if (round == 0 || experiment.reclaimEveryRound)
-      edof::reclaimOcclusionEdges(
-          colours, options.occlusionBand, experiment.slantedCleanup, map,
-          round > 0 && experiment.reclaimCostCheck && labels > 1 ? costAllows : edof::ReclaimCheck{});
+    if (round == 0 || experiment.reclaimEveryRound) {
+      const bool checked = experiment.reclaimCostCheck && labels > 1 && (round > 0 || experiment.firstRoundCostCheck);
+      edof::reclaimOcclusionEdges(colours, options.occlusionBand, experiment.slantedCleanup, map,
+                                  [&](std::size_t p, float from, float to, int ownVoters) {
+                                    return !checked || (round == 0 && ownVoters > 0) || costAllows(p, from, to);
+                                  });
+    }
     if (options.medianRadius > 0)
       edof::guidedWeightedMedian(colours, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
                                  experiment.slantedCleanup, map);

@@ -36,9 +36,11 @@ struct DepthExperiment {
   // The occlusion edges' reclaim in every round of refinement and cleanup, not the first only;
   // the first only: `depth_bench --reclaim-first-round-only` (design.md, "Depth").
   bool reclaimEveryRound = true;
-  // After the first round, a reclaim move only where the cost volume agrees (depth.cpp,
-  // kReclaimCostMargin); without: `depth_bench --no-reclaim-cost-check`.
+  // A reclaim move only where the cost volume agrees (depth.cpp, kReclaimCostMargin): after the
+  // first round everywhere, in it on parts narrower than the band; without any:
+  // `depth_bench --no-reclaim-cost-check`; without the first round's: `--no-first-round-cost-check`.
   bool reclaimCostCheck = true;
+  bool firstRoundCostCheck = true;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,

@@ -92,8 +92,10 @@ std::vector<int> jumpDistance(const float* disparity, int width, int height, flo
 // to a farther surface when its pixels beyond the band outweigh their own surface's by colour
 // likeness: the weighted median of those, with at least one full vote (a thin structure keeps its own);
 // with `slanted`, each carried to the pixel along the map's slope where it was (mapSlopes).
-// `costAllows(p, from, to)`, when given, may veto a move of pixel p from disparity `from` to `to`.
-using ReclaimCheck = std::function<bool(std::size_t p, float from, float to)>;
+// `costAllows(p, from, to, ownVoters)`, when given, may veto a move of pixel p from disparity `from`
+// to `to`; `ownVoters` counts the pixels beyond the band on p's own surface, whatever their colour
+// (0: a part narrower than the band, which nothing but the cost speaks for).
+using ReclaimCheck = std::function<bool(std::size_t p, float from, float to, int ownVoters)>;
 void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* disparity,
                            const ReclaimCheck& costAllows = {});
 

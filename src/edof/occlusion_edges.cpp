@@ -96,6 +96,7 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
         const std::size_t p = y * width + x;
         if (distance[p] > band) continue;
         float own = 0, fartherWeight = 0;
+        int ownVoters = 0;
         farther.clear();
         for (long yy = std::max(long(y) - kVoterRadius, 0L); yy <= std::min(long(y) + kVoterRadius, long(height) - 1);
              ++yy)
@@ -107,6 +108,7 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
                 slanted ? input[q] + slopes.x[q] * float(x - xx) + slopes.y[q] * float(long(y) - yy) : input[q];
             if (std::abs(carried - input[p]) <= kJump) {
               own += likeness(p, q);
+              ++ownVoters;
             } else if (carried < input[p] - kJump) {
               const float weight = likeness(p, q);
               fartherWeight += weight;
@@ -115,7 +117,7 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
           }
         if (fartherWeight > own && fartherWeight > kMinimumVotes) {
           const float to = weightedMedianSelect(farther, fartherWeight);
-          if (!costAllows || costAllows(p, input[p], to)) disparity[p] = to;
+          if (!costAllows || costAllows(p, input[p], to, ownVoters)) disparity[p] = to;
         }
       }
   });
