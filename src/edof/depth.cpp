@@ -13,6 +13,8 @@
 #include "core/quadratic_filter.hpp"
 #include "edof/depth_experiment.hpp"
 #include "edof/edof_internal.hpp"
+#include "edof/fine_cost_row.hpp"
+#include "edof/interpolation_terms.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/parallel.hpp"
 #include "lfcam/refocus.hpp"
@@ -70,8 +72,9 @@ LFCAM_CLONES void accumulateSquaredDifference(const float* __restrict sample, co
 // difference of the signal at fraction f, and that blur adds its square to the cost of every
 // disparity that shifts views by fractions: the cost is biased towards whole-pixel shifts
 // ("pixel locking"). The model of that term: per pixel the squared second differences of the
-// reference view (it shows the same texture), per view and disparity the weights below; the
-// cost subtracts their product. The reference's own interpolation (an even grid) is left out.
+// reference view (it shows the same texture), per view and disparity the weights from
+// interpolationBlur (interpolation_terms.hpp); the cost subtracts their product. The reference's
+// own interpolation (an even grid) is left out.
 struct SecondDifferences {
   std::vector<float> xx, yy, xy;  // Ixx^2, Iyy^2, 2 Ixx Iyy
 };
@@ -96,34 +99,6 @@ SecondDifferences secondDifferences(const float* plane, int ns, int nt) {
   return out;
 }
 
-// f (1 - f) / 2 for the fraction f of a shift: the blur of bilinear sampling there.
-inline double interpolationBlur(double shift) {
-  const double f = shift - std::floor(shift);
-  return 0.5 * f * (1 - f);
-}
-
-// The noise of the views matched, for the bias it gives the cost: bilinear sampling between
-// pixels averages neighbouring samples, and so lowers the variance of their noise, most at half a
-// pixel. Where the views show no texture, only noise, the cost is then lowest at shifts of half a
-// pixel, whatever the depth (large flat regions of noisy views snapped to them). `variance` is the
-// noise variance of a sample; `neighbourCorrelation` that of two neighbours along either axis
-// (0 for white noise; more once the views are smoothed).
-struct ViewNoise {
-  double variance = 0;
-  double neighbourCorrelation = 0;
-};
-
-// How much less noise variance a sample read at (x + shiftX, y + shiftY) has than one read on the
-// grid: the variance of (1 - f) a + f b over both axes, f the fraction of each shift.
-inline double interpolationNoiseLoss(const ViewNoise& noise, double shiftX, double shiftY) {
-  if (!(noise.variance > 0)) return 0;
-  const auto kept = [&](double shift) {
-    const double f = shift - std::floor(shift);
-    return 1 - 2 * f * (1 - f) * (1 - noise.neighbourCorrelation);
-  };
-  return noise.variance * (1 - kept(shiftX) * kept(shiftY));
-}
-
 // The subsets of views with at least one view (all six unless the aperture is a single row or
 // column), and how many views each has.
 std::vector<int> subsetsWithViews(const std::vector<StarView>& views, int (&viewsIn)[kHalves]) {
@@ -139,9 +114,9 @@ std::vector<int> subsetsWithViews(const std::vector<StarView>& views, int (&view
 // The correspondence cue for labels [labelBegin, labelEnd), n = ns * nt: the mean squared
 // difference over each subset of views with views, out[((l - labelBegin) * subsets + i) * n + p]
 // (subsetsWithViews' order). `locking` scales the interpolation-bias term removed (0: none); the
-// noise variance that interpolation removes is added back (ViewNoise).
+// noise variance that interpolation removes is added back (ViewNoise, interpolation_terms.hpp).
 void correspondenceCost(const LightField& grey, const std::vector<double>& disparities, int labelBegin, int labelEnd,
-                        double locking, const ViewNoise& noise, float* out) {
+                        double locking, const edof::ViewNoise& noise, float* out) {
   const int ns = grey.ns(), nt = grey.nt();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
@@ -192,10 +167,10 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
         // The interpolation-bias weights of this label, and the noise it removes, per subset (mean
         // over its views).
         float wx[kHalves] = {}, wy[kHalves] = {}, wxy[kHalves] = {}, noiseLoss[kHalves] = {};
-        const double referenceLoss = interpolationNoiseLoss(noise, -referenceUc * d, -referenceVc * d);
+        const double referenceLoss = edof::interpolationNoiseLoss(noise, -referenceUc * d, -referenceVc * d);
         for (const StarView& view : views) {
-          const double bx = interpolationBlur(-view.uc * d), by = interpolationBlur(-view.vc * d);
-          const double loss = referenceLoss + interpolationNoiseLoss(noise, -view.uc * d, -view.vc * d);
+          const double bx = edof::interpolationBlur(-view.uc * d), by = edof::interpolationBlur(-view.vc * d);
+          const double loss = referenceLoss + edof::interpolationNoiseLoss(noise, -view.uc * d, -view.vc * d);
           for (int h = 0; h < kHalves; ++h)
             if ((view.halves >> h) & 1) {
               wx[h] += float(locking * bx * bx / viewsIn[h]);
@@ -280,7 +255,7 @@ void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, 
 // x subsets slices are held besides the volume. Returns cost[l * n + p].
 std::vector<float> aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
                                   const edof::GuidedFilter& filter, double defocusWeight, double locking,
-                                  const ViewNoise& noise, bool subsetsApart, bool ceiling) {
+                                  const edof::ViewNoise& noise, bool subsetsApart, bool ceiling) {
   const std::size_t n = grey.shape().viewPixels();
   const int labels = int(disparities.size());
   int viewsIn[kHalves];
@@ -321,6 +296,32 @@ std::vector<float> aggregatedCost(const LightField& grey, const std::vector<doub
   return cost;
 }
 
+// The fine search's views for its row kernel: the reference first, then the star views, each
+// counting in the subsets (subsetsWithViews' order) of its halves.
+edof::FineCostViews fineCostViews(const LightField& grey, const std::vector<StarView>& views,
+                                  const std::vector<int>& subsets, const int (&viewsIn)[kHalves], double locking,
+                                  const SecondDifferences& secondDiff, const edof::ViewNoise& noise) {
+  edof::FineCostViews out{.ns = grey.ns(), .nt = grey.nt(), .channels = grey.channels()};
+  const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
+  const auto add = [&](int u, int v, unsigned inSubsets) {
+    for (int c = 0; c < grey.channels(); ++c) out.planes.push_back(grey.plane(u, v, c));
+    out.uc.push_back(grey.uFromCentre(u));
+    out.vc.push_back(grey.vFromCentre(v));
+    out.subsets.push_back(inSubsets);
+  };
+  add(referenceU, referenceV, 0);
+  for (const StarView& view : views) {
+    unsigned inSubsets = 0;
+    for (std::size_t i = 0; i < subsets.size(); ++i) inSubsets |= unsigned((view.halves >> subsets[i]) & 1) << i;
+    add(view.u, view.v, inSubsets);
+  }
+  for (int h : subsets) out.viewsIn.push_back(viewsIn[h]);
+  out.locking = locking;
+  out.xx = secondDiff.xx.data(), out.yy = secondDiff.yy.data(), out.xy = secondDiff.xy.data();
+  out.noise = noise;
+  return out;
+}
+
 // Fine search around a disparity map: the correspondence cost (as correspondenceCost) at
 // disparity + k delta per pixel, k in [-steps, steps], each slice aggregated by `filter`, then
 // the lowest with a parabola through its neighbours. Slices follow the map, so a window averages
@@ -329,15 +330,16 @@ std::vector<float> aggregatedCost(const LightField& grey, const std::vector<doub
 // aggregated on its own and the best subset taken per slice afterwards: a window then keeps to one
 // subset, where the minimum of per-pixel costs picks whichever subset is lowest by chance at each
 // pixel (measured on antinous, fine-search radius 8: BadPix(0.07) 14.2 -> 11.5 %, BadPix(0.03)
-// 40.1 -> 28.9 %; issue 6, commit 0915025).
+// 40.1 -> 28.9 %; issue 6, commit 0915025). Each pixel samples the views at its own disparity, so
+// the cost is made a row of one slice at a time (fine_cost_row.hpp) rather than from shifted rows
+// as correspondenceCost's.
 void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
-                     int steps, double locking, const ViewNoise& noise, bool aggregateHalves, float* curvatureOut,
+                     int steps, double locking, const edof::ViewNoise& noise, bool aggregateHalves, float* curvatureOut,
                      float* residualOut) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
-  const double referenceUc = grey.uFromCentre(referenceU), referenceVc = grey.vFromCentre(referenceV);
   int viewsIn[kHalves];
   const std::vector<int> subsets = subsetsWithViews(views, viewsIn);
   const int slices = 2 * steps + 1;
@@ -346,40 +348,13 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
   std::vector<float> subsetCost(subsets.size() * slices * n);
   const SecondDifferences secondDiff =
       locking > 0 ? secondDifferences(grey.plane(referenceU, referenceV, 0), ns, nt) : SecondDifferences{};
+  const edof::FineCostViews fineViews = fineCostViews(grey, views, subsets, viewsIn, locking, secondDiff, noise);
   parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> reference(grey.channels());
+    std::vector<float*> out(subsets.size());
     for (std::size_t y = begin; y < end; ++y)
-      for (int x = 0; x < ns; ++x) {
-        const std::size_t p = y * ns + x;
-        for (int k = 0; k < slices; ++k) {
-          const double d = disparity[p] + (k - steps) * delta;
-          const double referenceLoss = interpolationNoiseLoss(noise, -referenceUc * d, -referenceVc * d);
-          for (int c = 0; c < grey.channels(); ++c)
-            reference[c] = bilinearSample(grey.plane(referenceU, referenceV, c), ns, nt, x - referenceUc * d,
-                                          double(y) - referenceVc * d);
-          float sums[kHalves] = {};
-          for (const StarView& view : views) {
-            float squares = 0;
-            for (int c = 0; c < grey.channels(); ++c) {
-              const float difference =
-                  bilinearSample(grey.plane(view.u, view.v, c), ns, nt, x - view.uc * d, double(y) - view.vc * d) -
-                  reference[c];
-              squares += difference * difference;
-            }
-            // The interpolation-bias term (correspondenceCost).
-            float bias = 0;
-            if (locking > 0) {
-              const double bx = interpolationBlur(-view.uc * d), by = interpolationBlur(-view.vc * d);
-              bias = float(locking *
-                           (bx * bx * secondDiff.xx[p] + by * by * secondDiff.yy[p] + bx * by * secondDiff.xy[p]));
-            }
-            const float loss = float(referenceLoss + interpolationNoiseLoss(noise, -view.uc * d, -view.vc * d));
-            for (int h = 0; h < kHalves; ++h)
-              if ((view.halves >> h) & 1) sums[h] += squares - bias + loss;
-          }
-          for (std::size_t i = 0; i < subsets.size(); ++i)
-            subsetCost[(i * slices + k) * n + p] = sums[subsets[i]] / viewsIn[subsets[i]];
-        }
+      for (int k = 0; k < slices; ++k) {
+        for (std::size_t i = 0; i < subsets.size(); ++i) out[i] = subsetCost.data() + (i * slices + k) * n + y * ns;
+        edof::fineCostRowReference(fineViews, int(y), disparity + y * ns, (k - steps) * delta, out.data());
       }
   });
   // Every subset's slices aggregated, then the lowest subset per slice; or the lowest first.
@@ -447,7 +422,7 @@ constexpr double kReclaimCostMargin = 1.0;
 // squared difference between the views there), 0 without a fine search.
 DepthMap depthStages(const Image& colours, const LightField& grey, const Image& guide,
                      const std::vector<double>& disparities, const DepthOptions& options,
-                     const edof::DepthExperiment& experiment, const ViewNoise& noise, double* medianResidual) {
+                     const edof::DepthExperiment& experiment, const edof::ViewNoise& noise, double* medianResidual) {
   const int ns = grey.ns(), nt = grey.nt(), labels = int(disparities.size());
   const std::size_t n = grey.shape().viewPixels();
   const double dmin = disparities.front(), dmax = disparities.back(), step = (dmax - dmin) / (labels - 1);
@@ -631,7 +606,7 @@ constexpr double kNoisyResidual = 4e-5, kNoisyPrefilterSigma = 0.55;
 // kept averages 2/3 along an axis the view is shifted on and 1 along one it is not, so the residual
 // is V (1 + the mean of those products over the star's views). Smoothing multiplies the variance
 // by the sum of the squared taps along each axis and correlates neighbours.
-ViewNoise smoothedNoise(double residual, double sigma, const std::vector<StarView>& views) {
+edof::ViewNoise smoothedNoise(double residual, double sigma, const std::vector<StarView>& views) {
   double kept = 0;
   for (const StarView& view : views) kept += (view.uc != 0 ? 2.0 / 3 : 1.0) * (view.vc != 0 ? 2.0 / 3 : 1.0);
   kept /= double(std::max<std::size_t>(views.size(), 1));
@@ -840,10 +815,10 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   if (prefilter < 0 && residual > kNoisyResidual) {
     blurViews(grey, kNoisyPrefilterSigma);
     const double asGiven = map.viewResidual;
-    const ViewNoise noise =
+    const edof::ViewNoise noise =
         experiment.noiseCorrection
             ? smoothedNoise(asGiven, kNoisyPrefilterSigma, starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2))
-            : ViewNoise{};
+            : edof::ViewNoise{};
     map = depthStages(colours, grey, guide, disparities, options, experiment, noise, &residual);
     map.prefilterSigma = kNoisyPrefilterSigma;
     map.viewResidual = asGiven;
