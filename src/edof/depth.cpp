@@ -331,8 +331,8 @@ edof::FineCostViews fineCostViews(const LightField& grey, const std::vector<Star
 // subset, where the minimum of per-pixel costs picks whichever subset is lowest by chance at each
 // pixel (measured on antinous, fine-search radius 8: BadPix(0.07) 14.2 -> 11.5 %, BadPix(0.03)
 // 40.1 -> 28.9 %; issue 6, commit 0915025). Each pixel samples the views at its own disparity, so
-// the cost is made a row of one slice at a time (fine_cost_row.hpp) rather than from shifted rows
-// as correspondenceCost's.
+// the cost is made a row of one slice at a time by fineCostRow (fine_cost_row.hpp), SIMD across
+// the row, rather than from shifted rows as correspondenceCost's.
 void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
                      int steps, double locking, const edof::ViewNoise& noise, bool aggregateHalves, float* curvatureOut,
                      float* residualOut) {
@@ -354,7 +354,7 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
     for (std::size_t y = begin; y < end; ++y)
       for (int k = 0; k < slices; ++k) {
         for (std::size_t i = 0; i < subsets.size(); ++i) out[i] = subsetCost.data() + (i * slices + k) * n + y * ns;
-        edof::fineCostRowReference(fineViews, int(y), disparity + y * ns, (k - steps) * delta, out.data());
+        edof::fineCostRow(fineViews, int(y), disparity + y * ns, (k - steps) * delta, out.data());
       }
   });
   // Every subset's slices aggregated, then the lowest subset per slice; or the lowest first.

@@ -1,7 +1,9 @@
 // The correspondence cost of depth's fine search (refineDisparity, depth.cpp), a row of one slice
 // at a time: the reference view and every star view sampled bilinearly at each pixel's own
 // disparity, their squared differences, less the interpolation-bias term, plus the noise
-// interpolation removes (interpolation_terms.hpp), averaged over each subset of views.
+// interpolation removes (interpolation_terms.hpp), averaged over each subset of views. The fast
+// kernel is SIMD across the row through Highway with run-time dispatch and gives the same bits as
+// the scalar reference.
 #pragma once
 
 #include <vector>
@@ -30,7 +32,11 @@ struct FineCostViews {
 };
 
 // Row y of each subset's cost at disparity disparity[x] + offset for x in [0, ns): out[j][x] for
-// subset j, one pixel at a time in scalar code. `disparity` is row y of the map.
+// subset j. `disparity` is row y of the map.
+void fineCostRow(const FineCostViews& views, int y, const float* disparity, double offset, float* const* out);
+
+// The same, one pixel at a time in scalar code: the reference the fast kernel is tested against,
+// and the path for rows narrower than a vector.
 void fineCostRowReference(const FineCostViews& views, int y, const float* disparity, double offset, float* const* out);
 
 }  // namespace lfcam::edof
