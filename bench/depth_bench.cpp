@@ -16,7 +16,7 @@
 //                   occlusion_cost. These three also show cpu_default_s, CPU seconds per
 //                   default run.
 //   BM_AllInFocus   allInFocus given the depth map (focal stack + blending). Same counter.
-//   BM_DepthAndAllInFocus  both, as `lfcam edof` without --depth does: the goal is < 5 s on 2 cores.
+//   BM_DepthAndAllInFocus  both, as `lfcam depth` then `lfcam edof --depth` do: the goal is < 5 s on 2 cores.
 //
 // Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
