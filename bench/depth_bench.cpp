@@ -21,7 +21,7 @@
 // Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
 //      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--no-first-round-cost-check]
-//      [--scene TEXT]
+//      [--no-offset-slope-correction] [--scene TEXT]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
@@ -37,6 +37,7 @@
 //   --reclaim-first-round-only  the occlusion edges in the first round of refinement and cleanup only
 //   --no-reclaim-cost-check  the occlusion edges without the cost volume's veto
 //   --no-first-round-cost-check  the veto in the later rounds only, not on the first's narrow parts
+//   --no-offset-slope-correction  view offsets measured without taking the map's error out first
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
@@ -288,6 +289,8 @@ int main(int argc, char** argv) {
       experiment.reclaimCostCheck = false;
     } else if (argument == "--no-first-round-cost-check") {
       experiment.firstRoundCostCheck = false;
+    } else if (argument == "--no-offset-slope-correction") {
+      experiment.offsetSlopeCorrection = false;
     } else if (argument == "--reclaim-first-round-only") {
       experiment.reclaimEveryRound = false;
     } else if (argument == "--high-pass" && i + 1 < argc) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <stdexcept>
 
@@ -111,6 +112,26 @@ DepthScene glossy(std::string name, const Scene& scene, const CameraModel& model
   return result;
 }
 
+// `texture` on a plane of width x height (mm) lit unevenly: its brightness falls linearly from 1 at
+// the top-left corner to `far` at the bottom-right one. An image texture fine enough for the
+// noise's smallest features (a fifth of their size).
+Texture unevenlyLit(const Texture& texture, double width, double height, double far) {
+  const double cell = texture.periodMm / 2.7 / 5;
+  const int w = std::min(int(std::ceil(width / cell)), 4096), h = std::min(int(std::ceil(height / cell)), 4096);
+  auto image = std::make_shared<Image>(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double px = (x + 0.5) / w * width, py = (y + 0.5) / h * height;
+      const double light = 1 - (1 - far) * 0.5 * (px / width + py / height);
+      const Rgb base = texture.evaluate(px, py, width, height);
+      for (int c = 0; c < 3; ++c) image->at(x, y, c) = float(light * base[c]);
+    }
+  Texture out;
+  out.kind = TextureKind::Image;
+  out.image = std::move(image);
+  return out;
+}
+
 // Half an elliptic cylinder with a vertical axis, bulging towards the camera: `facets` planes
 // spanning +-endDeg around the axis at axisZ, `across` wide on either side and `deep` towards the
 // camera, `height` tall.
@@ -135,7 +156,25 @@ Scene emptyScene(const CameraModel& model) {
   return scene;
 }
 
+// Texture of 4 % contrast: a card before a wall.
+Scene weakTexture(const CameraModel& model) {
+  const double d = model.mainLens.focusDistanceMm;
+  Scene scene = emptyScene(model);
+  const double far = 1.6 * d, hf = halfField(model, far);
+  scene.planes.push_back(
+      plane("far", {0, 0, far}, 2.6 * hf, 2.6 * hf, noise(hf / 10, {0.48f, 0.48f, 0.48f}, {0.52f, 0.52f, 0.52f}, 16)));
+  const double z = 0.9 * d, h = halfField(model, z);
+  scene.planes.push_back(
+      plane("near", {0.2 * h, 0, z}, 0.8 * h, 1.2 * h, noise(h / 8, {0.58f, 0.5f, 0.45f}, {0.62f, 0.54f, 0.49f}, 17)));
+  return scene;
+}
+
 }  // namespace
+
+DepthScene weakTextureGlossy(int size) {
+  const CameraModel model = camera(size);
+  return glossy("weak texture, glossy", weakTexture(model), model, 0.1);
+}
 
 DepthScene narrowNearParts(int size) {
   const CameraModel model = camera(size);
@@ -192,6 +231,13 @@ std::vector<DepthScene> developmentScenes(int size) {
     scene.planes[1].texture = noise(offset / 8, {0.28f, 0.25f, 0.2f}, {0.3f, 0.27f, 0.22f}, 22);
     scene.planes[2].texture = noise(offset / 8, {0.28f, 0.28f, 0.3f}, {0.3f, 0.3f, 0.32f}, 23);
     scenes.push_back(simulated("steep slants, weak texture", scene, model));
+    // The same, unevenly lit and glossy: the light falling off across each plane while their sheen
+    // brightens across the aperture (HCI antinous's floor: 3 % across the views, under a spot).
+    for (std::size_t i : {1, 2}) {
+      Plane& p = scene.planes[i];
+      p.texture = unevenlyLit(p.texture, p.widthMm, p.heightMm, 0.4);
+    }
+    scenes.push_back(glossy("steep slants, weak, unevenly lit, glossy", scene, model, 0.03));
   }
   {  // Cards standing on a floor as steep as the one above: occlusion edges whose background is
      // slanted, behind and beside a nearer surface (as the floor around HCI antinous's statue).
@@ -263,17 +309,8 @@ std::vector<DepthScene> developmentScenes(int size) {
                                  noise(2.0 * h / size, {0.1f, 0.3f, 0.1f}, {0.9f, 0.9f, 0.6f}, 15)));
     scenes.push_back(simulated("fine texture", scene, model));
   }
-  {  // Texture of 4 % contrast.
-    Scene scene = emptyScene(model);
-    const double far = 1.6 * d, hf = halfField(model, far);
-    scene.planes.push_back(plane("far", {0, 0, far}, 2.6 * hf, 2.6 * hf,
-                                 noise(hf / 10, {0.48f, 0.48f, 0.48f}, {0.52f, 0.52f, 0.52f}, 16)));
-    const double z = 0.9 * d, h = halfField(model, z);
-    scene.planes.push_back(plane("near", {0.2 * h, 0, z}, 0.8 * h, 1.2 * h,
-                                 noise(h / 8, {0.58f, 0.5f, 0.45f}, {0.62f, 0.54f, 0.49f}, 17)));
-    scenes.push_back(simulated("weak texture", scene, model));
-    scenes.push_back(glossy("weak texture, glossy", scene, model, 0.1));
-  }
+  scenes.push_back(simulated("weak texture", weakTexture(model), model));
+  scenes.push_back(weakTextureGlossy(size));
   return scenes;
 }
 

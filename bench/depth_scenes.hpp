@@ -21,16 +21,20 @@ struct DepthScene {
 
 // `synth` layered planes, the simulator's people scene (noise-free and with Lytro-like noise), and
 // simulator scenes built for this: a floor at a grazing angle, a floor and a wall whose disparity
-// changes fast (also with weak texture), cards standing on such a floor, a curved surface (half an elliptic cylinder of
-// 32 facets), a grey column bulging far towards the camera before a grey wall, thin bars before a wall, fine texture,
-// weak texture (4 % contrast); the grazing floor, the surface and the weak texture's near card also glossy (brightness
-// -10 % to +10 % across the aperture); the surface also varnished (a mirror reflectance of 0.04 rising towards grazing
-// angles, Fresnel); narrow near parts (below). 9x9 views of `size` x `size`.
+// changes fast (also with weak texture, and that again unevenly lit and glossy), cards standing on such a floor, a
+// curved surface (half an elliptic cylinder of 32 facets), a grey column bulging far towards the camera before a grey
+// wall, thin bars before a wall, fine texture, weak texture (4 % contrast); the grazing floor, the surface and the weak
+// texture's near card also glossy (brightness -10 % to +10 % across the aperture); the surface also varnished (a mirror
+// reflectance of 0.04 rising towards grazing angles, Fresnel); narrow near parts (below). 9x9 views of `size` x `size`.
 std::vector<DepthScene> developmentScenes(int size = 128);
 
 // Narrow near parts before a far wall, as a statue's fingers and arm: strips 3 to 8 pixels wide
 // (every pixel within the occlusion edges' band of 3) at a disparity jump of 1.9 px, their pale
 // texture close in colour to the wall's lighter parts.
 DepthScene narrowNearParts(int size = 128);
+
+// A card of weak texture (4 % contrast) before a wall as weak, the card glossy (its brightness
+// -10 % to +10 % across the aperture).
+DepthScene weakTextureGlossy(int size = 128);
 
 }  // namespace lfcam::bench

@@ -19,7 +19,9 @@
 //     aperture) is removed first: stages 2-6 run at half resolution (`offsetPasses` times, each
 //     on views the previous map aligned and corrected), the views are warped onto the centre view
 //     by that map and their difference averaged by a guided filter the map steers (`offsetRadius`,
-//     `offsetEpsilon`). Views that disagree at their best match (noise, aliasing) are smoothed
+//     `offsetEpsilon`), after the part of it that an error of the map explains (the error, fitted
+//     to all views over that radius, with a gain per view, times the centre view's gradient) is
+//     taken out. Views that disagree at their best match (noise, aliasing) are smoothed
 //     (`prefilterSigma`; automatic: stages 2-7 run once, and again on smoothed views when the fine
 //     search's median residual says so, with the noise variance that interpolating between pixels
 //     removes, estimated from that residual, added back to the cost).

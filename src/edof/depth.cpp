@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <string>
 
 #include "core/bilinear.hpp"
@@ -619,6 +620,18 @@ edof::ViewNoise smoothedNoise(double residual, double sigma, const std::vector<S
   return {residual / (1 + kept) * lag0 * lag0, lag1 / lag0};
 }
 
+// A plane's gradient times `scale`, by central differences (one-sided at the borders' clamp).
+void centralDifferences(const float* in, int ns, int nt, float scale, float* dx, float* dy) {
+  for (int y = 0; y < nt; ++y) {
+    const float *row = in + std::size_t(y) * ns, *up = in + std::size_t(std::max(y - 1, 0)) * ns,
+                *down = in + std::size_t(std::min(y + 1, nt - 1)) * ns;
+    for (int x = 0; x < ns; ++x) {
+      dx[std::size_t(y) * ns + x] = 0.5f * scale * (row[std::min(x + 1, ns - 1)] - row[std::max(x - 1, 0)]);
+      dy[std::size_t(y) * ns + x] = 0.5f * scale * (down[x] - up[x]);
+    }
+  }
+}
+
 // The matching light field of DepthExperiment::gradientWeight a: channels sqrt(1 - a) I,
 // sqrt(a) dI/dx, sqrt(a) dI/dy (central differences), so that the squared difference summed over
 // channels is (1 - a) dI^2 + a |d grad I|^2.
@@ -628,22 +641,14 @@ LightField withGradients(const LightField& grey, double weight) {
   LightField out(shape);
   out.metadata = grey.metadata;
   const int ns = grey.ns(), nt = grey.nt();
-  const float intensity = float(std::sqrt(1 - weight)), gradient = float(0.5 * std::sqrt(weight));
+  const float intensity = float(std::sqrt(1 - weight)), gradient = float(std::sqrt(weight));
   parallelFor(0, shape.views(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t view = begin; view < end; ++view) {
       const int u = int(view % grey.nu()), v = int(view / grey.nu());
       const float* in = grey.plane(u, v, 0);
-      float *level = out.plane(u, v, 0), *dx = out.plane(u, v, 1), *dy = out.plane(u, v, 2);
-      for (int y = 0; y < nt; ++y) {
-        const float *row = in + std::size_t(y) * ns, *up = in + std::size_t(std::max(y - 1, 0)) * ns,
-                    *down = in + std::size_t(std::min(y + 1, nt - 1)) * ns;
-        for (int x = 0; x < ns; ++x) {
-          const std::size_t p = std::size_t(y) * ns + x;
-          level[p] = intensity * row[x];
-          dx[p] = gradient * (row[std::min(x + 1, ns - 1)] - row[std::max(x - 1, 0)]);
-          dy[p] = gradient * (down[x] - up[x]);
-        }
-      }
+      float* level = out.plane(u, v, 0);
+      for (std::size_t p = 0; p < grey.shape().viewPixels(); ++p) level[p] = intensity * in[p];
+      centralDifferences(in, ns, nt, gradient, out.plane(u, v, 1), out.plane(u, v, 2));
     }
   });
   return out;
@@ -691,12 +696,76 @@ Image fullResolution(const Image& half, int width, int height) {
   return out;
 }
 
+// The largest map error (pixels per view step) that mapError gives removeViewOffsets to take out:
+// beyond it the fit meets an occlusion edge or no texture, not a small bias.
+constexpr double kOffsetSlopeLimit = 0.5;
+
+// The error of a map by which views were warped onto the reference, per pixel, as the part of
+// each view's difference from the reference that the error explains: `slope(u, v)` (the
+// reference's gradient along the view's baseline, times -1: an error e moves the view's samples by
+// -e (u, v)) times the error, fitted to all views at once by least squares over a box of `radius`,
+// with an offset and a gain per view free in it (a sheen adds to the texture and scales it), so
+// that only texture decides. Clamped to +-kOffsetSlopeLimit.
+template <typename Warp, typename Slope, typename IsReference>
+std::vector<float> mapError(const LightField& grey, const std::vector<float>& reference, int radius, const Warp& warp,
+                            const Slope& slope, const IsReference& isReference) {
+  const int ns = grey.ns(), nt = grey.nt();
+  const std::size_t n = grey.shape().viewPixels();
+  std::vector<float> meanReference(n), meanSquare(n), square(n);
+  boxFilter(reference.data(), meanReference.data(), ns, nt, radius);
+  for (std::size_t i = 0; i < n; ++i) square[i] = reference[i] * reference[i];
+  boxFilter(square.data(), meanSquare.data(), ns, nt, radius);
+  std::vector<double> covariance(n, 0.0), variance(n, 0.0);
+  std::mutex sums;
+  parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> difference(n), g(n), product(n), mean[6];
+    for (auto& m : mean) m.resize(n);
+    std::vector<double> localCovariance(n, 0.0), localVariance(n, 0.0);
+    const auto boxOfProduct = [&](const std::vector<float>& a, const std::vector<float>& b, std::vector<float>& out) {
+      for (std::size_t i = 0; i < n; ++i) product[i] = a[i] * b[i];
+      boxFilter(product.data(), out.data(), ns, nt, radius);
+    };
+    for (std::size_t view = begin; view < end; ++view) {
+      if (isReference(view)) continue;
+      const int u = int(view % grey.nu()), v = int(view / grey.nu());
+      warp(u, v, difference.data());
+      for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
+      slope(u, v, g.data());
+      boxFilter(difference.data(), mean[0].data(), ns, nt, radius);
+      boxFilter(g.data(), mean[1].data(), ns, nt, radius);
+      boxOfProduct(difference, g, mean[2]);
+      boxOfProduct(g, g, mean[3]);
+      boxOfProduct(difference, reference, mean[4]);
+      boxOfProduct(g, reference, mean[5]);
+      for (std::size_t i = 0; i < n; ++i) {
+        // Covariances over the box; the reference's part (the gain) projected out where it varies.
+        const double r = meanReference[i], rr = double(meanSquare[i]) - r * r;
+        const double dg = double(mean[2][i]) - double(mean[0][i]) * mean[1][i];
+        const double gg = double(mean[3][i]) - double(mean[1][i]) * mean[1][i];
+        const double dr = double(mean[4][i]) - double(mean[0][i]) * r, gr = double(mean[5][i]) - double(mean[1][i]) * r;
+        const bool gain = rr > 1e-12;
+        localCovariance[i] += gain ? dg - dr * gr / rr : dg;
+        localVariance[i] += gain ? gg - gr * gr / rr : gg;
+      }
+    }
+    const std::lock_guard<std::mutex> lock(sums);
+    for (std::size_t i = 0; i < n; ++i) covariance[i] += localCovariance[i], variance[i] += localVariance[i];
+  });
+  std::vector<float> error(n, 0.0f);
+  for (std::size_t i = 0; i < n; ++i)
+    if (variance[i] > 0)
+      error[i] = float(std::clamp(covariance[i] / variance[i], -kOffsetSlopeLimit, kOffsetSlopeLimit));
+  return error;
+}
+
 // Each view less its brightness offset from the reference view: their difference once the view is
 // warped onto the reference by `disparity`, averaged by a guided filter that the map steers
 // (`radius`, `epsilon` in squared disparity), so that a brightness that changes smoothly across
 // the aperture (a sheen, devignetting left imperfect) cancels while texture stays, and the offsets
-// of the two sides of an occlusion edge stay apart.
-void removeViewOffsets(LightField& grey, const Image& disparity, int radius, double epsilon) {
+// of the two sides of an occlusion edge stay apart. With `slopeCorrected`, the part of each
+// difference that the map's error explains (mapError) is taken out first: else, on weak texture,
+// the error that a sheen caused in the map passes for part of the offsets and stays.
+void removeViewOffsets(LightField& grey, const Image& disparity, int radius, double epsilon, bool slopeCorrected) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
@@ -709,17 +778,32 @@ void removeViewOffsets(LightField& grey, const Image& disparity, int radius, dou
         out[std::size_t(y) * ns + x] = bilinearSample(plane, ns, nt, x - uc * d, double(y) - vc * d);
       }
   };
-  std::vector<float> reference(n);
+  const auto isReference = [&](std::size_t view) {
+    return int(view % grey.nu()) == referenceU && int(view / grey.nu()) == referenceV;
+  };
+  std::vector<float> reference(n), dx(slopeCorrected ? n : 0), dy(slopeCorrected ? n : 0), error;
   warp(referenceU, referenceV, reference.data());
+  const auto slope = [&](int u, int v, float* out) {
+    const float uc = float(grey.uFromCentre(u)), vc = float(grey.vFromCentre(v));
+    for (std::size_t i = 0; i < n; ++i) out[i] = -(uc * dx[i] + vc * dy[i]);
+  };
+  if (slopeCorrected) {
+    centralDifferences(reference.data(), ns, nt, 1.0f, dx.data(), dy.data());
+    error = mapError(grey, reference, radius, warp, slope, isReference);
+  }
   const edof::GuidedFilter filter(disparity.plane(0), ns, nt, radius, epsilon);
   parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> difference(n), offset(n);
+    std::vector<float> difference(n), offset(n), g(error.size());
     edof::GuidedFilter::Scratch scratch;
     for (std::size_t view = begin; view < end; ++view) {
+      if (isReference(view)) continue;
       const int u = int(view % grey.nu()), v = int(view / grey.nu());
-      if (u == referenceU && v == referenceV) continue;
       warp(u, v, difference.data());
       for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
+      if (slopeCorrected) {
+        slope(u, v, g.data());
+        for (std::size_t i = 0; i < n; ++i) difference[i] -= error[i] * g[i];
+      }
       filter.apply(difference.data(), offset.data(), scratch);
       float* plane = grey.plane(u, v, 0);
       for (std::size_t i = 0; i < n; ++i) plane[i] -= offset[i];
@@ -802,10 +886,13 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     for (double& d : halved) d *= 0.5;
     Image first;
     for (int pass = 0; pass < options.offsetPasses; ++pass) {
-      if (pass > 0) removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4);
+      if (pass > 0)
+        removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4,
+                          experiment.offsetSlopeCorrection);
       first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual).disparity;
     }
-    removeViewOffsets(grey, fullResolution(first, grey.ns(), grey.nt()), options.offsetRadius, options.offsetEpsilon);
+    removeViewOffsets(grey, fullResolution(first, grey.ns(), grey.nt()), options.offsetRadius, options.offsetEpsilon,
+                      experiment.offsetSlopeCorrection);
   }
   DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, {}, &residual);
   map.prefilterSigma = std::max(prefilter, 0.0);

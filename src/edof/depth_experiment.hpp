@@ -41,6 +41,9 @@ struct DepthExperiment {
   // `depth_bench --no-reclaim-cost-check`; without the first round's: `--no-first-round-cost-check`.
   bool reclaimCostCheck = true;
   bool firstRoundCostCheck = true;
+  // The view offsets measured after the part of each view's difference that the map's error
+  // explains is taken out (depth.cpp, removeViewOffsets); off: `depth_bench --no-offset-slope-correction`.
+  bool offsetSlopeCorrection = true;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,
