@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <string>
 
 #include "core/bilinear.hpp"
@@ -620,7 +619,7 @@ edof::ViewNoise smoothedNoise(double residual, double sigma, const std::vector<S
   return {residual / (1 + kept) * lag0 * lag0, lag1 / lag0};
 }
 
-// A plane's gradient times `scale`, by central differences (one-sided at the borders' clamp).
+// A plane's gradient times `scale`, by central differences (the border pixels repeated beyond it).
 void centralDifferences(const float* in, int ns, int nt, float scale, float* dx, float* dy) {
   for (int y = 0; y < nt; ++y) {
     const float *row = in + std::size_t(y) * ns, *up = in + std::size_t(std::max(y - 1, 0)) * ns,
@@ -715,42 +714,52 @@ std::vector<float> mapError(const LightField& grey, const std::vector<float>& re
   boxFilter(reference.data(), meanReference.data(), ns, nt, radius);
   for (std::size_t i = 0; i < n; ++i) square[i] = reference[i] * reference[i];
   boxFilter(square.data(), meanSquare.data(), ns, nt, radius);
-  std::vector<double> covariance(n, 0.0), variance(n, 0.0);
-  std::mutex sums;
-  parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
+  // Sums over the views in an order that the threads do not change (the same map from every run):
+  // views dealt by index to kSumGroups groups, each summed in order, then the groups in order.
+  constexpr std::size_t kSumGroups = 8;
+  std::vector<double> groupCovariance[kSumGroups], groupVariance[kSumGroups];
+  const std::size_t views = grey.shape().views();
+  parallelFor(0, kSumGroups, 1, [&](std::size_t begin, std::size_t end) {
     std::vector<float> difference(n), g(n), product(n), mean[6];
     for (auto& m : mean) m.resize(n);
-    std::vector<double> localCovariance(n, 0.0), localVariance(n, 0.0);
     const auto boxOfProduct = [&](const std::vector<float>& a, const std::vector<float>& b, std::vector<float>& out) {
       for (std::size_t i = 0; i < n; ++i) product[i] = a[i] * b[i];
       boxFilter(product.data(), out.data(), ns, nt, radius);
     };
-    for (std::size_t view = begin; view < end; ++view) {
-      if (isReference(view)) continue;
-      const int u = int(view % grey.nu()), v = int(view / grey.nu());
-      warp(u, v, difference.data());
-      for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
-      slope(u, v, g.data());
-      boxFilter(difference.data(), mean[0].data(), ns, nt, radius);
-      boxFilter(g.data(), mean[1].data(), ns, nt, radius);
-      boxOfProduct(difference, g, mean[2]);
-      boxOfProduct(g, g, mean[3]);
-      boxOfProduct(difference, reference, mean[4]);
-      boxOfProduct(g, reference, mean[5]);
-      for (std::size_t i = 0; i < n; ++i) {
-        // Covariances over the box; the reference's part (the gain) projected out where it varies.
-        const double r = meanReference[i], rr = double(meanSquare[i]) - r * r;
-        const double dg = double(mean[2][i]) - double(mean[0][i]) * mean[1][i];
-        const double gg = double(mean[3][i]) - double(mean[1][i]) * mean[1][i];
-        const double dr = double(mean[4][i]) - double(mean[0][i]) * r, gr = double(mean[5][i]) - double(mean[1][i]) * r;
-        const bool gain = rr > 1e-12;
-        localCovariance[i] += gain ? dg - dr * gr / rr : dg;
-        localVariance[i] += gain ? gg - gr * gr / rr : gg;
+    for (std::size_t group = begin; group < end; ++group) {
+      std::vector<double>& localCovariance = groupCovariance[group];
+      std::vector<double>& localVariance = groupVariance[group];
+      localCovariance.assign(n, 0.0), localVariance.assign(n, 0.0);
+      for (std::size_t view = group; view < views; view += kSumGroups) {
+        if (isReference(view)) continue;
+        const int u = int(view % grey.nu()), v = int(view / grey.nu());
+        warp(u, v, difference.data());
+        for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
+        slope(u, v, g.data());
+        boxFilter(difference.data(), mean[0].data(), ns, nt, radius);
+        boxFilter(g.data(), mean[1].data(), ns, nt, radius);
+        boxOfProduct(difference, g, mean[2]);
+        boxOfProduct(g, g, mean[3]);
+        boxOfProduct(difference, reference, mean[4]);
+        boxOfProduct(g, reference, mean[5]);
+        for (std::size_t i = 0; i < n; ++i) {
+          // Covariances over the box; the reference's part (the gain) projected out where it varies.
+          const double r = meanReference[i], rr = double(meanSquare[i]) - r * r;
+          const double dg = double(mean[2][i]) - double(mean[0][i]) * mean[1][i];
+          const double gg = double(mean[3][i]) - double(mean[1][i]) * mean[1][i];
+          const double dr = double(mean[4][i]) - double(mean[0][i]) * r,
+                       gr = double(mean[5][i]) - double(mean[1][i]) * r;
+          const bool gain = rr > 1e-12;
+          localCovariance[i] += gain ? dg - dr * gr / rr : dg;
+          localVariance[i] += gain ? gg - gr * gr / rr : gg;
+        }
       }
     }
-    const std::lock_guard<std::mutex> lock(sums);
-    for (std::size_t i = 0; i < n; ++i) covariance[i] += localCovariance[i], variance[i] += localVariance[i];
   });
+  std::vector<double> covariance(n, 0.0), variance(n, 0.0);
+  for (std::size_t group = 0; group < kSumGroups; ++group)
+    for (std::size_t i = 0; i < groupCovariance[group].size(); ++i)
+      covariance[i] += groupCovariance[group][i], variance[i] += groupVariance[group][i];
   std::vector<float> error(n, 0.0f);
   for (std::size_t i = 0; i < n; ++i)
     if (variance[i] > 0)
