@@ -21,7 +21,7 @@
 // Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
 //      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--no-first-round-cost-check]
-//      [--no-offset-slope-correction] [--scene TEXT]
+//      [--no-offset-slope-correction] [--no-one-dimensional-gate] [--scene TEXT]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared
@@ -38,6 +38,7 @@
 //   --no-reclaim-cost-check  the occlusion edges without the cost volume's veto
 //   --no-first-round-cost-check  the veto in the later rounds only, not on the first's narrow parts
 //   --no-offset-slope-correction  view offsets measured without taking the map's error out first
+//   --no-one-dimensional-gate  the centre row and column always among the subsets the lowest is taken of
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
@@ -281,6 +282,8 @@ int main(int argc, char** argv) {
       experiment.aggregateSubsetsApart = false;
     } else if (argument == "--no-noise-correction") {
       experiment.noiseCorrection = false;
+    } else if (argument == "--no-one-dimensional-gate") {
+      experiment.oneDimensionalGate = false;
     } else if (argument == "--no-defocus-ceiling") {
       experiment.defocusCeiling = false;
     } else if (argument == "--flat-cleanup") {

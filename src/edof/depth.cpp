@@ -221,15 +221,19 @@ void lowestSubset(const float* first, std::size_t subsets, std::size_t stride, s
 // (ViewNoise; 0 for views matched as given), more than noise explains: a sheen or
 // uneven light that views off the row see and the row does not (the steep, unevenly lit, glossy
 // floor needs the row). Chosen on the development scenes, both sizes better: means of BadPix(0.07)
-// 2.077 -> 1.986 % at 128 px per view, 2.353 -> 2.113 % at 256 (noisy people 18.54 -> 15.00 %).
+// 2.077 -> 1.986 % at 128 px per view, 2.353 -> 2.113 % at 256 (noisy people 18.54 -> 15.00 %;
+// without: `depth_bench --no-one-dimensional-gate`).
 // Measured with temporary switches, not kept: contrast share 0.3, 1: 2.014, 2.042 % at 128; margin
 // 64: 1.969 and 2.133 %; the contrast alone (no margin) breaks that floor (2.89 -> 37.7 % at 128);
 // the gate in the fine search only: 2.094 % at 128.
 constexpr double kOneDimensionalContrast = 0.5, kOneDimensionalNoiseMargin = 16;
 
-// Whether the gate above applies: all four half-apertures and both one-dimensional subsets have
-// views (subsetsWithViews' order puts the halves first).
-bool gatesOneDimensional(const std::vector<int>& subsets) { return subsets == std::vector<int>{0, 1, 2, 3, 4, 5}; }
+// Whether the gate above applies: asked for (`wanted`: DepthExperiment::oneDimensionalGate), and all
+// four half-apertures and both one-dimensional subsets have views (subsetsWithViews' order puts the
+// halves first).
+bool gatesOneDimensional(const std::vector<int>& subsets, bool wanted) {
+  return wanted && subsets == std::vector<int>{0, 1, 2, 3, 4, 5};
+}
 
 // Steps 3 and 5: the lowest aggregated cost per pixel and slice, `slices` planes of n pixels in
 // `lowest` holding the half-apertures' lowest on entry; `oneDimensional`: each such subset's
@@ -302,17 +306,18 @@ void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, 
 // on its own), as the fine search does (refineDisparity), and the one-dimensional subsets join
 // it where joinOneDimensional lets them; else the lowest is taken per pixel first. `ceiling`: the
 // defocus cue capped (defocusEnergy). Labels go in chunks so that only chunk x subsets slices are
-// held besides the volume and the one-dimensional subsets' volumes. Returns cost[l * n + p].
+// held besides the volume and the one-dimensional subsets' volumes; `gate`: joinOneDimensional's
+// (gatesOneDimensional). Returns cost[l * n + p].
 std::vector<float> aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
                                   const edof::GuidedFilter& filter, double defocusWeight, double locking,
-                                  const edof::ViewNoise& noise, bool subsetsApart, bool ceiling) {
+                                  const edof::ViewNoise& noise, bool subsetsApart, bool ceiling, bool gateWanted) {
   const std::size_t n = grey.shape().viewPixels();
   const int labels = int(disparities.size());
   int viewsIn[kHalves];
   const std::vector<int> subsetList =
       subsetsWithViews(starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2), viewsIn);
   const std::size_t subsets = subsetList.size();
-  const bool gate = subsetsApart && gatesOneDimensional(subsetList);
+  const bool gate = subsetsApart && gatesOneDimensional(subsetList, gateWanted);
   // The halves first (gatesOneDimensional), then the one-dimensional subsets, each a whole volume.
   const std::size_t halves = gate ? 4 : subsets;
   std::vector<std::vector<float>> oneDimensional(subsets - halves, std::vector<float>(n * labels));
@@ -395,8 +400,8 @@ edof::FineCostViews fineCostViews(const LightField& grey, const std::vector<Star
 // the cost is made a row of one slice at a time by fineCostRow (fine_cost_row.hpp), SIMD across
 // the row, rather than from shifted rows as correspondenceCost's.
 void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
-                     int steps, double locking, const edof::ViewNoise& noise, bool aggregateHalves, float* curvatureOut,
-                     float* residualOut) {
+                     int steps, double locking, const edof::ViewNoise& noise, bool aggregateHalves, bool gateWanted,
+                     float* curvatureOut, float* residualOut) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
@@ -420,7 +425,7 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
   });
   // Every subset's slices aggregated, then the lowest subset per slice; or the lowest first.
   if (aggregateHalves) aggregatePlanes(filter, subsetCost.data(), subsets.size() * slices, n);
-  const bool gate = aggregateHalves && gatesOneDimensional(subsets);
+  const bool gate = aggregateHalves && gatesOneDimensional(subsets, gateWanted);
   for (int k = 0; k < slices; ++k)
     lowestSubset(subsetCost.data() + std::size_t(k) * n, gate ? 4 : subsets.size(), std::size_t(slices) * n, n,
                  cost.data() + std::size_t(k) * n);
@@ -497,8 +502,9 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // 2. Cost: the correspondence cue over each subset of views, less the defocus cue (the
   // full-aperture photograph at each label, sharpest where it is right); 3. aggregation: guided
   // filter per slice, steered by the reference view; the lowest subset.
-  std::vector<float> cost = aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, noise,
-                                           experiment.aggregateSubsetsApart, experiment.defocusCeiling);
+  std::vector<float> cost =
+      aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, noise, experiment.aggregateSubsetsApart,
+                     experiment.defocusCeiling, experiment.oneDimensionalGate);
 
   // Pixel-major for the optimisation; and the typical depth of a cost minimum (mean over pixels
   // of mean - min), the scale of the penalties and of the confidence.
@@ -625,7 +631,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
       // see far smaller differences of blur (measured on antinous: 1 there is worse than none).
       refineDisparity(grey, refineFilter, map, step / options.refineSteps / double(1 << round), options.refineSteps,
                       0.25 * std::max(experiment.lockingCorrection, 0.0), noise, experiment.refineAggregateHalves,
-                      curvature.data(), residual.data());
+                      experiment.oneDimensionalGate, curvature.data(), residual.data());
       keepInRange();
       // The first round's residual, the one the automatic prefilter's threshold was chosen on.
       if (round == 0) {

@@ -30,6 +30,9 @@ struct DepthExperiment {
   // The defocus cue capped at kDefocusCeiling times the centre view's own (depth.cpp); off:
   // `depth_bench --no-defocus-ceiling`.
   bool defocusCeiling = true;
+  // The centre row and column join the lowest subset only where their cost has contrast or matches
+  // better than noise explains (depth.cpp, joinOneDimensional); off: `depth_bench --no-one-dimensional-gate`.
+  bool oneDimensionalGate = true;
   // The weighted median and the occlusion edges carry disparities along the map's slope
   // (guidedWeightedMedian, reclaimOcclusionEdges); off: `depth_bench --flat-cleanup`.
   bool slantedCleanup = true;
