@@ -306,7 +306,7 @@ void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, 
 // on its own), as the fine search does (refineDisparity), and the one-dimensional subsets join
 // it where joinOneDimensional lets them; else the lowest is taken per pixel first. `ceiling`: the
 // defocus cue capped (defocusEnergy). Labels go in chunks so that only chunk x subsets slices are
-// held besides the volume and the one-dimensional subsets' volumes; `gate`: joinOneDimensional's
+// held besides the volume and the one-dimensional subsets' volumes; `gateWanted`: joinOneDimensional's
 // (gatesOneDimensional). Returns cost[l * n + p].
 std::vector<float> aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
                                   const edof::GuidedFilter& filter, double defocusWeight, double locking,
