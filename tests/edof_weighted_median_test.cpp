@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <random>
-#include <utility>
 #include <vector>
 
 #include "edof/edof_internal.hpp"
@@ -19,27 +18,27 @@ TEST(WeightedMedian, SelectionAgreesWithTheSortingReference) {
   std::uniform_int_distribution<int> size(1, 200), coin(0, 3);
   for (int trial = 0; trial < 5000; ++trial) {
     const int n = trial < 4 ? trial + 1 : size(random);
-    std::vector<std::pair<float, float>> window(n);
-    for (auto& [v, w] : window) {
+    std::vector<float> values(n), weights(n);
+    for (int i = 0; i < n; ++i) {
       // A quarter of the values from a few levels (ties), some weights zero (the guide's table
       // underflows for very unlike neighbours).
-      v = coin(random) == 0 ? float(coin(random)) : value(random);
-      w = coin(random) == 0 ? 0.0f : weight(random);
+      values[i] = coin(random) == 0 ? float(coin(random)) : value(random);
+      weights[i] = coin(random) == 0 ? 0.0f : weight(random);
     }
-    window[0].second = 1.0f;  // the centre pixel always counts fully
+    weights[0] = 1.0f;  // the centre pixel always counts fully
     float total = 0;
-    for (const auto& entry : window) total += entry.second;
-    std::vector<std::pair<float, float>> copy = window;
-    const float expected = weightedMedianSorted(window, total);
-    ASSERT_EQ(weightedMedianSelect(copy, total), expected) << "trial " << trial << ", " << n << " values";
+    for (float w : weights) total += w;
+    const float expected = weightedMedianSorted(values.data(), weights.data(), n, total);
+    ASSERT_EQ(weightedMedianSelect(values.data(), weights.data(), n, total), expected)
+        << "trial " << trial << ", " << n << " values";
   }
 }
 
 TEST(WeightedMedian, HeavyWeightWins) {
-  std::vector<std::pair<float, float>> window = {{5.0f, 0.1f}, {1.0f, 0.1f}, {3.0f, 10.0f}, {2.0f, 0.1f}};
-  EXPECT_EQ(weightedMedianSelect(window, 10.3f), 3.0f);
-  std::vector<std::pair<float, float>> even = {{1.0f, 1.0f}, {2.0f, 1.0f}};
-  EXPECT_EQ(weightedMedianSelect(even, 2.0f), 1.0f);  // the lower one reaches half first
+  std::vector<float> values = {5.0f, 1.0f, 3.0f, 2.0f}, weights = {0.1f, 0.1f, 10.0f, 0.1f};
+  EXPECT_EQ(weightedMedianSelect(values.data(), weights.data(), 4, 10.3f), 3.0f);
+  std::vector<float> even = {1.0f, 2.0f}, equalWeights = {1.0f, 1.0f};
+  EXPECT_EQ(weightedMedianSelect(even.data(), equalWeights.data(), 2, 2.0f), 1.0f);  // the lower one reaches half first
 }
 
 // A guide of two colours split at column `edge`, the same in every channel.

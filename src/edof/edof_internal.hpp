@@ -4,7 +4,6 @@
 
 #include <cstddef>
 #include <functional>
-#include <utility>
 #include <vector>
 
 #include "core/box_filter.hpp"
@@ -60,11 +59,12 @@ class GuidedFilter {
 void globalSmooth(const float* guide, int guideChannels, int width, int height, const float* confidence, float* values,
                   float lambda, float sigma, int iterations);
 
-// Weighted median of (value, weight) pairs, weights >= 0 with a positive total: the smallest value
-// whose cumulative weight in ascending order reaches half the total. Both reorder `window`.
-// The reference sorts; the fast one selects by three-way partitions (weighted_median.cpp).
-float weightedMedianSorted(std::vector<std::pair<float, float>>& window, float total);
-float weightedMedianSelect(std::vector<std::pair<float, float>>& window, float total);
+// Weighted median of n >= 1 (value, weight) pairs, weights >= 0 with a positive total: the smallest
+// value whose cumulative weight in ascending order reaches half the total. The reference sorts a
+// copy; the fast one selects by partitions around a pivot, reordering both arrays
+// (weighted_median.cpp).
+float weightedMedianSorted(const float* values, const float* weights, std::size_t n, float total);
+float weightedMedianSelect(float* values, float* weights, std::size_t n, float total);
 // The local slope of a disparity map, px per view step per pixel along x and y, 0 where none
 // can be trusted (map_slopes.cpp: measured away from jumps, carried to a jump's side from the
 // same surface nearby).

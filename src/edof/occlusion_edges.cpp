@@ -90,7 +90,7 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
     return std::exp(-squares / (2 * kSigma * kSigma));
   };
   parallelFor(0, std::size_t(height), 4, [&](std::size_t begin, std::size_t end) {
-    std::vector<std::pair<float, float>> farther;
+    std::vector<float> farther, fartherWeights;
     for (std::size_t y = begin; y < end; ++y)
       for (int x = 0; x < width; ++x) {
         const std::size_t p = y * width + x;
@@ -98,6 +98,7 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
         float own = 0, fartherWeight = 0;
         int ownVoters = 0;
         farther.clear();
+        fartherWeights.clear();
         for (long yy = std::max(long(y) - kVoterRadius, 0L); yy <= std::min(long(y) + kVoterRadius, long(height) - 1);
              ++yy)
           for (int xx = std::max(x - kVoterRadius, 0); xx <= std::min(x + kVoterRadius, width - 1); ++xx) {
@@ -112,11 +113,12 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
             } else if (carried < input[p] - kJump) {
               const float weight = likeness(p, q);
               fartherWeight += weight;
-              farther.emplace_back(carried, weight);
+              farther.push_back(carried);
+              fartherWeights.push_back(weight);
             }
           }
         if (fartherWeight > own && fartherWeight > kMinimumVotes) {
-          const float to = weightedMedianSelect(farther, fartherWeight);
+          const float to = weightedMedianSelect(farther.data(), fartherWeights.data(), farther.size(), fartherWeight);
           if (!costAllows || costAllows(p, input[p], to, ownVoters)) disparity[p] = to;
         }
       }

@@ -11,7 +11,9 @@
 
 namespace lfcam::edof {
 
-float weightedMedianSorted(std::vector<std::pair<float, float>>& window, float total) {
+float weightedMedianSorted(const float* values, const float* weights, std::size_t n, float total) {
+  std::vector<std::pair<float, float>> window(n);
+  for (std::size_t i = 0; i < n; ++i) window[i] = {values[i], weights[i]};
   std::sort(window.begin(), window.end());
   float running = 0;
   for (const auto& [value, weight] : window) {
@@ -21,38 +23,63 @@ float weightedMedianSorted(std::vector<std::pair<float, float>>& window, float t
   return window.back().first;
 }
 
-float weightedMedianSelect(std::vector<std::pair<float, float>>& window, float total) {
+namespace {
+
+// Keeps, in order, the entries whose value `keep` accepts; returns how many. Branch-free: the
+// comparisons of a median's window are as good as random, and a mispredicted branch per entry
+// cost more than the selection's arithmetic.
+template <class Keep>
+std::size_t compact(float* values, float* weights, std::size_t n, Keep keep) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float value = values[i], weight = weights[i];
+    values[kept] = value;
+    weights[kept] = weight;
+    kept += keep(value) ? 1 : 0;
+  }
+  return kept;
+}
+
+}  // namespace
+
+float weightedMedianSelect(float* values, float* weights, std::size_t n, float total) {
   const float half = 0.5f * total;
-  std::size_t lo = 0, hi = window.size();
-  double below = 0;  // weight of the values known to lie below [lo, hi)
-  while (hi - lo > 1) {
-    const float a = window[lo].first, b = window[(lo + hi) / 2].first, c = window[hi - 1].first;
+  double below = 0;  // weight of the values already known to lie below the window
+  while (n > 1) {
+    const float a = values[0], b = values[n / 2], c = values[n - 1];
     const float pivot = std::max(std::min(a, b), std::min(std::max(a, b), c));  // median of three
-    // Three-way partition: [lo, lt) < pivot, [lt, gt) == pivot, [gt, hi) > pivot.
-    std::size_t lt = lo, i = lo, gt = hi;
-    double lessWeight = 0, equalWeight = 0;
-    while (i < gt) {
-      const float v = window[i].first;
-      if (v < pivot) {
-        lessWeight += window[i].second;
-        std::swap(window[lt++], window[i++]);
-      } else if (v > pivot) {
-        std::swap(window[i], window[--gt]);
-      } else {
-        equalWeight += window[i].second;
-        ++i;
-      }
+    // The weight below and at the pivot, in four sums so that the additions overlap. A value
+    // neither below nor above (a NaN) counts as equal, so a NaN pivot ends the search.
+    double less[4] = {}, equal[4] = {};
+    std::size_t lessCount = 0, greaterCount = 0;
+    const auto tally = [&](std::size_t i, double& lessSum, double& equalSum) {
+      const float value = values[i], weight = weights[i];
+      const bool isLess = value<pivot, isGreater = value> pivot;
+      lessSum += weight * float(isLess);
+      equalSum += weight * float(!isLess && !isGreater);
+      lessCount += isLess;
+      greaterCount += isGreater;
+    };
+    std::size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+      tally(i, less[0], equal[0]);
+      tally(i + 1, less[1], equal[1]);
+      tally(i + 2, less[2], equal[2]);
+      tally(i + 3, less[3], equal[3]);
     }
-    if (below + lessWeight >= half && lt > lo) {
-      hi = lt;  // half the weight is reached below the pivot
-    } else if (below + lessWeight + equalWeight >= half || gt == hi) {
+    for (; i < n; ++i) tally(i, less[0], equal[0]);
+    const double lessWeight = (less[0] + less[1]) + (less[2] + less[3]);
+    const double equalWeight = (equal[0] + equal[1]) + (equal[2] + equal[3]);
+    if (below + lessWeight >= half && lessCount > 0) {
+      n = compact(values, weights, n, [pivot](float v) { return v < pivot; });  // half is reached below
+    } else if (below + lessWeight + equalWeight >= half || greaterCount == 0) {
       return pivot;
     } else {
       below += lessWeight + equalWeight;
-      lo = gt;
+      n = compact(values, weights, n, [pivot](float v) { return v > pivot; });
     }
   }
-  return window[lo].first;
+  return values[0];
 }
 
 void guidedWeightedMedian(const Image& guide, int radius, float sigma, bool slanted, float* disparity) {
@@ -64,34 +91,40 @@ void guidedWeightedMedian(const Image& guide, int radius, float sigma, bool slan
   constexpr int kSteps = 4096;
   std::vector<float> table(kSteps + 1);
   for (int i = 0; i <= kSteps; ++i) table[i] = std::exp(-(float(i) / kSteps) / (2 * sigma * sigma));
+  std::vector<const float*> planes(channels);
+  for (int c = 0; c < channels; ++c) planes[c] = guide.plane(c);
+  const std::size_t side = 2 * std::size_t(std::max(radius, 0)) + 1;
   parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
-    std::vector<std::pair<float, float>> window;
-    for (std::size_t y = begin; y < end; ++y)
+    std::vector<float> values(side * side), weights(side * side);
+    for (std::size_t y = begin; y < end; ++y) {
+      // The window clipped to the image, so that the loops below test no border.
+      const int dyFirst = -std::min(radius, int(y)), dyLast = std::min(radius, nt - 1 - int(y));
       for (int x = 0; x < ns; ++x) {
+        const int dxFirst = -std::min(radius, x), dxLast = std::min(radius, ns - 1 - x);
         const std::size_t p = y * ns + x;
         const float slopeX = slanted ? slopes.x[p] : 0.0f, slopeY = slanted ? slopes.y[p] : 0.0f;
-        window.clear();
+        std::size_t n = 0;
         float total = 0;
-        for (int dy = -radius; dy <= radius; ++dy) {
-          const long yy = long(y) + dy;
-          if (yy < 0 || yy >= nt) continue;
-          for (int dx = -radius; dx <= radius; ++dx) {
-            const int xx = x + dx;
-            if (xx < 0 || xx >= ns) continue;
-            const std::size_t q = std::size_t(yy) * ns + xx;
+        for (int dy = dyFirst; dy <= dyLast; ++dy) {
+          const std::size_t row = std::size_t(long(y) + dy) * ns;
+          for (int dx = dxFirst; dx <= dxLast; ++dx) {
+            const std::size_t q = row + std::size_t(x + dx);
             float squares = 0;
             for (int c = 0; c < channels; ++c) {
-              const float difference = guide.plane(c)[q] - guide.plane(c)[p];
+              const float difference = planes[c][q] - planes[c][p];
               squares += difference * difference;
             }
             if (!(squares < 1.0f)) squares = 1.0f;  // also NaN
             const float weight = table[int(squares * kSteps + 0.5f)];
-            window.emplace_back(input[q] - slopeX * float(dx) - slopeY * float(dy), weight);
+            values[n] = input[q] - slopeX * float(dx) - slopeY * float(dy);
+            weights[n] = weight;
             total += weight;
+            ++n;
           }
         }
-        disparity[p] = weightedMedianSelect(window, total);
+        disparity[p] = weightedMedianSelect(values.data(), weights.data(), n, total);
       }
+    }
   });
 }
 
