@@ -18,7 +18,7 @@ TEST(WeightedMedian, SelectionAgreesWithTheSortingReference) {
   std::uniform_int_distribution<int> size(1, 200), coin(0, 3);
   for (int trial = 0; trial < 5000; ++trial) {
     const int n = trial < 4 ? trial + 1 : size(random);
-    std::vector<float> values(n), weights(n);
+    std::vector<float> values(n + kMedianPadding), weights(n + kMedianPadding);
     for (int i = 0; i < n; ++i) {
       // A quarter of the values from a few levels (ties), some weights zero (the guide's table
       // underflows for very unlike neighbours).
@@ -27,7 +27,7 @@ TEST(WeightedMedian, SelectionAgreesWithTheSortingReference) {
     }
     weights[0] = 1.0f;  // the centre pixel always counts fully
     float total = 0;
-    for (float w : weights) total += w;
+    for (int i = 0; i < n; ++i) total += weights[i];
     const float expected = weightedMedianSorted(values.data(), weights.data(), n, total);
     ASSERT_EQ(weightedMedianSelect(values.data(), weights.data(), n, total), expected)
         << "trial " << trial << ", " << n << " values";
@@ -36,8 +36,10 @@ TEST(WeightedMedian, SelectionAgreesWithTheSortingReference) {
 
 TEST(WeightedMedian, HeavyWeightWins) {
   std::vector<float> values = {5.0f, 1.0f, 3.0f, 2.0f}, weights = {0.1f, 0.1f, 10.0f, 0.1f};
+  values.resize(4 + kMedianPadding), weights.resize(4 + kMedianPadding);
   EXPECT_EQ(weightedMedianSelect(values.data(), weights.data(), 4, 10.3f), 3.0f);
   std::vector<float> even = {1.0f, 2.0f}, equalWeights = {1.0f, 1.0f};
+  even.resize(2 + kMedianPadding), equalWeights.resize(2 + kMedianPadding);
   EXPECT_EQ(weightedMedianSelect(even.data(), equalWeights.data(), 2, 2.0f), 1.0f);  // the lower one reaches half first
 }
 

@@ -61,8 +61,10 @@ void globalSmooth(const float* guide, int guideChannels, int width, int height, 
 
 // Weighted median of n >= 1 (value, weight) pairs, weights >= 0 with a positive total: the smallest
 // value whose cumulative weight in ascending order reaches half the total. The reference sorts a
-// copy; the fast one selects by partitions around a pivot, reordering both arrays
-// (weighted_median.cpp).
+// copy (weighted_median.cpp); the fast one selects by partitions around a pivot, whole vectors at
+// a time (weighted_median_select.cpp), reordering both arrays, and reads up to kMedianPadding
+// floats past the n-th of each (their values do not matter).
+constexpr std::size_t kMedianPadding = 64;  // the widest vector Highway targets, 2048 bits
 float weightedMedianSorted(const float* values, const float* weights, std::size_t n, float total);
 float weightedMedianSelect(float* values, float* weights, std::size_t n, float total);
 // The local slope of a disparity map, px per view step per pixel along x and y, 0 where none

@@ -90,15 +90,15 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
     return std::exp(-squares / (2 * kSigma * kSigma));
   };
   parallelFor(0, std::size_t(height), 4, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> farther, fartherWeights;
+    constexpr std::size_t kVoters = (2 * kVoterRadius + 1) * (2 * kVoterRadius + 1);
+    std::vector<float> farther(kVoters + kMedianPadding), fartherWeights(kVoters + kMedianPadding);
     for (std::size_t y = begin; y < end; ++y)
       for (int x = 0; x < width; ++x) {
         const std::size_t p = y * width + x;
         if (distance[p] > band) continue;
         float own = 0, fartherWeight = 0;
         int ownVoters = 0;
-        farther.clear();
-        fartherWeights.clear();
+        std::size_t fartherVoters = 0;
         for (long yy = std::max(long(y) - kVoterRadius, 0L); yy <= std::min(long(y) + kVoterRadius, long(height) - 1);
              ++yy)
           for (int xx = std::max(x - kVoterRadius, 0); xx <= std::min(x + kVoterRadius, width - 1); ++xx) {
@@ -113,12 +113,12 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
             } else if (carried < input[p] - kJump) {
               const float weight = likeness(p, q);
               fartherWeight += weight;
-              farther.push_back(carried);
-              fartherWeights.push_back(weight);
+              farther[fartherVoters] = carried;
+              fartherWeights[fartherVoters++] = weight;
             }
           }
         if (fartherWeight > own && fartherWeight > kMinimumVotes) {
-          const float to = weightedMedianSelect(farther.data(), fartherWeights.data(), farther.size(), fartherWeight);
+          const float to = weightedMedianSelect(farther.data(), fartherWeights.data(), fartherVoters, fartherWeight);
           if (!costAllows || costAllows(p, input[p], to, ownVoters)) disparity[p] = to;
         }
       }

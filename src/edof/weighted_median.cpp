@@ -1,6 +1,5 @@
-// Weighted median of a window (edof_internal.hpp): the sorting reference and the selection used
-// by the depth map's guided median, which is O(n) on average instead of O(n log n); and that
-// guided median.
+// Weighted median of a window (edof_internal.hpp): the sorting reference of the selection
+// (weighted_median_select.cpp), and the depth map's guided median.
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -23,65 +22,6 @@ float weightedMedianSorted(const float* values, const float* weights, std::size_
   return window.back().first;
 }
 
-namespace {
-
-// Keeps, in order, the entries whose value `keep` accepts; returns how many. Branch-free: the
-// comparisons of a median's window are as good as random, and a mispredicted branch per entry
-// cost more than the selection's arithmetic.
-template <class Keep>
-std::size_t compact(float* values, float* weights, std::size_t n, Keep keep) {
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const float value = values[i], weight = weights[i];
-    values[kept] = value;
-    weights[kept] = weight;
-    kept += keep(value) ? 1 : 0;
-  }
-  return kept;
-}
-
-}  // namespace
-
-float weightedMedianSelect(float* values, float* weights, std::size_t n, float total) {
-  const float half = 0.5f * total;
-  double below = 0;  // weight of the values already known to lie below the window
-  while (n > 1) {
-    const float a = values[0], b = values[n / 2], c = values[n - 1];
-    const float pivot = std::max(std::min(a, b), std::min(std::max(a, b), c));  // median of three
-    // The weight below and at the pivot, in four sums so that the additions overlap. A value
-    // neither below nor above (a NaN) counts as equal, so a NaN pivot ends the search.
-    double less[4] = {}, equal[4] = {};
-    std::size_t lessCount = 0, greaterCount = 0;
-    const auto tally = [&](std::size_t i, double& lessSum, double& equalSum) {
-      const float value = values[i], weight = weights[i];
-      const bool isLess = value<pivot, isGreater = value> pivot;
-      lessSum += weight * float(isLess);
-      equalSum += weight * float(!isLess && !isGreater);
-      lessCount += isLess;
-      greaterCount += isGreater;
-    };
-    std::size_t i = 0;
-    for (; i + 4 <= n; i += 4) {
-      tally(i, less[0], equal[0]);
-      tally(i + 1, less[1], equal[1]);
-      tally(i + 2, less[2], equal[2]);
-      tally(i + 3, less[3], equal[3]);
-    }
-    for (; i < n; ++i) tally(i, less[0], equal[0]);
-    const double lessWeight = (less[0] + less[1]) + (less[2] + less[3]);
-    const double equalWeight = (equal[0] + equal[1]) + (equal[2] + equal[3]);
-    if (below + lessWeight >= half && lessCount > 0) {
-      n = compact(values, weights, n, [pivot](float v) { return v < pivot; });  // half is reached below
-    } else if (below + lessWeight + equalWeight >= half || greaterCount == 0) {
-      return pivot;
-    } else {
-      below += lessWeight + equalWeight;
-      n = compact(values, weights, n, [pivot](float v) { return v > pivot; });
-    }
-  }
-  return values[0];
-}
-
 void guidedWeightedMedian(const Image& guide, int radius, float sigma, bool slanted, float* disparity) {
   const int ns = guide.width(), nt = guide.height(), channels = guide.channels();
   const std::vector<float> input(disparity, disparity + std::size_t(ns) * nt);
@@ -95,7 +35,7 @@ void guidedWeightedMedian(const Image& guide, int radius, float sigma, bool slan
   for (int c = 0; c < channels; ++c) planes[c] = guide.plane(c);
   const std::size_t side = 2 * std::size_t(std::max(radius, 0)) + 1;
   parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> values(side * side), weights(side * side);
+    std::vector<float> values(side * side + kMedianPadding), weights(side * side + kMedianPadding);
     for (std::size_t y = begin; y < end; ++y) {
       // The window clipped to the image, so that the loops below test no border.
       const int dyFirst = -std::min(radius, int(y)), dyLast = std::min(radius, nt - 1 - int(y));
