@@ -11,6 +11,7 @@
 #include "core/bilinear.hpp"
 #include "core/parabola.hpp"
 #include "core/quadratic_filter.hpp"
+#include "core/target_clones.hpp"
 #include "edof/depth_experiment.hpp"
 #include "edof/edof_internal.hpp"
 #include "edof/fine_cost_row.hpp"
@@ -235,29 +236,46 @@ bool gatesOneDimensional(const std::vector<int>& subsets, bool wanted) {
   return wanted && subsets == std::vector<int>{0, 1, 2, 3, 4, 5};
 }
 
+// Pixels [0, count) of `slices` planes n floats apart: each one's lowest value over the planes,
+// and its contrast (mean less lowest). Loops over pixels inside loops over planes, which the
+// compiler vectorises; per pixel the sums run over the planes in order.
+LFCAM_CLONES void lowestAndContrast(const float* __restrict planes, int slices, std::size_t n, std::size_t count,
+                                    float* __restrict least, double* __restrict contrast) {
+  for (std::size_t i = 0; i < count; ++i) least[i] = planes[i], contrast[i] = 0;
+  for (int k = 0; k < slices; ++k) {
+    const float* plane = planes + std::size_t(k) * n;
+    for (std::size_t i = 0; i < count; ++i) contrast[i] += plane[i], least[i] = std::min(least[i], plane[i]);
+  }
+  for (std::size_t i = 0; i < count; ++i) contrast[i] = contrast[i] / slices - least[i];
+}
+
 // Steps 3 and 5: the lowest aggregated cost per pixel and slice, `slices` planes of n pixels in
 // `lowest` holding the half-apertures' lowest on entry; `oneDimensional`: each such subset's
 // planes, n floats apart. Each joins the lowest where the gate above lets it.
 void joinOneDimensional(float* lowest, const std::vector<const float*>& oneDimensional, int slices, std::size_t n,
                         double noiseVariance) {
-  const auto lowestAndContrast = [&](const float* planes, std::size_t p) {
-    double sum = 0;
-    float least = planes[p];
-    for (int k = 0; k < slices; ++k)
-      sum += planes[std::size_t(k) * n + p], least = std::min(least, planes[std::size_t(k) * n + p]);
-    return std::pair<double, double>{least, sum / slices - least};
-  };
-  parallelFor(0, n, 1024, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) {
-      auto [lowestSoFar, halvesContrast] = lowestAndContrast(lowest, p);
+  constexpr std::size_t kBlock = 256;  // pixels at a time: the slices' rows of a block stay in cache
+  parallelFor(0, (n + kBlock - 1) / kBlock, 4, [&](std::size_t begin, std::size_t end) {
+    float halvesLowest[kBlock], ownLowest[kBlock];
+    double halvesContrast[kBlock], ownContrast[kBlock], lowestSoFar[kBlock];
+    bool joins[kBlock];
+    for (std::size_t block = begin; block < end; ++block) {
+      const std::size_t first = block * kBlock, count = std::min(kBlock, n - first);
+      lowestAndContrast(lowest + first, slices, n, count, halvesLowest, halvesContrast);
+      for (std::size_t i = 0; i < count; ++i) lowestSoFar[i] = halvesLowest[i];
       for (const float* planes : oneDimensional) {
-        const auto [ownLowest, ownContrast] = lowestAndContrast(planes, p);
-        if (ownContrast < kOneDimensionalContrast * halvesContrast &&
-            lowestSoFar - ownLowest <= kOneDimensionalNoiseMargin * noiseVariance)
-          continue;
-        lowestSoFar = std::min(lowestSoFar, ownLowest);
-        for (int k = 0; k < slices; ++k)
-          lowest[std::size_t(k) * n + p] = std::min(lowest[std::size_t(k) * n + p], planes[std::size_t(k) * n + p]);
+        lowestAndContrast(planes + first, slices, n, count, ownLowest, ownContrast);
+        for (std::size_t i = 0; i < count; ++i) {
+          joins[i] = !(ownContrast[i] < kOneDimensionalContrast * halvesContrast[i] &&
+                       lowestSoFar[i] - ownLowest[i] <= kOneDimensionalNoiseMargin * noiseVariance);
+          if (joins[i]) lowestSoFar[i] = std::min(lowestSoFar[i], double(ownLowest[i]));
+        }
+        for (int k = 0; k < slices; ++k) {
+          float* target = lowest + std::size_t(k) * n + first;
+          const float* own = planes + std::size_t(k) * n + first;
+          for (std::size_t i = 0; i < count; ++i)
+            if (joins[i]) target[i] = std::min(target[i], own[i]);
+        }
       }
     }
   });
