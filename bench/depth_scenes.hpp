@@ -25,7 +25,8 @@ struct DepthScene {
 // curved surface (half an elliptic cylinder of 32 facets), a grey column bulging far towards the camera before a grey
 // wall, thin bars before a wall, fine texture, weak texture (4 % contrast); the grazing floor, the surface and the weak
 // texture's near card also glossy (brightness -10 % to +10 % across the aperture); the surface also varnished (a mirror
-// reflectance of 0.04 rising towards grazing angles, Fresnel); narrow near parts (below). 9x9 views of `size` x `size`.
+// reflectance of 0.04 rising towards grazing angles, Fresnel); narrow near parts (below). The simulator's: 12 x 12
+// views of `size` x `size` (synth: 9 x 9).
 std::vector<DepthScene> developmentScenes(int size = 128);
 
 // Narrow near parts before a far wall, as a statue's fingers and arm: strips 3 to 8 pixels wide

@@ -228,5 +228,43 @@ TEST(SimulateOptics, SameLightPerUnitAreaInLightFieldAndConventionalModes) {
   }
 }
 
+// With an even number of views (f/2.8 before f/4 microlenses: 12 x 12) there is no centre view;
+// the depth map's view ((views - 1) / 2 each way) lies half a view step off the axis. Its truth,
+// idealDepthOfView, must put a near card's edges where that view's image has them; the central
+// ray's truth (idealDepth) is off by half the card's disparity there, a whole pixel on some rows
+// and columns (the bench's development scores were once measured against it).
+TEST(SimulateOptics, DepthOfAViewHasItsImagesEdges) {
+  const int size = 32;
+  CameraModel camera = CameraModel::paperPrototype(9 * size, 9 * size);
+  camera.microlenses->pitchMm = 9 * camera.sensor.pixelPitchMm;
+  camera.microlenses->focalLengthMm = 4 * camera.microlenses->pitchMm;
+  camera.mainLens.focusDistanceMm = 5000;
+  const double near = 2750, half = 0.5 * camera.sensor.widthMm() * near / camera.mainLens.imageDistanceMm();
+  Scene scene;
+  scene.camera = camera;
+  Plane card;  // white, the middle third of the view, before a black background
+  card.centreMm = {0.1 * half, 0.05 * half, near};
+  card.widthMm = card.heightMm = 0.66 * half;
+  card.texture.light = card.texture.dark = {1, 1, 1};
+  scene.planes.push_back(card);
+  auto lightField = idealLightField(scene, camera);
+  ASSERT_TRUE(lightField) << lightField.error().message;
+  ASSERT_EQ(lightField->nu(), 12);
+  const int reference = (lightField->nu() - 1) / 2;
+  auto ofView = idealDepthOfView(scene, camera, reference, reference);
+  auto central = idealDepth(scene, camera);
+  ASSERT_TRUE(ofView && central);
+  int disagreeView = 0, disagreeCentral = 0;
+  for (int t = 0; t < lightField->nt(); ++t)
+    for (int s = 0; s < lightField->ns(); ++s) {
+      const bool bright = lightField->at(reference, reference, s, t, 1) > 0.5f;
+      disagreeView += bright != (ofView->at(s, t, 0) < 2 * near);
+      disagreeCentral += bright != (central->at(s, t, 0) < 2 * near);
+    }
+  EXPECT_EQ(disagreeView, 0);
+  EXPECT_GT(disagreeCentral, 0);
+  EXPECT_FALSE(idealDepthOfView(scene, camera, 12, 0));  // no such view
+}
+
 }  // namespace
 }  // namespace lfcam

@@ -75,6 +75,11 @@ Result<LightField> idealLightFieldBoxFiltered(const Scene& scene, const CameraMo
 // Depth (mm along z to the first surface hit; +infinity when nothing is hit) of the central ray
 // through each microlens centre, in the (s, t) layout of idealLightField.
 Result<Image> idealDepth(const Scene& scene, const CameraModel& camera);
+// The same from the lens point of view (u, v) of idealLightField: the truth for a depth map of that
+// view. With an even number of views there is no centre view, and the one lfcam depth maps,
+// ((views - 1) / 2, (views - 1) / 2), lies half a view step off the axis, where a surface at
+// disparity d is seen d / 2 pixels aside of where the central ray sees it.
+Result<Image> idealDepthOfView(const Scene& scene, const CameraModel& camera, int u, int v);
 
 struct CaptureOutputs {
   bool white = true;                  // white.png

@@ -130,7 +130,10 @@ Result<LightField> idealLightFieldBoxFiltered(const Scene& scene, const CameraMo
   return lf;
 }
 
-Result<Image> idealDepth(const Scene& scene, const CameraModel& camera) {
+namespace {
+
+// Depth of the rays from the lens point (lensX, lensY) mm through each microlens centre.
+Result<Image> depthFromLensPoint(const Scene& scene, const CameraModel& camera, double lensX, double lensY) {
   if (!camera.microlenses) return makeError(ErrorCode::Usage, "ideal depth: the camera has no microlens array");
   const auto counts = camera.microlensCounts();
   const int columns = counts[0], rows = counts[1];
@@ -141,10 +144,27 @@ Result<Image> idealDepth(const Scene& scene, const CameraModel& camera) {
       for (int i = 0; i < columns; ++i) {
         const auto centre = camera.microlensCentreMm(i, int(j));
         depth.at(columns - 1 - i, rows - 1 - int(j), 0) =
-            float(prepared.traceThroughLens(0, 0, centre[0], centre[1]).depth);
+            float(prepared.traceThroughLens(lensX, lensY, centre[0], centre[1]).depth);
       }
   });
   return depth;
+}
+
+}  // namespace
+
+Result<Image> idealDepth(const Scene& scene, const CameraModel& camera) {
+  return depthFromLensPoint(scene, camera, 0, 0);
+}
+
+Result<Image> idealDepthOfView(const Scene& scene, const CameraModel& camera, int u, int v) {
+  if (!camera.microlenses) return makeError(ErrorCode::Usage, "ideal depth: the camera has no microlens array");
+  const ViewGrid grid = viewGrid(camera);
+  if (u < 0 || v < 0 || u >= grid.views || v >= grid.views)
+    return makeError(ErrorCode::Usage, "ideal depth: view (" + std::to_string(u) + ", " + std::to_string(v) +
+                                           ") is outside the " + std::to_string(grid.views) + " x " +
+                                           std::to_string(grid.views) + " views");
+  const double centre = 0.5 * (grid.views - 1);
+  return depthFromLensPoint(scene, camera, (u - centre) * grid.stepMm, (v - centre) * grid.stepMm);
 }
 
 namespace {
