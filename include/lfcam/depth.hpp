@@ -5,7 +5,10 @@
 // Input: a light field of at least 2 views (light_field.hpp), its colour or luminance.
 // Output: disparity ("slope") in pixels of (s, t) per view step, positive nearer than the plane
 // in focus at capture, ns x nt in the pixel grid of the aperture centre; a confidence in [0, 1];
-// distance in mm from the main lens when the optics are known (thin lens, Equation 6).
+// distance in mm from the main lens when the optics are known (thin lens, Equation 6). The map is
+// that of the centre view ((nu - 1) / 2, (nv - 1) / 2): with an even number of views, half a view
+// step before the aperture's centre, where a surface at disparity d lies d / 2 pixels aside (the
+// simulator's truth for it: idealDepthOfView, simulate.hpp).
 //
 // Stages (src/edof/depth.cpp, the same numbers; why each is there: docs/design.md, "Depth"):
 //  1. Range: candidate disparities ("labels") evenly over [disparityMin, disparityMax] (options,
