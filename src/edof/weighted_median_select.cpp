@@ -1,10 +1,10 @@
 // The weighted median's selection (edof_internal.hpp) in Highway: each pass tallies the weight
-// below and at a pivot over whole vectors of the window, in lanes of doubles (sums of float
-// weights that far apart as the guide's table gives are not exact in float), and compacts the
-// side that holds the median with CompressBlendedStore, without a branch per entry (the
-// comparisons of a median's window are as good as random). Its reference is weightedMedianSorted (weighted_median.cpp).
-// foreach_target.h compiles this file once per instruction set; HWY_DYNAMIC_DISPATCH picks one on
-// the first call.
+// below and at a pivot over whole vectors of the window, in lanes of doubles (the guide's table
+// gives weights so far apart that their sums in float are not exact), and compacts the side that
+// holds the median with CompressBlendedStore, without a branch per entry (the comparisons of a
+// median's window are as good as random). Its reference is weightedMedianSorted
+// (weighted_median.cpp). foreach_target.h compiles this file once per instruction set;
+// HWY_DYNAMIC_DISPATCH picks one on the first call.
 #include <algorithm>
 #include <cstddef>
 
