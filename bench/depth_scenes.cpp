@@ -78,8 +78,7 @@ DepthScene simulated(std::string name, const Scene& scene, const CameraModel& mo
   if (!lightField) throw std::runtime_error(name + ": the simulator failed");
   // The truth of the view lfcam depth maps: with this camera's 12 x 12 views, half a view step off
   // the axis (simulate.hpp).
-  const int reference = (lightField->nu() - 1) / 2;
-  auto depth = idealDepthOfView(scene, model, reference, (lightField->nv() - 1) / 2);
+  auto depth = idealDepthOfView(scene, model, (lightField->nu() - 1) / 2, (lightField->nv() - 1) / 2);
   if (!depth) throw std::runtime_error(name + ": the simulator failed");
   const Optics& optics = *lightField->metadata.optics;
   Image disparity(depth->width(), depth->height(), 1);
