@@ -1,7 +1,9 @@
-// HugePageAllocator: the allocator of the large sample buffers (LightField). Buffers of 4 MiB or
-// more are aligned to 2 MiB and marked for transparent huge pages (madvise), because a refocus
-// reads hundreds of short row runs scattered over the whole light field: with 4 KiB pages nearly
-// every run begins with a TLB miss, with 2 MiB pages a few hundred entries cover it all. Smaller
+// HugePageAllocator: the allocator of the large sample buffers (LightField, depth's cost volumes
+// edof::CostVolume). Buffers of 4 MiB or more are aligned to 2 MiB and marked for transparent huge
+// pages (madvise), because a refocus reads hundreds of short row runs scattered over the whole
+// light field: with 4 KiB pages nearly every run begins with a TLB miss, with 2 MiB pages a few
+// hundred entries cover it all; and faulting in and zeroing 4 KiB at a time was a third of depth's
+// CPU (design.md, speed). Smaller
 // buffers come from operator new as usual. Where the kernel refuses huge pages, memory is the
 // same as before, only aligned. Large buffers are first touched on every thread.
 // A buffer may ask for ordinary pages instead (Pages): on a virtual machine whose host takes

@@ -84,7 +84,8 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
     // Cost = minus the focus measure relative to its mean over the stack, pixel-major for the
     // optimisation: relative, so that faint texture (a backdrop) is judged by how its own
     // sharpness varies, not swamped by the penalties that strong texture elsewhere sets.
-    std::vector<float> volume(n * slices), focus(n), mean(n, 0.0f);
+    edof::CostVolume volume(n * slices);
+    std::vector<float> focus(n), mean(n, 0.0f);
     for (int k = 0; k < slices; ++k) {
       focusMeasure(refocus(lightField, result.slopes[k]), std::max(options.focusRadius, 0), focus.data());
       for (std::size_t i = 0; i < n; ++i) volume[i * slices + k] = focus[i], mean[i] += focus[i] / slices;
@@ -107,7 +108,7 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
           edof::luminance(lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2));
       // The centre view is one ray per pixel and may be noisy; its edges matter only when they
       // stand well above that noise, hence the larger edge scale than depth's.
-      const std::vector<float> summed =
+      const edof::CostVolume summed =
           edof::semiGlobalMatching(volume, ns, nt, slices, guide.plane(0), float(0.03 * scale * options.smoothness),
                                    float(0.6 * scale * options.smoothness), /*edgeScale=*/0.05f);
       edof::winnerTakesAll(summed, ns, nt, slices, continuous.data());

@@ -326,9 +326,9 @@ void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, 
 // defocus cue capped (defocusEnergy). Labels go in chunks so that only chunk x subsets slices are
 // held besides the volume and the one-dimensional subsets' volumes; `gateWanted`: joinOneDimensional's
 // (gatesOneDimensional). Returns cost[l * n + p].
-std::vector<float> aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
-                                  const edof::GuidedFilter& filter, double defocusWeight, double locking,
-                                  const edof::ViewNoise& noise, bool subsetsApart, bool ceiling, bool gateWanted) {
+edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
+                                const edof::GuidedFilter& filter, double defocusWeight, double locking,
+                                const edof::ViewNoise& noise, bool subsetsApart, bool ceiling, bool gateWanted) {
   const std::size_t n = grey.shape().viewPixels();
   const int labels = int(disparities.size());
   int viewsIn[kHalves];
@@ -338,9 +338,11 @@ std::vector<float> aggregatedCost(const LightField& grey, const std::vector<doub
   const bool gate = subsetsApart && gatesOneDimensional(subsetList, gateWanted);
   // The halves first (gatesOneDimensional), then the one-dimensional subsets, each a whole volume.
   const std::size_t halves = gate ? 4 : subsets;
-  std::vector<std::vector<float>> oneDimensional(subsets - halves, std::vector<float>(n * labels));
+  std::vector<edof::CostVolume> oneDimensional;
+  for (std::size_t j = halves; j < subsets; ++j) oneDimensional.emplace_back(n * labels);
   constexpr int kChunk = 4;
-  std::vector<float> cost(n * labels), planes(std::size_t(kChunk) * subsets * n), energy(n), centreEnergy(n);
+  edof::CostVolume cost(n * labels), planes(std::size_t(kChunk) * subsets * n);
+  std::vector<float> energy(n), centreEnergy(n);
   if (defocusWeight > 0 && ceiling)
     edof::squaredLaplacian(grey.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2), centreEnergy.data());
   for (int first = 0; first < labels; first += kChunk) {
@@ -427,9 +429,9 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
   int viewsIn[kHalves];
   const std::vector<int> subsets = subsetsWithViews(views, viewsIn);
   const int slices = 2 * steps + 1;
-  std::vector<float> cost(n * slices);
+  edof::CostVolume cost(n * slices);
   // Subset i and slice k in plane i * slices + k.
-  std::vector<float> subsetCost(subsets.size() * slices * n);
+  edof::CostVolume subsetCost(subsets.size() * slices * n);
   const SecondDifferences secondDiff =
       locking > 0 ? secondDifferences(grey.plane(referenceU, referenceV, 0), ns, nt) : SecondDifferences{};
   const edof::FineCostViews fineViews = fineCostViews(grey, views, subsets, viewsIn, locking, secondDiff, noise);
@@ -520,13 +522,13 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // 2. Cost: the correspondence cue over each subset of views, less the defocus cue (the
   // full-aperture photograph at each label, sharpest where it is right); 3. aggregation: guided
   // filter per slice, steered by the reference view; the lowest subset.
-  std::vector<float> cost =
+  edof::CostVolume cost =
       aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, noise, experiment.aggregateSubsetsApart,
                      experiment.defocusCeiling, experiment.oneDimensionalGate);
 
   // Pixel-major for the optimisation; and the typical depth of a cost minimum (mean over pixels
   // of mean - min), the scale of the penalties and of the confidence.
-  std::vector<float> volume(n * labels);
+  edof::CostVolume volume(n * labels);
   parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
     for (std::size_t p = begin; p < end; ++p)
       for (int l = 0; l < labels; ++l) volume[p * labels + l] = cost[std::size_t(l) * n + p];
@@ -572,7 +574,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     // A small step penalty: slanted surfaces climb one label at a time (the fine search below
     // then smooths the steps); a large one for jumps, lowered across intensity edges.
     const float p1 = float(0.01 * scale * options.smoothness), p2 = float(0.6 * scale * options.smoothness);
-    const std::vector<float> summed =
+    const edof::CostVolume summed =
         edof::semiGlobalMatching(volume, ns, nt, labels, guide.plane(0), p1, p2, /*edgeScale=*/0.01f);
     edof::winnerTakesAll(summed, ns, nt, labels, label.data());
     // Between labels: the parabola through the aggregated (not optimised) cost around the

@@ -8,10 +8,16 @@
 
 #include "core/box_filter.hpp"
 #include "core/target_clones.hpp"
+#include "lfcam/huge_page_allocator.hpp"
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
 
 namespace lfcam::edof {
+
+// A cost volume or a stack of cost slices: tens to hundreds of MiB, written once and read many
+// times, so on huge pages (huge_page_allocator.hpp); it comes zeroed. With 4 KiB pages a third of
+// `lfcam depth`'s time on antinous went to faulting in and zeroing these buffers (design.md, speed).
+using CostVolume = std::vector<float, HugePageAllocator<float>>;
 
 // Row y of `plane` (ns x nt) shifted by (shiftX, shiftY), sampled bilinearly with positions
 // clamped to the plane, as bilinearSample (core/bilinear.hpp) at (x + shiftX, y + shiftY) but a
@@ -106,12 +112,12 @@ void reclaimOcclusionEdges(const Image& guide, int band, bool slanted, float* di
 //   Lr(p, l) = C(p, l) + min(Lr(p-r, l), Lr(p-r, l+-1) + P1, min_k Lr(p-r, k) + P2(p)) - min_k Lr(p-r, k)
 // with P2(p) = max(P1, P2 / (1 + |I(p) - I(p-r)| / edgeScale)) lowered across edges of `guide`.
 // Returns the summed volume, same layout.
-std::vector<float> semiGlobalMatching(const std::vector<float>& cost, int width, int height, int labels,
-                                      const float* guide, float p1, float p2, float edgeScale);
+CostVolume semiGlobalMatching(const CostVolume& cost, int width, int height, int labels, const float* guide, float p1,
+                              float p2, float edgeScale);
 
 // Per pixel: argmin over labels with a parabola through its neighbours: a continuous label in
 // [0, labels - 1].
-void winnerTakesAll(const std::vector<float>& volume, int width, int height, int labels, float* label);
+void winnerTakesAll(const CostVolume& volume, int width, int height, int labels, float* label);
 
 // Laplacian-pyramid (multi-band) blending of Burt and Adelson 1983, accumulated one source at a
 // time so that no stack needs to be held: add(image, weight) for every source whose weights

@@ -40,10 +40,10 @@ LFCAM_CLONES void startPath(const float* __restrict cost, float* __restrict cur,
 
 }  // namespace
 
-std::vector<float> semiGlobalMatching(const std::vector<float>& cost, int width, int height, int labels,
-                                      const float* guide, float p1, float p2, float edgeScale) {
+CostVolume semiGlobalMatching(const CostVolume& cost, int width, int height, int labels, const float* guide, float p1,
+                              float p2, float edgeScale) {
   const std::size_t L = std::size_t(labels);
-  std::vector<float> sum(cost.size(), 0.0f);
+  CostVolume sum(cost.size());
   auto jumpPenalty = [&](std::size_t p, std::size_t q) {
     const float step = std::abs(guide[p] - guide[q]);
     return std::max(p1, p2 / (1.0f + step / edgeScale));
@@ -96,7 +96,7 @@ std::vector<float> semiGlobalMatching(const std::vector<float>& cost, int width,
   return sum;
 }
 
-void winnerTakesAll(const std::vector<float>& volume, int width, int height, int labels, float* label) {
+void winnerTakesAll(const CostVolume& volume, int width, int height, int labels, float* label) {
   const std::size_t L = std::size_t(labels);
   parallelFor(0, std::size_t(width) * height, 4096, [&](std::size_t begin, std::size_t end) {
     for (std::size_t p = begin; p < end; ++p) {
