@@ -24,7 +24,9 @@
 //      [--no-offset-slope-correction] [--no-one-dimensional-gate] [--scene TEXT]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
-//                       each scene keeping its own range: how candidate defaults are compared
+//                       each scene keeping its own range: how candidate defaults are compared. Given
+//                       more than once, each scene is scored with each file in turn (its row named
+//                       with the file's stem), the scenes simulated once
 //   --development-only  the table without antinous, for choosing settings (it is held out)
 //   --size N            the development scenes at N x N pixels per view (default 128)
 //   --scene TEXT        only the development scenes whose name contains TEXT
@@ -48,7 +50,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "depth_scenes.hpp"
 #include "edof/depth_experiment.hpp"
@@ -200,6 +204,12 @@ lfcam::Image steepSlantsOnly(const lfcam::Image& truth) {
   return steep;
 }
 
+// A set of settings the table is printed with, and its name in the rows.
+struct Candidate {
+  std::string label;
+  lfcam::DepthOptions options;
+};
+
 // One row of the scores table.
 void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam::Image& truth, double seconds) {
   auto scores = lfcam::scoreHci(depth.disparity, truth);
@@ -215,11 +225,12 @@ void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam
     std::printf(" %6s %8s\n", "0", "-");
 }
 
-// Every scene's HCI scores with today's defaults (disparity_scores.hpp; 15-pixel border; bumpiness
-// on the planes of the ground truth): the development scenes, on which defaults are chosen, then
-// HCI antinous, held out: never used to choose a parameter.
-// With `folder` not empty, each scene's disparity, truth and centre view are written there.
-void printScores(const lfcam::DepthOptions& options, const lfcam::edof::DepthExperiment& experiment, bool heldOut,
+// Every scene's HCI scores with each of `candidates` (disparity_scores.hpp; 15-pixel border;
+// bumpiness on the planes of the ground truth): the development scenes, on which defaults are
+// chosen, then HCI antinous, held out: never used to choose a parameter. With more than one
+// candidate, each row is named with its label. With `folder` not empty, each scene's disparity,
+// truth and centre view are written there.
+void printScores(const std::vector<Candidate>& candidates, const lfcam::edof::DepthExperiment& experiment, bool heldOut,
                  const std::string& folder, int size, const std::string& only) {
   auto write = [&](const std::string& scene, const lfcam::Image& disparity, const lfcam::Image& truth,
                    const lfcam::LightField& lightField) {
@@ -235,33 +246,41 @@ void printScores(const lfcam::DepthOptions& options, const lfcam::edof::DepthExp
   };
   std::printf("%-28s %8s %8s %9s %9s %7s %9s %9s %8s %6s %8s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100",
               "bumpiness", "seconds", "residual", "prefilter", "farther", "steep", "steep BP");
+  const auto rowName = [&](const std::string& scene, const Candidate& candidate) {
+    return candidates.size() > 1 ? scene + " [" + candidate.label + "]" : scene;
+  };
   for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes(size)) {
     if (scene.name.find(only) == std::string::npos) continue;
-    const auto start = std::chrono::steady_clock::now();
-    lfcam::DepthOptions sceneOptions = options;
-    sceneOptions.disparityMin = scene.disparityMin;
-    sceneOptions.disparityMax = scene.disparityMax;
-    auto depth = lfcam::edof::estimateDepth(scene.lightField, sceneOptions, experiment);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (depth) printRow(scene.name, *depth, scene.disparity, seconds);
-    if (depth) write(scene.name, depth->disparity, scene.disparity, scene.lightField);
+    for (const Candidate& candidate : candidates) {
+      const auto start = std::chrono::steady_clock::now();
+      lfcam::DepthOptions sceneOptions = candidate.options;
+      sceneOptions.disparityMin = scene.disparityMin;
+      sceneOptions.disparityMax = scene.disparityMax;
+      auto depth = lfcam::edof::estimateDepth(scene.lightField, sceneOptions, experiment);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const std::string name = rowName(scene.name, candidate);
+      if (depth) printRow(name, *depth, scene.disparity, seconds);
+      if (depth) write(name, depth->disparity, scene.disparity, scene.lightField);
+    }
   }
   if (!heldOut) return;
   auto truth = lfcam::readImage(kFolder + "/gt_disp_lowres.pfm");
   if (!truth) return (void)std::printf("hci-antinous (held out): not found in %s\n", kFolder.c_str());
-  const auto start = std::chrono::steady_clock::now();
   const lfcam::LightField& lightField = antinous();
-  auto depth = lfcam::edof::estimateDepth(lightField, options, experiment);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (depth) printRow("hci-antinous (held out)", *depth, *truth, seconds);
-  if (depth) write("hci-antinous", depth->disparity, *truth, lightField);
+  for (const Candidate& candidate : candidates) {
+    const auto start = std::chrono::steady_clock::now();
+    auto depth = lfcam::edof::estimateDepth(lightField, candidate.options, experiment);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (depth) printRow(rowName("hci-antinous (held out)", candidate), *depth, *truth, seconds);
+    if (depth) write(rowName("hci-antinous", candidate), depth->disparity, *truth, lightField);
+  }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   // The table's own flags, taken out before the benchmark library reads the rest.
-  lfcam::DepthOptions options;
+  std::vector<Candidate> candidates;
   lfcam::edof::DepthExperiment experiment;
   bool heldOut = true;
   std::string folder, only;
@@ -299,14 +318,18 @@ int main(int argc, char** argv) {
     } else if (argument == "--high-pass" && i + 1 < argc) {
       experiment.highPassRadius = std::atoi(argv[++i]);
     } else if (argument == "--options" && i + 1 < argc) {
-      if (auto read = lfcam::readDepthOptions(argv[++i], options); !read)
+      const std::filesystem::path file = argv[++i];
+      Candidate candidate{file.stem().string(), {}};
+      if (auto read = lfcam::readDepthOptions(file, candidate.options); !read)
         return std::fprintf(stderr, "depth_bench: %s\n", read.error().message.c_str()), 2;
+      candidates.push_back(std::move(candidate));
     } else {
       argv[kept++] = argv[i];
     }
   }
   argc = kept;
-  printScores(options, experiment, heldOut, folder, size, only);
+  if (candidates.empty()) candidates.push_back({"defaults", {}});
+  printScores(candidates, experiment, heldOut, folder, size, only);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
