@@ -281,7 +281,7 @@ void bindPipeline(py::module_& m) {
       py::arg("clamp") = false,
       "The view of a pinhole at (u, v) view steps from the centre, moved along the axis by beta (Equation 7).");
 
-  py::class_<DepthMap>(m, "DepthMap", "A disparity map of the aperture centre and its confidence.")
+  py::class_<DepthMap>(m, "DepthMap", "A disparity map of the centre view and its confidence.")
       .def_readonly("disparity", &DepthMap::disparity)  // a view: kept alive by its DepthMap
       .def_readonly("confidence", &DepthMap::confidence)
       .def_readonly("disparity_min", &DepthMap::disparityMin)

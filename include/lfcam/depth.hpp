@@ -1,10 +1,10 @@
-// Depth from a light field: the disparity seen through the centre of the aperture, from the two
+// Depth from a light field: the disparity seen from its centre view, from the two
 // cues a plenoptic camera offers (Adelson and Wang 1992; Ng et al. 2005, section 5.2). Scores
 // against a ground truth: disparity_scores.hpp. Settings by name: depth_knobs.hpp. In 3D: point_cloud.hpp.
 //
 // Input: a light field of at least 2 views (light_field.hpp), its colour or luminance.
 // Output: disparity ("slope") in pixels of (s, t) per view step, positive nearer than the plane
-// in focus at capture, ns x nt in the pixel grid of the aperture centre; a confidence in [0, 1];
+// in focus at capture, ns x nt in the pixel grid of the centre view; a confidence in [0, 1];
 // distance in mm from the main lens when the optics are known (thin lens, Equation 6). The map is
 // that of the centre view ((nu - 1) / 2, (nv - 1) / 2): with an even number of views, half a view
 // step before the aperture's centre, where a surface at disparity d lies d / 2 pixels aside (the

@@ -28,7 +28,7 @@ void addDepthCommand(CLI::App& app, Job& job) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
-      "depth", "disparity map of the aperture centre (pixels per view step), and distance when the optics are known");
+      "depth", "disparity map of the centre view (pixels per view step), and distance when the optics are known");
   addInputOptions(*command, options->input);
   command->add_option("-o,--output", options->output, "disparity map (.pfm as the HCI benchmark, .exr, .tif)")
       ->required();

@@ -25,7 +25,7 @@ void addEdofCommand(CLI::App& app, Job& job) {
   addInputOptions(*command, options->input);
   command->add_option("-o,--output", options->output, "output image (.png, .tif, .exr, .jpg, .pfm)")->required();
   addBitDepthOption(*command, options->bitDepth);
-  command->add_option("--depth", options->depth, "disparity map of the aperture centre (as `lfcam depth` writes)");
+  command->add_option("--depth", options->depth, "disparity map of the centre view (as `lfcam depth` writes)");
   command->add_option("--slices-png", options->labels, "the slope chosen per pixel, colour-mapped, for people");
   command->add_option("--min", options->edof.disparityMin, "smallest slope of the focal stack");
   command->add_option("--max", options->edof.disparityMax, "largest slope of the focal stack");

@@ -114,7 +114,7 @@ void addRefocusCommand(CLI::App& app, Job& job) {
       "from the main lens (needs optics); the blur beyond grows as a lens focused at the range's end blurs it");
   command
       ->add_option("--depth", options->depthMap,
-                   "with --focus-range: disparity map of the aperture centre (as `lfcam depth` writes; default: "
+                   "with --focus-range: disparity map of the centre view (as `lfcam depth` writes; default: "
                    "estimated on the way with lfcam depth's defaults)")
       ->needs(focusRange);
   focusRange->excludes(slope)->excludes(alpha)->excludes(focusAt)->excludes(focusPlane)->excludes(tilt);
