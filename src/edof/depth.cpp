@@ -38,17 +38,27 @@ struct StarView {
   int halves = 0;         // bit h set: the view is in half-aperture h
 };
 
+// View steps of view (u, v) from the point the views are matched at: the aperture centre, or with
+// `fromReference` the reference view ((nu - 1) / 2, (nv - 1) / 2; DepthExperiment::matchAtReference).
+// They differ with an even number of views.
+double stepsU(const LightField& lightField, int u, bool fromReference) {
+  return fromReference ? u - (lightField.nu() - 1) / 2 : lightField.uFromCentre(u);
+}
+double stepsV(const LightField& lightField, int v, bool fromReference) {
+  return fromReference ? v - (lightField.nv() - 1) / 2 : lightField.vFromCentre(v);
+}
+
 // The views compared with the reference: the star through the reference view (its row, its
 // column, both diagonals). A star sees every edge orientation from both sides with a third of
 // the views of the full aperture.
-std::vector<StarView> starViews(const LightField& lightField, int referenceU, int referenceV) {
+std::vector<StarView> starViews(const LightField& lightField, int referenceU, int referenceV, bool fromReference) {
   std::vector<StarView> views;
   for (int v = 0; v < lightField.nv(); ++v)
     for (int u = 0; u < lightField.nu(); ++u) {
       if (u == referenceU && v == referenceV) continue;
       const int du = u - referenceU, dv = v - referenceV;
       if (du != 0 && dv != 0 && std::abs(du) != std::abs(dv)) continue;
-      StarView view{u, v, lightField.uFromCentre(u), lightField.vFromCentre(v), 0};
+      StarView view{u, v, stepsU(lightField, u, fromReference), stepsV(lightField, v, fromReference), 0};
       if (du < 0) view.halves |= 1;
       if (du > 0) view.halves |= 2;
       if (dv < 0) view.halves |= 4;
@@ -117,11 +127,12 @@ std::vector<int> subsetsWithViews(const std::vector<StarView>& views, int (&view
 // (subsetsWithViews' order). `locking` scales the interpolation-bias term removed (0: none); the
 // noise variance that interpolation removes is added back (ViewNoise, interpolation_terms.hpp).
 void correspondenceCost(const LightField& grey, const std::vector<double>& disparities, int labelBegin, int labelEnd,
-                        double locking, const edof::ViewNoise& noise, float* out) {
+                        double locking, const edof::ViewNoise& noise, bool fromReference, float* out) {
   const int ns = grey.ns(), nt = grey.nt();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
-  const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
-  const double referenceUc = grey.uFromCentre(referenceU), referenceVc = grey.vFromCentre(referenceV);
+  const std::vector<StarView> views = starViews(grey, referenceU, referenceV, fromReference);
+  const double referenceUc = stepsU(grey, referenceU, fromReference),
+               referenceVc = stepsV(grey, referenceV, fromReference);
   const std::size_t n = grey.shape().viewPixels();
   // The second differences only feed the interpolation-bias term.
   const SecondDifferences secondDiff =
@@ -328,12 +339,13 @@ void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, 
 // (gatesOneDimensional). Returns cost[l * n + p].
 edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
                                 const edof::GuidedFilter& filter, double defocusWeight, double locking,
-                                const edof::ViewNoise& noise, bool subsetsApart, bool ceiling, bool gateWanted) {
+                                const edof::ViewNoise& noise, bool subsetsApart, bool ceiling, bool gateWanted,
+                                bool fromReference) {
   const std::size_t n = grey.shape().viewPixels();
   const int labels = int(disparities.size());
   int viewsIn[kHalves];
   const std::vector<int> subsetList =
-      subsetsWithViews(starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2), viewsIn);
+      subsetsWithViews(starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2, fromReference), viewsIn);
   const std::size_t subsets = subsetList.size();
   const bool gate = subsetsApart && gatesOneDimensional(subsetList, gateWanted);
   // The halves first (gatesOneDimensional), then the one-dimensional subsets, each a whole volume.
@@ -347,7 +359,7 @@ edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double
     edof::squaredLaplacian(grey.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2), centreEnergy.data());
   for (int first = 0; first < labels; first += kChunk) {
     const int last = std::min(labels, first + kChunk);
-    correspondenceCost(grey, disparities, first, last, locking, noise, planes.data());
+    correspondenceCost(grey, disparities, first, last, locking, noise, fromReference, planes.data());
     if (!subsetsApart)
       for (int l = first; l < last; ++l)
         lowestSubset(planes.data() + std::size_t(l - first) * subsets * n, subsets, n, n,
@@ -386,13 +398,14 @@ edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double
 // counting in the subsets (subsetsWithViews' order) of its halves.
 edof::FineCostViews fineCostViews(const LightField& grey, const std::vector<StarView>& views,
                                   const std::vector<int>& subsets, const int (&viewsIn)[kHalves], double locking,
-                                  const SecondDifferences& secondDiff, const edof::ViewNoise& noise) {
+                                  const SecondDifferences& secondDiff, const edof::ViewNoise& noise,
+                                  bool fromReference) {
   edof::FineCostViews out{.ns = grey.ns(), .nt = grey.nt(), .channels = grey.channels()};
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const auto add = [&](int u, int v, unsigned inSubsets) {
     for (int c = 0; c < grey.channels(); ++c) out.planes.push_back(grey.plane(u, v, c));
-    out.uc.push_back(grey.uFromCentre(u));
-    out.vc.push_back(grey.vFromCentre(v));
+    out.uc.push_back(stepsU(grey, u, fromReference));
+    out.vc.push_back(stepsV(grey, v, fromReference));
     out.subsets.push_back(inSubsets);
   };
   add(referenceU, referenceV, 0);
@@ -421,11 +434,11 @@ edof::FineCostViews fineCostViews(const LightField& grey, const std::vector<Star
 // the row, rather than from shifted rows as correspondenceCost's.
 void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
                      int steps, double locking, const edof::ViewNoise& noise, bool aggregateHalves, bool gateWanted,
-                     float* curvatureOut, float* residualOut) {
+                     bool fromReference, float* curvatureOut, float* residualOut) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
-  const std::vector<StarView> views = starViews(grey, referenceU, referenceV);
+  const std::vector<StarView> views = starViews(grey, referenceU, referenceV, fromReference);
   int viewsIn[kHalves];
   const std::vector<int> subsets = subsetsWithViews(views, viewsIn);
   const int slices = 2 * steps + 1;
@@ -434,7 +447,8 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
   edof::CostVolume subsetCost(subsets.size() * slices * n);
   const SecondDifferences secondDiff =
       locking > 0 ? secondDifferences(grey.plane(referenceU, referenceV, 0), ns, nt) : SecondDifferences{};
-  const edof::FineCostViews fineViews = fineCostViews(grey, views, subsets, viewsIn, locking, secondDiff, noise);
+  const edof::FineCostViews fineViews =
+      fineCostViews(grey, views, subsets, viewsIn, locking, secondDiff, noise, fromReference);
   parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
     std::vector<float*> out(subsets.size());
     for (std::size_t y = begin; y < end; ++y)
@@ -524,7 +538,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // filter per slice, steered by the reference view; the lowest subset.
   edof::CostVolume cost =
       aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, noise, experiment.aggregateSubsetsApart,
-                     experiment.defocusCeiling, experiment.oneDimensionalGate);
+                     experiment.defocusCeiling, experiment.oneDimensionalGate, experiment.matchAtReference);
 
   // Pixel-major for the optimisation; and the typical depth of a cost minimum (mean over pixels
   // of mean - min), the scale of the penalties and of the confidence.
@@ -651,7 +665,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
       // see far smaller differences of blur (measured on antinous: 1 there is worse than none).
       refineDisparity(grey, refineFilter, map, step / options.refineSteps / double(1 << round), options.refineSteps,
                       0.25 * std::max(experiment.lockingCorrection, 0.0), noise, experiment.refineAggregateHalves,
-                      experiment.oneDimensionalGate, curvature.data(), residual.data());
+                      experiment.oneDimensionalGate, experiment.matchAtReference, curvature.data(), residual.data());
       keepInRange();
       // The first round's residual, the one the automatic prefilter's threshold was chosen on.
       if (round == 0) {
@@ -865,13 +879,14 @@ std::vector<float> mapError(const LightField& grey, const std::vector<float>& re
 // of the two sides of an occlusion edge stay apart. With `slopeCorrected`, the part of each
 // difference that the map's error explains (mapError) is taken out first: else, on weak texture,
 // the error that a sheen caused in the map passes for part of the offsets and stays.
-void removeViewOffsets(LightField& grey, const Image& disparity, int radius, double epsilon, bool slopeCorrected) {
+void removeViewOffsets(LightField& grey, const Image& disparity, int radius, double epsilon, bool slopeCorrected,
+                       bool fromReference) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const auto warp = [&](int u, int v, float* out) {
     const float* plane = grey.plane(u, v, 0);
-    const double uc = grey.uFromCentre(u), vc = grey.vFromCentre(v);
+    const double uc = stepsU(grey, u, fromReference), vc = stepsV(grey, v, fromReference);
     for (int y = 0; y < nt; ++y)
       for (int x = 0; x < ns; ++x) {
         const double d = disparity.at(x, y, 0);
@@ -884,7 +899,7 @@ void removeViewOffsets(LightField& grey, const Image& disparity, int radius, dou
   std::vector<float> reference(n), dx(slopeCorrected ? n : 0), dy(slopeCorrected ? n : 0), error;
   warp(referenceU, referenceV, reference.data());
   const auto slope = [&](int u, int v, float* out) {
-    const float uc = float(grey.uFromCentre(u)), vc = float(grey.vFromCentre(v));
+    const float uc = float(stepsU(grey, u, fromReference)), vc = float(stepsV(grey, v, fromReference));
     for (std::size_t i = 0; i < n; ++i) out[i] = -(uc * dx[i] + vc * dy[i]);
   };
   if (slopeCorrected) {
@@ -988,11 +1003,11 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     for (int pass = 0; pass < options.offsetPasses; ++pass) {
       if (pass > 0)
         removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4,
-                          experiment.offsetSlopeCorrection);
+                          experiment.offsetSlopeCorrection, experiment.matchAtReference);
       first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual).disparity;
     }
     removeViewOffsets(grey, fullResolution(first, grey.ns(), grey.nt()), options.offsetRadius, options.offsetEpsilon,
-                      experiment.offsetSlopeCorrection);
+                      experiment.offsetSlopeCorrection, experiment.matchAtReference);
   }
   DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, {}, &residual);
   map.prefilterSigma = std::max(prefilter, 0.0);
@@ -1004,7 +1019,8 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     const double asGiven = map.viewResidual;
     const edof::ViewNoise noise =
         experiment.noiseCorrection
-            ? smoothedNoise(asGiven, kNoisyPrefilterSigma, starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2))
+            ? smoothedNoise(asGiven, kNoisyPrefilterSigma,
+                            starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2, experiment.matchAtReference))
             : edof::ViewNoise{};
     map = depthStages(colours, grey, guide, disparities, options, experiment, noise, &residual);
     map.prefilterSigma = kNoisyPrefilterSigma;
