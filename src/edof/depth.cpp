@@ -705,15 +705,20 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
 // kNoisyPrefilterSigma, chosen on the development scenes (`depth_bench` prints both per scene).
 constexpr double kNoisyResidual = 4e-5, kNoisyPrefilterSigma = 0.55;
 
+// The share of a view's noise variance that bilinear sampling keeps, V kept(fx) kept(fy), averaged
+// over the labels: with the fractions of the shifts spread evenly, 2/3 along an axis the view is
+// shifted on (`uc`, `vc` view steps from where the views are matched) and 1 along one it is not.
+double meanKept(double uc, double vc) { return (uc != 0 ? 2.0 / 3 : 1.0) * (vc != 0 ? 2.0 / 3 : 1.0); }
+
 // The noise of views smoothed by a Gaussian of `sigma`, from `residual`, the median cost of their
-// match as given: at the right disparity, the noise variance V of the reference's sample plus that
-// of an interpolated view's, V kept(fx) kept(fy). With the fractions of the shifts spread evenly,
-// kept averages 2/3 along an axis the view is shifted on and 1 along one it is not, so the residual
-// is V (1 + the mean of those products over the star's views). Smoothing multiplies the variance
-// by the sum of the squared taps along each axis and correlates neighbours.
-edof::ViewNoise smoothedNoise(double residual, double sigma, const std::vector<StarView>& views) {
+// match as given: at the right disparity, the noise variance V kept by the reference's samples
+// (`referenceKept`: 1 unless it is resampled, as with an even number of views matched at the
+// aperture centre) plus that kept by an interpolated view's, so the residual is V (referenceKept +
+// the mean kept over the star's views). Smoothing multiplies the variance by the sum of the squared
+// taps along each axis and correlates neighbours.
+edof::ViewNoise smoothedNoise(double residual, double sigma, const std::vector<StarView>& views, double referenceKept) {
   double kept = 0;
-  for (const StarView& view : views) kept += (view.uc != 0 ? 2.0 / 3 : 1.0) * (view.vc != 0 ? 2.0 / 3 : 1.0);
+  for (const StarView& view : views) kept += meanKept(view.uc, view.vc);
   kept /= double(std::max<std::size_t>(views.size(), 1));
   const std::vector<float> taps = edof::gaussianTaps(sigma);
   double lag0 = 0, lag1 = 0;
@@ -721,7 +726,7 @@ edof::ViewNoise smoothedNoise(double residual, double sigma, const std::vector<S
     lag0 += double(taps[i]) * taps[i];
     if (i + 1 < taps.size()) lag1 += double(taps[i]) * taps[i + 1];
   }
-  return {residual / (1 + kept) * lag0 * lag0, lag1 / lag0};
+  return {residual / (referenceKept + kept) * lag0 * lag0, lag1 / lag0};
 }
 
 // A plane's gradient times `scale`, by central differences (the border pixels repeated beyond it).
@@ -1017,10 +1022,12 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   if (prefilter < 0 && residual > kNoisyResidual) {
     blurViews(grey, kNoisyPrefilterSigma);
     const double asGiven = map.viewResidual;
+    const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
+    const bool atReference = experiment.matchAtReference;
     const edof::ViewNoise noise =
         experiment.noiseCorrection
-            ? smoothedNoise(asGiven, kNoisyPrefilterSigma,
-                            starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2, experiment.matchAtReference))
+            ? smoothedNoise(asGiven, kNoisyPrefilterSigma, starViews(grey, referenceU, referenceV, atReference),
+                            meanKept(stepsU(grey, referenceU, atReference), stepsV(grey, referenceV, atReference)))
             : edof::ViewNoise{};
     map = depthStages(colours, grey, guide, disparities, options, experiment, noise, &residual);
     map.prefilterSigma = kNoisyPrefilterSigma;
