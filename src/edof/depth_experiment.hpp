@@ -50,7 +50,7 @@ struct DepthExperiment {
   // Views matched at the reference view ((nu - 1) / 2, (nv - 1) / 2), the grid of the guides and of
   // the map, rather than at the aperture centre, half a view step away with an even number of
   // views (the same with an odd number): `depth_bench --match-at-reference`. Development means
-  // 1.689 -> 1.358 % at 128 px but 1.970 -> 2.291 % at 256 (noisy thin bars 2.84 -> 7.32, glossy
+  // 1.685 -> 1.358 % at 128 px but 1.903 -> 2.291 % at 256 (noisy thin bars 4.43 -> 7.32, glossy
   // weak texture 3.12 -> 6.09), with the defaults chosen for matching at the aperture centre.
   bool matchAtReference = false;
 };
