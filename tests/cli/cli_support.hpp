@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,32 @@ inline CommandResult runLfcam(const std::vector<std::string>& args, const std::f
   result.err = readBytes(errPath);
   std::filesystem::remove(outPath);
   std::filesystem::remove(errPath);
+  return result;
+}
+
+// The example ending `lfcam COMMAND --help`, split into words (examples quote nothing), with its
+// paths under ../shared/data/ pointed at the shared data; empty when the help has none.
+inline std::vector<std::string> helpExample(const std::string& command, const TempDir& dir) {
+  const auto help = runLfcam({command, "--help"}, dir.path());
+  EXPECT_EQ(help.exitStatus, 0) << help.err;
+  const std::string marker = "Example (from the repository's root):\n  ";
+  const auto at = help.out.find(marker);
+  if (at == std::string::npos) return {};
+  const auto begin = at + marker.size();
+  std::istringstream line(help.out.substr(begin, help.out.find('\n', begin) - begin));
+  const std::string shared = "../shared/data/";
+  std::vector<std::string> words;
+  for (std::string word; line >> word;)
+    words.push_back(word.rfind(shared, 0) == 0 ? (sharedDataDir() / word.substr(shared.size())).string() : word);
+  return words;
+}
+
+// Runs an example's words (after "lfcam") in `dir`, where it writes its outputs.
+inline CommandResult runExample(const std::vector<std::string>& words, const TempDir& dir) {
+  const auto home = std::filesystem::current_path();
+  std::filesystem::current_path(dir.path());
+  auto result = runLfcam(std::vector<std::string>(words.begin() + 1, words.end()), dir.path());
+  std::filesystem::current_path(home);
   return result;
 }
 

@@ -1,9 +1,9 @@
 // What lfcam says about its commands: the list printed by `lfcam` alone, the nearest command to a
-// mistyped one, and the example ending every command's --help, each of which is run here on the
-// real data (so an example that stops working fails a test).
+// mistyped one, and the example ending every command's --help, each of which is run on the real
+// data, here or by its command's tests (so an example that stops working fails a test).
 #include <gtest/gtest.h>
 
-#include <sstream>
+#include <algorithm>
 
 #include "cli/cli_support.hpp"
 
@@ -43,50 +43,46 @@ TEST(CommandHelp, ViewHelpDescribesThePagesControls) {
   EXPECT_NE(help.out.find("Example (from the repository's root):\n  lfcam view"), std::string::npos);
 }
 
-// The example line of `lfcam COMMAND --help`, split into words (examples quote nothing).
-std::vector<std::string> exampleOf(const std::string& command, const TempDir& dir) {
-  const auto help = runLfcam({command, "--help"}, dir.path());
-  EXPECT_EQ(help.exitStatus, 0) << help.err;
-  const std::string marker = "Example (from the repository's root):\n  ";
-  const auto at = help.out.find(marker);
-  if (at == std::string::npos) return {};
-  std::istringstream line(
-      help.out.substr(at + marker.size(), help.out.find('\n', at + marker.size()) - at - marker.size()));
-  std::vector<std::string> words;
-  for (std::string word; line >> word;) words.push_back(word);
-  return words;
+TEST(CommandHelp, EveryCommandEndsWithAnExampleOfItself) {
+  TempDir dir;
+  for (const auto& command : kCommands) {
+    const auto words = helpExample(command, dir);
+    ASSERT_GE(words.size(), 2u) << command << " --help has no example";
+    EXPECT_EQ(words[0], "lfcam");
+    EXPECT_EQ(words[1], command);
+  }
 }
 
+// Each example runs. Not here: `view` serves until stopped (the viewer's own tests run it); the
+// examples of `demo` and `experiment` are run by those commands' tests, which also check what they
+// write (commands_test.cpp, experiment_commands_test.cpp), so that none runs twice.
 class CommandExample : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(CommandExample, HelpEndsWithAnExampleThatRuns) {
+TEST_P(CommandExample, RunsFromTheRepositorysRoot) {
   TempDir dir;
-  const auto words = exampleOf(GetParam(), dir);
+  const auto words = helpExample(GetParam(), dir);
   ASSERT_GE(words.size(), 2u) << GetParam() << " --help has no example";
-  EXPECT_EQ(words[0], "lfcam");
-  EXPECT_EQ(words[1], GetParam());
-  if (GetParam() == "view") GTEST_SKIP() << "the viewer serves until stopped; its own tests run it";
-  std::vector<std::string> args(words.begin() + 1, words.end());
-  bool needsData = false;
-  for (auto& arg : args)
-    if (arg.rfind("../shared/data/", 0) == 0) {
-      arg = (sharedDataDir() / arg.substr(std::string("../shared/data/").size())).string();
-      needsData = true;
-    }
+  const bool needsData = std::any_of(
+      words.begin(), words.end(), [](const std::string& word) { return word.rfind(sharedDataDir().string(), 0) == 0; });
   if (needsData && !std::filesystem::exists(sharedDataDir()))
     GTEST_SKIP() << "real data not found at " << sharedDataDir() << " (set LFCAM_DATA_DIR to run this example)";
-  const auto home = std::filesystem::current_path();  // the example writes where it runs
-  std::filesystem::current_path(dir.path());
-  const auto result = runLfcam(args, dir.path());
-  std::filesystem::current_path(home);
+  const auto result = runExample(words, dir);
   EXPECT_EQ(result.exitStatus, 0) << GetParam() << ": " << result.err;
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryCommand, CommandExample, ::testing::ValuesIn(kCommands), [](const auto& info) {
-  std::string name = info.param;
-  for (char& c : name) c = c == '-' ? '_' : c;
-  return name;
-});
+std::vector<std::string> commandsWhoseExampleRunsHere() {
+  std::vector<std::string> commands;
+  for (const auto& command : kCommands)
+    if (command != "view" && command != "demo" && command != "experiment") commands.push_back(command);
+  return commands;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryCommand, CommandExample, ::testing::ValuesIn(commandsWhoseExampleRunsHere()),
+                         [](const auto& instance) {
+                           std::string name = instance.param;
+                           for (char& c : name) c = c == '-' ? '_' : c;
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace lfcam::test

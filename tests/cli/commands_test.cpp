@@ -134,11 +134,16 @@ TEST(Cli, RefocusBySlopeAndByAlpha) {
   EXPECT_FALSE(fs::exists(dir / "b.png"));
 }
 
-TEST(Cli, DemoWritesAPageAndItsPictures) {
+// The example of `lfcam demo --help`, run: it writes a page and every picture the page shows.
+TEST(Cli, DemoExampleWritesAPageAndItsPictures) {
   test::TempDir dir;
-  const auto result = runLfcam({"demo", "-o", (dir / "demo").string()}, dir.path());
+  const auto words = test::helpExample("demo", dir);
+  ASSERT_EQ(words.size(), 4u);
+  ASSERT_EQ(words[2], "-o");
+  const fs::path out = dir / words[3];
+  const auto result = test::runExample(words, dir);
   ASSERT_EQ(result.exitStatus, 0) << result.err;
-  const std::string page = test::readBytes(dir / "demo" / "index.html");
+  const std::string page = test::readBytes(out / "index.html");
   ASSERT_FALSE(page.empty());
   // Every picture the page shows exists.
   std::size_t at = 0;
@@ -146,11 +151,11 @@ TEST(Cli, DemoWritesAPageAndItsPictures) {
   while ((at = page.find("src=\"", at)) != std::string::npos) {
     at += 5;
     const std::string name = page.substr(at, page.find('"', at) - at);
-    EXPECT_TRUE(fs::exists(dir / "demo" / name)) << name;
+    EXPECT_TRUE(fs::exists(out / name)) << name;
     ++pictures;
   }
   EXPECT_GE(pictures, 5);
-  EXPECT_TRUE(fs::exists(dir / "demo" / "lightfield.lf.h5"));
+  EXPECT_TRUE(fs::exists(out / "lightfield.lf.h5"));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // lfcam experiment NAME --quick: every report is written whole and its numbers are in range.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -13,11 +14,9 @@ namespace {
 namespace fs = std::filesystem;
 using test::runLfcam;
 
-// Runs the experiment, checks the report's files, returns results.json.
-nlohmann::json runQuick(const std::string& name, const test::TempDir& dir) {
-  const fs::path out = dir / name;
-  const auto result = runLfcam({"experiment", name, "-o", out.string(), "--quick"}, dir.path());
-  EXPECT_EQ(result.exitStatus, 0) << result.err;
+// Checks the report's files in `out`, returns results.json.
+nlohmann::json readReport(const fs::path& out) {
+  const std::string name = out.filename().string();
   for (const char* file : {"report.md", "report.html", "results.json"})
     EXPECT_TRUE(fs::exists(out / file)) << name << ": " << file;
   bool csv = false, plot = false;
@@ -30,6 +29,14 @@ nlohmann::json runQuick(const std::string& name, const test::TempDir& dir) {
   EXPECT_TRUE(plot) << name;
   const std::string text = test::readBytes(out / "results.json");
   return nlohmann::json::parse(text, nullptr, false);
+}
+
+// Runs the experiment quickly, checks the report's files, returns results.json.
+nlohmann::json runQuick(const std::string& name, const test::TempDir& dir) {
+  const fs::path out = dir / name;
+  const auto result = runLfcam({"experiment", name, "-o", out.string(), "--quick"}, dir.path());
+  EXPECT_EQ(result.exitStatus, 0) << result.err;
+  return readReport(out);
 }
 
 TEST(CliExperiment, RefocusLimitBeatsConventionalF4ByAWideMargin) {
@@ -63,9 +70,18 @@ TEST(CliExperiment, SnrGrowsWithApertureAndTheLightFieldWins) {
 }
 
 // Section 4.2: refocused sharpness grows with the pixels under each microlens, close to a line.
-TEST(CliExperiment, SharpnessGrowsWithN) {
+// Run as the example of `lfcam experiment --help` (the quick run of this experiment) gives it.
+TEST(CliExperiment, ExampleShowsSharpnessGrowingWithN) {
   test::TempDir dir;
-  const auto r = runQuick("sharpness-vs-n", dir);
+  const auto words = test::helpExample("experiment", dir);
+  ASSERT_GE(words.size(), 4u);
+  ASSERT_EQ(words[2], "sharpness-vs-n");
+  ASSERT_NE(std::find(words.begin(), words.end(), "--quick"), words.end());
+  const auto output = std::find(words.begin(), words.end(), "-o");
+  ASSERT_LT(output + 1, words.end());
+  const auto result = test::runExample(words, dir);
+  EXPECT_EQ(result.exitStatus, 0) << result.err;
+  const auto r = readReport(dir / *(output + 1));
   ASSERT_TRUE(r.contains("slope") && r.contains("r2")) << r.dump();
   EXPECT_EQ(r["n"].size(), 4u);
   EXPECT_GT(r["slope"].get<double>(), 0);
