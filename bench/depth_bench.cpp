@@ -21,7 +21,8 @@
 // Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
 //      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--no-first-round-cost-check]
-//      [--no-offset-slope-correction] [--no-one-dimensional-gate] [--match-at-reference] [--scene TEXT]
+//      [--no-offset-slope-correction] [--no-one-dimensional-gate] [--match-at-reference] [--no-coarse-cost]
+//      [--scene TEXT]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared. Given
@@ -42,6 +43,7 @@
 //   --no-offset-slope-correction  view offsets measured without taking the map's error out first
 //   --no-one-dimensional-gate  the centre row and column always among the subsets the lowest is taken of
 //   --match-at-reference  views matched at the centre view, not the aperture centre (DepthExperiment)
+//   --no-coarse-cost    noisy views matched without the half-resolution cost (DepthExperiment)
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
@@ -312,6 +314,8 @@ int main(int argc, char** argv) {
       experiment.reclaimCostCheck = false;
     } else if (argument == "--no-first-round-cost-check") {
       experiment.firstRoundCostCheck = false;
+    } else if (argument == "--no-coarse-cost") {
+      experiment.noisyCoarseCost = false;
     } else if (argument == "--match-at-reference") {
       experiment.matchAtReference = true;
     } else if (argument == "--no-offset-slope-correction") {

@@ -30,7 +30,9 @@
 //     removes, estimated from that residual, added back to the cost).
 //  3. Aggregation: a guided filter steered by the centre view (`filterRadius`, `filterEpsilon`),
 //     each subset's cost apart, then the lowest subset per label (the centre row and column only
-//     where their cost changes with disparity, or matches better than noise explains).
+//     where their cost changes with disparity, or matches better than noise explains). On smoothed
+//     noisy views, the last half-resolution pass's cost is added where texture is weak against
+//     the noise.
 //  4. Regularisation: semi-global optimisation along 8 paths (`smoothness`), the penalties scaled
 //     at each pixel by the cost's contrast near it and over the image (`contrastRadius`), then a
 //     parabola through the aggregated cost places each pixel between labels.

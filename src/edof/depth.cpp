@@ -524,9 +524,57 @@ constexpr double kReclaimCostMargin = 1.0;
 // `noise`: that of `grey`'s samples, whose loss under interpolation the costs add back.
 // `medianResidual`: the median over pixels of the fine search's cost at its minimum (the mean
 // squared difference between the views there), 0 without a fine search.
+void centralDifferences(const float* in, int ns, int nt, float scale, float* dx, float* dy);
+
+// An aggregated cost volume at half the resolution (ns x nt, the same labels): the view offsets'
+// last first map's (estimateDepth), where the views' noise variance is a quarter of theirs.
+struct CoarseCost {
+  edof::CostVolume volume;
+  int ns = 0, nt = 0;
+};
+
+// Noisy views (the automatic prefilter's second match): the coarse cost, upsampled, added to the
+// full resolution's with a weight of kNoisyCoarseWeight where the centre view has no texture above
+// its noise, less where it has (1 / (1 + texture / (kNoisyCoarseTexture noise))), texture the mean
+// squared gradient over a box of radius 2 less the noise's share. At twice the pixels per view,
+// Lytro-like noise outweighs the texture of weakly textured regions in the full resolution's cost,
+// and its minimum wanders there (blobs of error on the noisy people's backdrop), while the coarse
+// cost, averaged over 2 x 2 pixels before matching, still has the texture's minimum; where texture
+// is strong the full resolution's keeps its edges. Chosen on the development scenes' four noisy
+// ones at 128 and 256 px per view: weights 0.25, 0.5 and 1 everywhere and 0.5 and 1 gated by 0.25,
+// 1 and 4 (design.md, "Depth").
+constexpr double kNoisyCoarseWeight = 0.5, kNoisyCoarseTexture = 0.25;
+
+void addCoarseCost(const CoarseCost& coarse, const LightField& grey, const edof::ViewNoise& noise,
+                   edof::CostVolume& cost) {
+  const int ns = grey.ns(), nt = grey.nt(), labels = int(cost.size() / grey.shape().viewPixels());
+  const std::size_t n = grey.shape().viewPixels();
+  const Image centre = grey.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2);
+  std::vector<float> dx(n), dy(n), energy(n), texture(n), weight(n);
+  centralDifferences(centre.plane(0), ns, nt, 1.0f, dx.data(), dy.data());
+  for (std::size_t p = 0; p < n; ++p) energy[p] = dx[p] * dx[p] + dy[p] * dy[p];
+  boxFilter(energy.data(), texture.data(), ns, nt, 2);
+  for (std::size_t p = 0; p < n; ++p) {
+    const double signal = std::max(double(texture[p]) - noise.variance, 0.0);
+    weight[p] = float(kNoisyCoarseWeight / (1 + signal / (kNoisyCoarseTexture * noise.variance)));
+  }
+  parallelFor(0, std::size_t(labels), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t l = begin; l < end; ++l) {
+      const float* half = coarse.volume.data() + l * std::size_t(coarse.ns) * coarse.nt;
+      float* full = cost.data() + l * n;
+      for (int y = 0; y < nt; ++y)
+        for (int x = 0; x < ns; ++x) {
+          const std::size_t p = std::size_t(y) * ns + x;
+          full[p] += weight[p] * bilinearSample(half, coarse.ns, coarse.nt, 0.5 * x - 0.25, 0.5 * y - 0.25);
+        }
+    }
+  });
+}
+
 DepthMap depthStages(const Image& colours, const LightField& grey, const Image& guide,
                      const std::vector<double>& disparities, const DepthOptions& options,
-                     const edof::DepthExperiment& experiment, const edof::ViewNoise& noise, double* medianResidual) {
+                     const edof::DepthExperiment& experiment, const edof::ViewNoise& noise, double* medianResidual,
+                     const CoarseCost* coarseIn = nullptr, CoarseCost* coarseOut = nullptr) {
   const int ns = grey.ns(), nt = grey.nt(), labels = int(disparities.size());
   const std::size_t n = grey.shape().viewPixels();
   const double dmin = disparities.front(), dmax = disparities.back(), step = (dmax - dmin) / (labels - 1);
@@ -539,6 +587,9 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   edof::CostVolume cost =
       aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, noise, experiment.aggregateSubsetsApart,
                      experiment.defocusCeiling, experiment.oneDimensionalGate, experiment.matchAtReference);
+  if (coarseOut) *coarseOut = {cost, ns, nt};
+  if (coarseIn && !coarseIn->volume.empty() && noise.variance > 0 && experiment.noisyCoarseCost)
+    addCoarseCost(*coarseIn, grey, noise, cost);
 
   // Pixel-major for the optimisation; and the typical depth of a cost minimum (mean over pixels
   // of mean - min), the scale of the penalties and of the confidence.
@@ -995,6 +1046,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   const double prefilter = options.prefilterSigma;
   if (prefilter > 0) blurViews(grey, prefilter);
   double residual = 0;
+  CoarseCost coarse;
   // View offsets: first maps at half resolution, each pass matching views whose offsets the
   // previous one removed; the last one's offsets removed from the views at full resolution (views
   // under 4 pixels across: none).
@@ -1009,12 +1061,14 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
       if (pass > 0)
         removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4,
                           experiment.offsetSlopeCorrection, experiment.matchAtReference);
-      first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual).disparity;
+      CoarseCost* keep = pass + 1 == options.offsetPasses ? &coarse : nullptr;
+      first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual, nullptr, keep)
+                  .disparity;
     }
     removeViewOffsets(grey, fullResolution(first, grey.ns(), grey.nt()), options.offsetRadius, options.offsetEpsilon,
                       experiment.offsetSlopeCorrection, experiment.matchAtReference);
   }
-  DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, {}, &residual);
+  DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, {}, &residual, &coarse);
   map.prefilterSigma = std::max(prefilter, 0.0);
   map.viewResidual = prefilter > 0 ? 0.0 : residual;  // of the views as given only
   // Automatic: the views matched as they are, then, where they disagree at their best match by
@@ -1029,7 +1083,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
             ? smoothedNoise(asGiven, kNoisyPrefilterSigma, starViews(grey, referenceU, referenceV, atReference),
                             meanKept(stepsU(grey, referenceU, atReference), stepsV(grey, referenceV, atReference)))
             : edof::ViewNoise{};
-    map = depthStages(colours, grey, guide, disparities, options, experiment, noise, &residual);
+    map = depthStages(colours, grey, guide, disparities, options, experiment, noise, &residual, &coarse);
     map.prefilterSigma = kNoisyPrefilterSigma;
     map.viewResidual = asGiven;
   }

@@ -53,6 +53,9 @@ struct DepthExperiment {
   // 1.685 -> 1.358 % at 128 px but 1.903 -> 2.291 % at 256 (noisy thin bars 4.43 -> 7.32, glossy
   // weak texture 3.12 -> 6.09), with the defaults chosen for matching at the aperture centre.
   bool matchAtReference = false;
+  // Noisy views: the half-resolution cost added where texture is weak (depth.cpp, addCoarseCost);
+  // off: `depth_bench --no-coarse-cost`.
+  bool noisyCoarseCost = true;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,
