@@ -519,15 +519,20 @@ void fillUncertain(const Image& guide, const std::vector<float>& curvature, cons
 // fattening the first reclaim removes).
 constexpr double kReclaimCostMargin = 1.0;
 
-// Stages 2-7 (depth.hpp) on `grey`, the sRGB luminance the views are matched on, steered by
-// `guide` (its centre view before any prefilter) and `colours`, the centre view's sRGB colours.
-// `noise`: that of `grey`'s samples, whose loss under interpolation the costs add back.
-// `medianResidual`: the median over pixels of the fine search's cost at its minimum (the mean
-// squared difference between the views there), 0 without a fine search.
-void centralDifferences(const float* in, int ns, int nt, float scale, float* dx, float* dy);
+// A plane's gradient times `scale`, by central differences (the border pixels repeated beyond it).
+void centralDifferences(const float* in, int ns, int nt, float scale, float* dx, float* dy) {
+  for (int y = 0; y < nt; ++y) {
+    const float *row = in + std::size_t(y) * ns, *up = in + std::size_t(std::max(y - 1, 0)) * ns,
+                *down = in + std::size_t(std::min(y + 1, nt - 1)) * ns;
+    for (int x = 0; x < ns; ++x) {
+      dx[std::size_t(y) * ns + x] = 0.5f * scale * (row[std::min(x + 1, ns - 1)] - row[std::max(x - 1, 0)]);
+      dy[std::size_t(y) * ns + x] = 0.5f * scale * (down[x] - up[x]);
+    }
+  }
+}
 
-// An aggregated cost volume at half the resolution (ns x nt, the same labels): the view offsets'
-// last first map's (estimateDepth), where the views' noise variance is a quarter of theirs.
+// An aggregated cost volume at half the resolution (ns x nt, the same labels): that of the view
+// offsets' last half-resolution map (estimateDepth), whose views have a quarter of the noise variance.
 struct CoarseCost {
   edof::CostVolume volume;
   int ns = 0, nt = 0;
@@ -541,8 +546,8 @@ struct CoarseCost {
 // and its minimum wanders there (blobs of error on the noisy people's backdrop), while the coarse
 // cost, averaged over 2 x 2 pixels before matching, still has the texture's minimum; where texture
 // is strong the full resolution's keeps its edges. Chosen on the development scenes' four noisy
-// ones at 128 and 256 px per view: weights 0.25, 0.5 and 1 everywhere and 0.5 and 1 gated by 0.25,
-// 1 and 4 (design.md, "Depth").
+// ones at 128 and 256 px per view among weights 0.25, 0.5 and 1 everywhere and 0.5 and 1 gated by
+// 0.25, 1 and 4; kept as the only one better at both sizes (design.md, "Depth").
 constexpr double kNoisyCoarseWeight = 0.5, kNoisyCoarseTexture = 0.25;
 
 void addCoarseCost(const CoarseCost& coarse, const LightField& grey, const edof::ViewNoise& noise,
@@ -571,6 +576,12 @@ void addCoarseCost(const CoarseCost& coarse, const LightField& grey, const edof:
   });
 }
 
+// Stages 2-7 (depth.hpp) on `grey`, the sRGB luminance the views are matched on, steered by
+// `guide` (its centre view before any prefilter) and `colours`, the centre view's sRGB colours.
+// `noise`: that of `grey`'s samples, whose loss under interpolation the costs add back.
+// `medianResidual`: the median over pixels of the fine search's cost at its minimum (the mean
+// squared difference between the views there), 0 without a fine search. `coarseIn`: the half
+// resolution's cost, added on noisy views (addCoarseCost); `coarseOut`: this one's aggregated cost.
 DepthMap depthStages(const Image& colours, const LightField& grey, const Image& guide,
                      const std::vector<double>& disparities, const DepthOptions& options,
                      const edof::DepthExperiment& experiment, const edof::ViewNoise& noise, double* medianResidual,
@@ -778,18 +789,6 @@ edof::ViewNoise smoothedNoise(double residual, double sigma, const std::vector<S
     if (i + 1 < taps.size()) lag1 += double(taps[i]) * taps[i + 1];
   }
   return {residual / (referenceKept + kept) * lag0 * lag0, lag1 / lag0};
-}
-
-// A plane's gradient times `scale`, by central differences (the border pixels repeated beyond it).
-void centralDifferences(const float* in, int ns, int nt, float scale, float* dx, float* dy) {
-  for (int y = 0; y < nt; ++y) {
-    const float *row = in + std::size_t(y) * ns, *up = in + std::size_t(std::max(y - 1, 0)) * ns,
-                *down = in + std::size_t(std::min(y + 1, nt - 1)) * ns;
-    for (int x = 0; x < ns; ++x) {
-      dx[std::size_t(y) * ns + x] = 0.5f * scale * (row[std::min(x + 1, ns - 1)] - row[std::max(x - 1, 0)]);
-      dy[std::size_t(y) * ns + x] = 0.5f * scale * (down[x] - up[x]);
-    }
-  }
 }
 
 // The matching light field of DepthExperiment::gradientWeight a: channels sqrt(1 - a) I,
