@@ -581,7 +581,8 @@ void addCoarseCost(const CoarseCost& coarse, const LightField& grey, const edof:
 // `noise`: that of `grey`'s samples, whose loss under interpolation the costs add back.
 // `medianResidual`: the median over pixels of the fine search's cost at its minimum (the mean
 // squared difference between the views there), 0 without a fine search. `coarseIn`: the half
-// resolution's cost, added on noisy views (addCoarseCost); `coarseOut`: this one's aggregated cost.
+// resolution's cost, added on noisy views (addCoarseCost); `coarseOut`: this one's aggregated cost,
+// `coarseIn`'s added.
 DepthMap depthStages(const Image& colours, const LightField& grey, const Image& guide,
                      const std::vector<double>& disparities, const DepthOptions& options,
                      const edof::DepthExperiment& experiment, const edof::ViewNoise& noise, double* medianResidual,
@@ -598,7 +599,6 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   edof::CostVolume cost =
       aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, noise, experiment.aggregateSubsetsApart,
                      experiment.defocusCeiling, experiment.oneDimensionalGate, experiment.matchAtReference);
-  if (coarseOut) *coarseOut = {cost, ns, nt};
   if (coarseIn && !coarseIn->volume.empty() && noise.variance > 0 && experiment.noisyCoarseCost)
     addCoarseCost(*coarseIn, grey, noise, cost);
 
@@ -609,6 +609,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     for (std::size_t p = begin; p < end; ++p)
       for (int l = 0; l < labels; ++l) volume[p * labels + l] = cost[std::size_t(l) * n + p];
   });
+  if (coarseOut) *coarseOut = {std::move(cost), ns, nt};  // no longer needed here: handed over, not copied
   cost.clear();
   cost.shrink_to_fit();
   double contrastSum = 0;
