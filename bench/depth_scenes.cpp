@@ -200,6 +200,13 @@ std::vector<DepthScene> developmentScenes(int size) {
     auto planes = renderLayeredPlanes(defaultLayeredPlanesScene(9, size));
     scenes.push_back(withRange("synth layered planes", std::move(planes.lightField), std::move(planes.disparity)));
   }
+  {  // Coarse texture: features four times the default's, faint evidence beside confident cards.
+    LayeredPlanesScene coarse = defaultLayeredPlanesScene(9, size);
+    for (TexturedPlane& plane : coarse.planes) plane.period *= 4;
+    auto planes = renderLayeredPlanes(coarse);
+    scenes.push_back(
+        withRange("synth layered planes, coarse texture", std::move(planes.lightField), std::move(planes.disparity)));
+  }
   const CameraModel model = camera(size);
   const double d = model.mainLens.focusDistanceMm;
   const Scene people = *builtinScene("people", model);

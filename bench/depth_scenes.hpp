@@ -19,7 +19,7 @@ struct DepthScene {
   double disparityMin, disparityMax;  // the range searched: the truth's, 0.25 wider each side
 };
 
-// `synth` layered planes, the simulator's people scene (noise-free and with Lytro-like noise), and
+// `synth` layered planes (also with texture four times coarser), the simulator's people scene (noise-free and with Lytro-like noise), and
 // simulator scenes built for this: a floor at a grazing angle, a floor and a wall whose disparity
 // changes fast (also with weak texture, and that again unevenly lit and glossy), cards standing on such a floor, a
 // curved surface (half an elliptic cylinder of 32 facets), a grey column bulging far towards the camera before a grey
