@@ -934,9 +934,25 @@ std::vector<float> mapError(const LightField& grey, const std::vector<float>& re
 // the aperture (a sheen, devignetting left imperfect) cancels while texture stays, and the offsets
 // of the two sides of an occlusion edge stay apart. With `slopeCorrected`, the part of each
 // difference that the map's error explains (mapError) is taken out first: else, on weak texture,
-// the error that a sheen caused in the map passes for part of the offsets and stays.
+// the error that a sheen caused in the map passes for part of the offsets and stays. With
+// `shrunk`, each offset o is then scaled by o^2 / (o^2 + (kOffsetMapErrorPx g)^2), g the slope
+// that a map error moves the view's samples along: kept where it is larger than a map error of
+// kOffsetMapErrorPx would make, dropped where it is smaller.
+// Where the centre view's texture is locally a ramp (features far wider than the box, the layered
+// planes of coarse texture at 256 px per view), a map error e gives each view the difference e g
+// with g constant over the box: mapError, which leaves each view an offset free, cannot see it,
+// and the average takes it for an offset, which then cancels the views' disagreement at the
+// wrong disparity and keeps it (that scene 32.73 % with the view offsets, 5.06 % without). The
+// shrink (DepthExperiment::offsetShrink, off by default) keeps an offset only where it is larger
+// than a map error of kOffsetMapErrorPx would make: development means 2.200 -> 1.921 % at 128 px
+// per view and 3.175 -> 2.002 % at 256 (the coarse texture 12.55 -> 3.67 and 32.73 -> 8.19 %), but
+// a sheen on texture is taken for a map error too (the glossy unevenly lit slants 3.40 -> 7.42 % at
+// 128) and the tests of the view offsets refuse it (design.md, "Depth"). Among 0.15, 0.2, 0.3 and
+// 1 px, 0.3 had the best means.
+constexpr double kOffsetMapErrorPx = 0.3;
+
 void removeViewOffsets(LightField& grey, const Image& disparity, int radius, double epsilon, bool slopeCorrected,
-                       bool fromReference) {
+                       bool shrunk, bool fromReference) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
@@ -952,30 +968,33 @@ void removeViewOffsets(LightField& grey, const Image& disparity, int radius, dou
   const auto isReference = [&](std::size_t view) {
     return int(view % grey.nu()) == referenceU && int(view / grey.nu()) == referenceV;
   };
-  std::vector<float> reference(n), dx(slopeCorrected ? n : 0), dy(slopeCorrected ? n : 0), error;
+  const bool slopes = slopeCorrected || shrunk;
+  std::vector<float> reference(n), dx(slopes ? n : 0), dy(slopes ? n : 0), error;
   warp(referenceU, referenceV, reference.data());
   const auto slope = [&](int u, int v, float* out) {
     const float uc = float(stepsU(grey, u, fromReference)), vc = float(stepsV(grey, v, fromReference));
     for (std::size_t i = 0; i < n; ++i) out[i] = -(uc * dx[i] + vc * dy[i]);
   };
-  if (slopeCorrected) {
-    centralDifferences(reference.data(), ns, nt, 1.0f, dx.data(), dy.data());
-    error = mapError(grey, reference, radius, warp, slope, isReference);
-  }
+  if (slopes) centralDifferences(reference.data(), ns, nt, 1.0f, dx.data(), dy.data());
+  if (slopeCorrected) error = mapError(grey, reference, radius, warp, slope, isReference);
   const edof::GuidedFilter filter(disparity.plane(0), ns, nt, radius, epsilon);
   parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> difference(n), offset(n), g(error.size());
+    std::vector<float> difference(n), offset(n), g(dx.size());
     edof::GuidedFilter::Scratch scratch;
     for (std::size_t view = begin; view < end; ++view) {
       if (isReference(view)) continue;
       const int u = int(view % grey.nu()), v = int(view / grey.nu());
       warp(u, v, difference.data());
       for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
-      if (slopeCorrected) {
-        slope(u, v, g.data());
+      if (slopes) slope(u, v, g.data());
+      if (slopeCorrected)
         for (std::size_t i = 0; i < n; ++i) difference[i] -= error[i] * g[i];
-      }
       filter.apply(difference.data(), offset.data(), scratch);
+      if (shrunk)
+        for (std::size_t i = 0; i < n; ++i) {
+          const double squared = double(offset[i]) * offset[i], explained = kOffsetMapErrorPx * g[i];
+          if (squared > 0) offset[i] = float(offset[i] * squared / (squared + explained * explained));
+        }
       float* plane = grey.plane(u, v, 0);
       for (std::size_t i = 0; i < n; ++i) plane[i] -= offset[i];
     }
@@ -1060,13 +1079,13 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     for (int pass = 0; pass < options.offsetPasses; ++pass) {
       if (pass > 0)
         removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4,
-                          experiment.offsetSlopeCorrection, experiment.matchAtReference);
+                          experiment.offsetSlopeCorrection, experiment.offsetShrink, experiment.matchAtReference);
       CoarseCost* keep = pass + 1 == options.offsetPasses ? &coarse : nullptr;
       first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual, nullptr, keep)
                   .disparity;
     }
     removeViewOffsets(grey, fullResolution(first, grey.ns(), grey.nt()), options.offsetRadius, options.offsetEpsilon,
-                      experiment.offsetSlopeCorrection, experiment.matchAtReference);
+                      experiment.offsetSlopeCorrection, experiment.offsetShrink, experiment.matchAtReference);
   }
   DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, {}, &residual, &coarse);
   map.prefilterSigma = std::max(prefilter, 0.0);
