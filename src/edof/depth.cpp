@@ -928,16 +928,6 @@ std::vector<float> mapError(const LightField& grey, const std::vector<float>& re
   return error;
 }
 
-// Each view less its brightness offset from the reference view: their difference once the view is
-// warped onto the reference by `disparity`, averaged by a guided filter that the map steers
-// (`radius`, `epsilon` in squared disparity), so that a brightness that changes smoothly across
-// the aperture (a sheen, devignetting left imperfect) cancels while texture stays, and the offsets
-// of the two sides of an occlusion edge stay apart. With `slopeCorrected`, the part of each
-// difference that the map's error explains (mapError) is taken out first: else, on weak texture,
-// the error that a sheen caused in the map passes for part of the offsets and stays. With
-// `shrunk`, each offset o is then scaled by o^2 / (o^2 + (kOffsetMapErrorPx g)^2), g the slope
-// that a map error moves the view's samples along: kept where it is larger than a map error of
-// kOffsetMapErrorPx would make, dropped where it is smaller.
 // Where the centre view's texture is locally a ramp (features far wider than the box, the layered
 // planes of coarse texture at 256 px per view), a map error e gives each view the difference e g
 // with g constant over the box: mapError, which leaves each view an offset free, cannot see it,
@@ -951,6 +941,16 @@ std::vector<float> mapError(const LightField& grey, const std::vector<float>& re
 // 1 px, 0.3 had the best means.
 constexpr double kOffsetMapErrorPx = 0.3;
 
+// Each view less its brightness offset from the reference view: their difference once the view is
+// warped onto the reference by `disparity`, averaged by a guided filter that the map steers
+// (`radius`, `epsilon` in squared disparity), so that a brightness that changes smoothly across
+// the aperture (a sheen, devignetting left imperfect) cancels while texture stays, and the offsets
+// of the two sides of an occlusion edge stay apart. With `slopeCorrected`, the part of each
+// difference that the map's error explains (mapError) is taken out first: else, on weak texture,
+// the error that a sheen caused in the map passes for part of the offsets and stays. With
+// `shrunk`, each offset o is then scaled by o^2 / (o^2 + (kOffsetMapErrorPx g)^2), g the slope
+// that a map error moves the view's samples along: kept where it is larger than a map error of
+// kOffsetMapErrorPx would make, dropped where it is smaller.
 void removeViewOffsets(LightField& grey, const Image& disparity, int radius, double epsilon, bool slopeCorrected,
                        bool shrunk, bool fromReference) {
   const int ns = grey.ns(), nt = grey.nt();
