@@ -166,7 +166,7 @@ TEST(DepthLayeredPlanes, NoiseCorrectionKeepsFlatNoisyRegionsOffHalfPixelShifts)
 // occlusion edges, since they follow slopes and count a 0.3 px step as a jump, mend part of the
 // same halo (before: 13.03 against 15.45 %; when the penalties were chosen, 13.0 against 17.1 %,
 // with features twice the default's 3.8 against 4.1 %, three times 4.3 against 5.3 %). The same
-// scene is among the development scenes (bench/depth_scenes.hpp), so the means refuse what this refuses.
+// scene is among the development scenes (bench/depth_scenes.hpp), so the means see it too.
 TEST(DepthLayeredPlanes, PenaltiesFollowingLocalContrastKeepCoarseTextureApart) {
   LayeredPlanesScene scene = defaultLayeredPlanesScene(9, 128);
   for (TexturedPlane& plane : scene.planes) plane.period *= 4;
