@@ -21,8 +21,8 @@
 // Run: build-*/bench/depth_bench [--options FILE.json] [--development-only] [--size N] [--write DIR]
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
 //      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--no-first-round-cost-check]
-//      [--no-offset-slope-correction] [--offset-shrink] [--no-one-dimensional-gate] [--match-at-reference]
-//      [--no-coarse-cost] [--scene TEXT]
+//      [--no-offset-slope-correction] [--offset-shrink] [--no-offset-residual-check]
+//      [--no-one-dimensional-gate] [--match-at-reference] [--no-coarse-cost] [--scene TEXT]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared. Given
@@ -42,6 +42,7 @@
 //   --no-first-round-cost-check  the veto in the later rounds only, not on the first's narrow parts
 //   --no-offset-slope-correction  view offsets measured without taking the map's error out first
 //   --offset-shrink     view offsets kept only where larger than a map error could make (DepthExperiment)
+//   --no-offset-residual-check  view offsets removed even where they left the views agreeing worse
 //   --no-one-dimensional-gate  the centre row and column always among the subsets the lowest is taken of
 //   --match-at-reference  views matched at the centre view, not the aperture centre (DepthExperiment)
 //   --no-coarse-cost    noisy views matched without the half-resolution cost (DepthExperiment)
@@ -323,6 +324,8 @@ int main(int argc, char** argv) {
       experiment.offsetSlopeCorrection = false;
     } else if (argument == "--offset-shrink") {
       experiment.offsetShrink = true;
+    } else if (argument == "--no-offset-residual-check") {
+      experiment.offsetResidualCheck = false;
     } else if (argument == "--reclaim-first-round-only") {
       experiment.reclaimEveryRound = false;
     } else if (argument == "--high-pass" && i + 1 < argc) {

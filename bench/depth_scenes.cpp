@@ -175,6 +175,13 @@ Scene weakTexture(const CameraModel& model) {
 
 }  // namespace
 
+DepthScene coarseLayeredPlanes(int size) {
+  LayeredPlanesScene coarse = defaultLayeredPlanesScene(9, size);
+  for (TexturedPlane& plane : coarse.planes) plane.period *= 4;
+  auto planes = renderLayeredPlanes(coarse);
+  return withRange("synth layered planes, coarse texture", std::move(planes.lightField), std::move(planes.disparity));
+}
+
 DepthScene weakTextureGlossy(int size) {
   const CameraModel model = camera(size);
   return glossy("weak texture, glossy", weakTexture(model), model, 0.1);
@@ -200,13 +207,7 @@ std::vector<DepthScene> developmentScenes(int size) {
     auto planes = renderLayeredPlanes(defaultLayeredPlanesScene(9, size));
     scenes.push_back(withRange("synth layered planes", std::move(planes.lightField), std::move(planes.disparity)));
   }
-  {  // Coarse texture: features four times the default's, faint evidence beside confident cards.
-    LayeredPlanesScene coarse = defaultLayeredPlanesScene(9, size);
-    for (TexturedPlane& plane : coarse.planes) plane.period *= 4;
-    auto planes = renderLayeredPlanes(coarse);
-    scenes.push_back(
-        withRange("synth layered planes, coarse texture", std::move(planes.lightField), std::move(planes.disparity)));
-  }
+  scenes.push_back(coarseLayeredPlanes(size));
   const CameraModel model = camera(size);
   const double d = model.mainLens.focusDistanceMm;
   const Scene people = *builtinScene("people", model);

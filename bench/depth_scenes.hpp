@@ -35,6 +35,10 @@ std::vector<DepthScene> developmentScenes(int size = 128);
 // texture close in colour to the wall's lighter parts.
 DepthScene narrowNearParts(int size = 128);
 
+// The synth layered planes with texture four times coarser: faint evidence beside confident cards,
+// the background's features wider than any window, so locally a ramp.
+DepthScene coarseLayeredPlanes(int size = 128);
+
 // A card of weak texture (4 % contrast) before a wall as weak, the card glossy (its brightness
 // -10 % to +10 % across the aperture).
 DepthScene weakTextureGlossy(int size = 128);

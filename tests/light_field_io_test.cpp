@@ -363,7 +363,9 @@ TEST(LightFieldIoHdf5, SamplesAreStoredInThePrecisionTheyCameIn) {
       EXPECT_EQ(H5Tget_size(type), 2u);
     }
     EXPECT_EQ(readStringAttribute(data, "encoding"), c.encoding);
-    if (c.scale > 0) EXPECT_EQ(readScaleAttribute(data), c.scale);
+    if (c.scale > 0) {
+      EXPECT_EQ(readScaleAttribute(data), c.scale);
+    }
     if (std::string(c.encoding) == "srgb8") {  // what h5py gets: the sRGB codes themselves
       std::vector<std::uint8_t> codes(c.lightField.samples().size());
       ASSERT_GE(H5Dread(data, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, codes.data()), 0);

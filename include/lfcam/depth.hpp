@@ -24,7 +24,8 @@
 //     by that map and their difference averaged by a guided filter the map steers (`offsetRadius`,
 //     `offsetEpsilon`), after the part of it that an error of the map explains (the error, fitted
 //     to all views over that radius, with a gain per view, times the centre view's gradient) is
-//     taken out. Views that disagree at their best match (noise, aliasing) are smoothed
+//     taken out; at full resolution only where, at half, their removal left the views agreeing no
+//     worse than before it. Views that disagree at their best match (noise, aliasing) are smoothed
 //     (`prefilterSigma`; automatic: stages 2-7 run once, and again on smoothed views when the fine
 //     search's median residual says so, with the noise variance that interpolating between pixels
 //     removes, estimated from that residual, added back to the cost).

@@ -531,6 +531,11 @@ void centralDifferences(const float* in, int ns, int nt, float scale, float* dx,
   }
 }
 
+// A half-resolution plane (each pixel the mean of 2 x 2) at full-resolution pixel (x, y), bilinear.
+double sampleHalfResolution(const float* half, int halfWidth, int halfHeight, int x, int y) {
+  return bilinearSample(half, halfWidth, halfHeight, 0.5 * x - 0.25, 0.5 * y - 0.25);
+}
+
 // An aggregated cost volume at half the resolution (ns x nt, the same labels): that of the view
 // offsets' last half-resolution map (estimateDepth), whose views have a quarter of the noise variance.
 struct CoarseCost {
@@ -570,22 +575,28 @@ void addCoarseCost(const CoarseCost& coarse, const LightField& grey, const edof:
       for (int y = 0; y < nt; ++y)
         for (int x = 0; x < ns; ++x) {
           const std::size_t p = std::size_t(y) * ns + x;
-          full[p] += weight[p] * bilinearSample(half, coarse.ns, coarse.nt, 0.5 * x - 0.25, 0.5 * y - 0.25);
+          full[p] += weight[p] * sampleHalfResolution(half, coarse.ns, coarse.nt, x, y);
         }
     }
   });
 }
 
+// How much the views disagree at the map a fine search found: its cost at the minimum per pixel
+// (the mean squared difference between the views there) and the median over pixels; empty and 0
+// without a fine search.
+struct Residual {
+  std::vector<float> perPixel;
+  double median = 0;
+};
+
 // Stages 2-7 (depth.hpp) on `grey`, the sRGB luminance the views are matched on, steered by
 // `guide` (its centre view before any prefilter) and `colours`, the centre view's sRGB colours.
 // `noise`: that of `grey`'s samples, whose loss under interpolation the costs add back.
-// `medianResidual`: the median over pixels of the fine search's cost at its minimum (the mean
-// squared difference between the views there), 0 without a fine search. `coarseIn`: the half
-// resolution's cost, added on noisy views (addCoarseCost); `coarseOut`: this one's aggregated cost,
-// `coarseIn`'s added.
+// `residual`: the first fine search's. `coarseIn`: the half resolution's cost, added on noisy views
+// (addCoarseCost); `coarseOut`: this one's aggregated cost, `coarseIn`'s added.
 DepthMap depthStages(const Image& colours, const LightField& grey, const Image& guide,
                      const std::vector<double>& disparities, const DepthOptions& options,
-                     const edof::DepthExperiment& experiment, const edof::ViewNoise& noise, double* medianResidual,
+                     const edof::DepthExperiment& experiment, const edof::ViewNoise& noise, Residual* residualOut,
                      const CoarseCost* coarseIn = nullptr, CoarseCost* coarseOut = nullptr) {
   const int ns = grey.ns(), nt = grey.nt(), labels = int(disparities.size());
   const std::size_t n = grey.shape().viewPixels();
@@ -702,7 +713,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // at half the previous spacing (two rounds against one: development means 1.98 -> 1.65 % at
   // 128 px, 3.02 -> 2.60 % at 256; a third round at a quarter: 1.94 % at 128).
   std::vector<float> curvature(n, 1.0f), residual(n, 0.0f);
-  *medianResidual = 0;
+  *residualOut = {};
   const edof::GuidedFilter refineFilter(guide.plane(0), ns, nt, std::max(options.refineRadius, 0),
                                         std::max(options.filterEpsilon, 1e-12));
   const int rounds = options.refineSteps > 0 ? std::max(options.refineRounds, 1) : 1;
@@ -734,7 +745,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
       if (round == 0) {
         std::vector<float> sorted(residual);
         std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-        *medianResidual = sorted[sorted.size() / 2];
+        *residualOut = {residual, sorted[sorted.size() / 2]};
       }
     }
     // 6. Cleanup: the edge-aware fill, occlusion edges, the weighted median, each guided by the
@@ -852,7 +863,7 @@ Image fullResolution(const Image& half, int width, int height) {
   Image out(width, height, 1);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
-      out.at(x, y, 0) = 2 * bilinearSample(half.plane(0), half.width(), half.height(), 0.5 * x - 0.25, 0.5 * y - 0.25);
+      out.at(x, y, 0) = 2 * sampleHalfResolution(half.plane(0), half.width(), half.height(), x, y);
   return out;
 }
 
@@ -934,11 +945,11 @@ std::vector<float> mapError(const LightField& grey, const std::vector<float>& re
 // and the average takes it for an offset, which then cancels the views' disagreement at the
 // wrong disparity and keeps it (that scene 32.73 % with the view offsets, 5.06 % without). The
 // shrink (DepthExperiment::offsetShrink, off by default) keeps an offset only where it is larger
-// than a map error of kOffsetMapErrorPx would make: development means 2.200 -> 1.921 % at 128 px
-// per view and 3.175 -> 2.002 % at 256 (the coarse texture 12.55 -> 3.67 and 32.73 -> 8.19 %), but
-// a sheen on texture is taken for a map error too (the glossy unevenly lit slants 3.40 -> 7.42 % at
-// 128) and the tests of the view offsets refuse it (design.md, "Depth"). Among 0.15, 0.2, 0.3 and
-// 1 px, 0.3 had the best means.
+// than a map error of kOffsetMapErrorPx would make: before offsetsKept (below), development means
+// 2.200 -> 1.921 % at 128 px per view and 3.175 -> 2.002 % at 256 (the coarse texture 12.55 ->
+// 3.67 and 32.73 -> 8.19 %), but a sheen on texture is taken for a map error too (the glossy
+// unevenly lit slants 3.40 -> 7.42 % at 128) and the tests of the view offsets refuse it
+// (design.md, "Depth"). Among 0.15, 0.2, 0.3 and 1 px, 0.3 had the best means.
 constexpr double kOffsetMapErrorPx = 0.3;
 
 // Each view less its brightness offset from the reference view: their difference once the view is
@@ -950,9 +961,10 @@ constexpr double kOffsetMapErrorPx = 0.3;
 // the error that a sheen caused in the map passes for part of the offsets and stays. With
 // `shrunk`, each offset o is then scaled by o^2 / (o^2 + (kOffsetMapErrorPx g)^2), g the slope
 // that a map error moves the view's samples along: kept where it is larger than a map error of
-// kOffsetMapErrorPx would make, dropped where it is smaller.
+// kOffsetMapErrorPx would make, dropped where it is smaller. With `kept`, each offset is multiplied
+// by it (per pixel, in [0, 1]) before it is removed.
 void removeViewOffsets(LightField& grey, const Image& disparity, int radius, double epsilon, bool slopeCorrected,
-                       bool shrunk, bool fromReference) {
+                       bool shrunk, bool fromReference, const std::vector<float>* kept = nullptr) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
@@ -996,9 +1008,32 @@ void removeViewOffsets(LightField& grey, const Image& disparity, int radius, dou
           if (squared > 0) offset[i] = float(offset[i] * squared / (squared + explained * explained));
         }
       float* plane = grey.plane(u, v, 0);
-      for (std::size_t i = 0; i < n; ++i) plane[i] -= offset[i];
+      for (std::size_t i = 0; i < n; ++i) plane[i] -= kept ? (*kept)[i] * offset[i] : offset[i];
     }
   });
+}
+
+// Where the view offsets are kept: where the half resolution's match after their removal leaves the
+// views disagreeing no more than its match before (`after` <= `before`, per half-resolution pixel),
+// the share of such pixels over a box of kOffsetCheckRadius, at full resolution (bilinear). A sheen
+// that the offsets cancel lets the views agree better; offsets that a map error put there (on
+// texture that is locally a ramp, above) leave them agreeing worse, since each view keeps
+// e (g - mean g). The first and second half-resolution maps of the coarse texture at 256 px score
+// 5.97 and 24.12 %. Kept: development means 2.190 -> 1.707 % at 128 px and 3.191 -> 1.718 % at 256
+// (the coarse texture 12.52 -> 2.18 and 32.74 -> 5.91 %), the glossy unevenly lit slants 3.25 ->
+// 5.77 % at 128 the most it costs; `after` at most 0.5 or 2 times `before` was worse at both sizes,
+// 4 times at 128 px (design.md, "Depth"). The box's radius was not tuned.
+constexpr int kOffsetCheckRadius = 2;
+
+std::vector<float> offsetsKept(const std::vector<float>& before, const std::vector<float>& after, int halfWidth,
+                               int halfHeight, int width, int height) {
+  std::vector<float> agree(before.size()), share(before.size()), kept(std::size_t(width) * height);
+  for (std::size_t i = 0; i < before.size(); ++i) agree[i] = after[i] <= before[i] ? 1.0f : 0.0f;
+  boxFilter(agree.data(), share.data(), halfWidth, halfHeight, kOffsetCheckRadius);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      kept[std::size_t(y) * width + x] = float(sampleHalfResolution(share.data(), halfWidth, halfHeight, x, y));
+  return kept;
 }
 
 // Every view smoothed by a Gaussian of `sigma` pixels: sensor noise is white, while the views of
@@ -1064,7 +1099,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   if (experiment.gradientWeight > 0) grey = withGradients(grey, experiment.gradientWeight);
   const double prefilter = options.prefilterSigma;
   if (prefilter > 0) blurViews(grey, prefilter);
-  double residual = 0;
+  Residual residual;
   CoarseCost coarse;
   // View offsets: first maps at half resolution, each pass matching views whose offsets the
   // previous one removed; the last one's offsets removed from the views at full resolution (views
@@ -1076,6 +1111,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     std::vector<double> halved(disparities);
     for (double& d : halved) d *= 0.5;
     Image first;
+    Residual withoutOffsets;
     for (int pass = 0; pass < options.offsetPasses; ++pass) {
       if (pass > 0)
         removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4,
@@ -1083,16 +1119,22 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
       CoarseCost* keep = pass + 1 == options.offsetPasses ? &coarse : nullptr;
       first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual, nullptr, keep)
                   .disparity;
+      if (pass == 0) withoutOffsets = residual;
     }
+    const bool checked = experiment.offsetResidualCheck && options.offsetPasses > 1 && !residual.perPixel.empty();
+    const std::vector<float> kept =
+        checked ? offsetsKept(withoutOffsets.perPixel, residual.perPixel, small.ns(), small.nt(), grey.ns(), grey.nt())
+                : std::vector<float>{};
     removeViewOffsets(grey, fullResolution(first, grey.ns(), grey.nt()), options.offsetRadius, options.offsetEpsilon,
-                      experiment.offsetSlopeCorrection, experiment.offsetShrink, experiment.matchAtReference);
+                      experiment.offsetSlopeCorrection, experiment.offsetShrink, experiment.matchAtReference,
+                      checked ? &kept : nullptr);
   }
   DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, {}, &residual, &coarse);
   map.prefilterSigma = std::max(prefilter, 0.0);
-  map.viewResidual = prefilter > 0 ? 0.0 : residual;  // of the views as given only
+  map.viewResidual = prefilter > 0 ? 0.0 : residual.median;  // of the views as given only
   // Automatic: the views matched as they are, then, where they disagree at their best match by
   // more than clean views do (noise, or texture finer than the pixels), smoothed and matched again.
-  if (prefilter < 0 && residual > kNoisyResidual) {
+  if (prefilter < 0 && residual.median > kNoisyResidual) {
     blurViews(grey, kNoisyPrefilterSigma);
     const double asGiven = map.viewResidual;
     const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;

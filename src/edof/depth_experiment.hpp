@@ -48,9 +48,12 @@ struct DepthExperiment {
   // explains is taken out (depth.cpp, removeViewOffsets); off: `depth_bench --no-offset-slope-correction`.
   bool offsetSlopeCorrection = true;
   // Each view offset kept only where it exceeds what a map error could make (depth.cpp,
-  // kOffsetMapErrorPx): `depth_bench --offset-shrink`. Better development means, but a sheen on
-  // texture is shrunk too (the view offsets' tests fail with it).
+  // kOffsetMapErrorPx): `depth_bench --offset-shrink`. Better development means before
+  // offsetResidualCheck, but a sheen on texture is shrunk too (the view offsets' tests fail with it).
   bool offsetShrink = false;
+  // The view offsets removed at full resolution only where, at half resolution, they left the views
+  // agreeing no worse than before (depth.cpp, offsetsKept); off: `depth_bench --no-offset-residual-check`.
+  bool offsetResidualCheck = true;
   // Views matched at the reference view ((nu - 1) / 2, (nv - 1) / 2), the grid of the guides and of
   // the map, rather than at the aperture centre, half a view step away with an even number of
   // views (the same with an odd number): `depth_bench --match-at-reference`. Development means
