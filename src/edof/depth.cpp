@@ -1021,10 +1021,8 @@ void removeViewOffsets(LightField& grey, const Image& disparity, int radius, dou
 // e (g - mean g). The first and second half-resolution maps of the coarse texture at 256 px score
 // 5.97 and 24.12 %. Kept: development means 2.190 -> 1.707 % at 128 px and 3.191 -> 1.718 % at 256
 // (the coarse texture 12.52 -> 2.18 and 32.74 -> 5.91 %), the glossy unevenly lit slants 3.25 ->
-// 5.77 % at 128 the most it costs; `after` at most 0.5 or 2 times `before` was worse at both sizes,
-// 4 times at 128 px (design.md, "Depth"); a box of radius 1 or 4 too (1.769, 1.947 % at 128), and
-// a share that falls as before / after (or its square) where `after` is larger (1.791, 1.778 %), and
-// a fixed tolerance, after <= before + 1e-6 (better at 128 px, 1.662 %, worse at 256, 2.301 %).
+// 5.77 % at 128 the most it costs. Other thresholds, radii and soft shares measured worse
+// (design.md, "Depth").
 constexpr int kOffsetCheckRadius = 2;
 
 std::vector<float> offsetsKept(const std::vector<float>& before, const std::vector<float>& after, int halfWidth,
@@ -1121,7 +1119,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
       CoarseCost* keep = pass + 1 == options.offsetPasses ? &coarse : nullptr;
       first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual, nullptr, keep)
                   .disparity;
-      if (pass == 0) withoutOffsets = residual;
+      if (pass == 0) withoutOffsets = std::move(residual);
     }
     const bool checked = experiment.offsetResidualCheck && options.offsetPasses > 1 && !residual.perPixel.empty();
     const std::vector<float> kept =
