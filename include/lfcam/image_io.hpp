@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "lfcam/image.hpp"
@@ -52,5 +53,8 @@ bool looksLikeImageFile(const std::filesystem::path& path);
 // sRGB transfer function (IEC 61966-2-1), per value.
 float linearFromSrgb(float encoded);
 float srgbFromLinear(float linear);
+// Each value replaced by srgbFromLinear of it, at a fraction of the time (SIMD; the same floats but
+// where the exact value lies within about 1e-15 of a rounding boundary, then a float step apart).
+void srgbFromLinear(std::span<float> values);
 
 }  // namespace lfcam

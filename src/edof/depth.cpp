@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "core/bilinear.hpp"
@@ -1076,14 +1077,16 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   // the shadows counts as much as in the light (in linear light it nearly vanishes).
   LightField grey = edof::luminanceLightField(lightField);
   parallelFor(0, grey.samples().size(), 1 << 16, [&](std::size_t begin, std::size_t end) {
-    float* samples = grey.samples().data();
-    for (std::size_t i = begin; i < end; ++i) samples[i] = srgbFromLinear(std::max(samples[i], 0.0f));
+    const std::span<float> samples(grey.samples().data() + begin, end - begin);
+    for (float& v : samples) v = std::max(v, 0.0f);
+    srgbFromLinear(samples);
   });
   const Image guide = grey.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2);
   // The centre view's colours (linear) that steer the cleanup, sRGB-encoded as the matching.
   const Image centre = lightField.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2);
   const auto srgb = [](Image image) {
-    for (float& v : image.pixels()) v = srgbFromLinear(std::max(v, 0.0f));
+    for (float& v : image.pixels()) v = std::max(v, 0.0f);
+    srgbFromLinear(image.pixels());
     return image;
   };
   const Image colours = srgb(centre.copy());
