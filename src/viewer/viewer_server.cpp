@@ -24,11 +24,11 @@ ViewerServer::ViewerServer(std::function<ViewerAnswer(const ViewerRequest&)> ans
     : impl_(std::make_unique<Impl>(std::move(answer))) {
   httplib::Server& server = impl_->server;
   auto handle = [this](const httplib::Request& request, httplib::Response& response) {
-    ViewerAnswer answer = impl_->answer({request.method, request.path, request.params});
-    response.status = answer.status;
-    for (const auto& [name, value] : answer.headers) response.set_header(name, value);
+    ViewerAnswer reply = impl_->answer({request.method, request.path, request.params});
+    response.status = reply.status;
+    for (const auto& [name, value] : reply.headers) response.set_header(name, value);
     response.set_header("X-Content-Type-Options", "nosniff");
-    response.set_content(std::move(answer.body), answer.contentType);
+    response.set_content(std::move(reply.body), reply.contentType);
   };
   server.Get(".*", handle);
   server.Post(".*", handle);
