@@ -41,8 +41,14 @@ TEST(Srgb8FromLinear, MatchesTheReferenceEverywhere) {
 TEST(SrgbFromLinearInPlace, MatchesTheOneValueEncoderButForRareRoundings) {
   std::mt19937 random(7);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f), exponent(-40.0f, 38.0f);
-  std::vector<float> values = {0.0f, -0.5f, 0.0031308f, std::nextafter(0.0031308f, 1.0f), 1.0f, 1e38f,
-                               std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::infinity(),
+  std::vector<float> values = {0.0f,
+                               -0.5f,
+                               0.0031308f,
+                               std::nextafter(0.0031308f, 1.0f),
+                               1.0f,
+                               1e38f,
+                               std::numeric_limits<float>::denorm_min(),
+                               std::numeric_limits<float>::infinity(),
                                std::numeric_limits<float>::quiet_NaN()};
   for (int i = 0; i < 1 << 20; ++i) values.push_back(unit(random));
   for (int i = 0; i < 1 << 16; ++i) values.push_back(std::pow(10.0f, exponent(random)));

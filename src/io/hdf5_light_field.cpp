@@ -573,12 +573,12 @@ Status writeSamples(const fs::path& path, Hdf5Session& session, hid_t file, cons
   if (szip) {
     // The parameters libhdf5 completed for this dataset (sample width, scanline, byte order).
     Handle created(H5Dget_create_plist(dataset.get()), H5Pclose);
-    unsigned flags = 0, szipValues[4] = {};
+    unsigned flags = 0, cd[4] = {};  // the filter's client data, HDF5's cd_values
     std::size_t valueCount = 4;
-    if (H5Pget_filter_by_id2(created.get(), H5Z_FILTER_SZIP, &flags, &valueCount, szipValues, 0, nullptr, nullptr) < 0 ||
+    if (H5Pget_filter_by_id2(created.get(), H5Z_FILTER_SZIP, &flags, &valueCount, cd, 0, nullptr, nullptr) < 0 ||
         valueCount != 4)
       return hdf5Error(ErrorCode::Io, path, std::string("cannot set up szip for ") + name);
-    filters.szip = SzipParameters{szipValues[0], szipValues[1], szipValues[2], szipValues[3]};
+    filters.szip = SzipParameters{cd[0], cd[1], cd[2], cd[3]};
   }
   bool ok = writeStringAttribute(dataset.get(), "encoding", encodingName(encoding.kind));
   if (encoding.kind == SampleEncodingKind::Linear8 || encoding.kind == SampleEncodingKind::Linear16)

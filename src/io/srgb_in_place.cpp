@@ -14,6 +14,7 @@
 #define HWY_TARGET_INCLUDE "io/srgb_in_place.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
+// After highway.h, once per target like it.
 #include <hwy/contrib/math/math-inl.h>
 
 HWY_BEFORE_NAMESPACE();
