@@ -25,10 +25,10 @@
 //     `offsetEpsilon`), after the part of it that an error of the map explains (the error, fitted
 //     to all views over that radius, with a gain per view, times the centre view's gradient) is
 //     taken out; at full resolution only where, at half, their removal left the views agreeing no
-//     worse than before it. Views that disagree at their best match (noise, aliasing) are smoothed
-//     (`prefilterSigma`; automatic: stages 2-7 run once, and again on smoothed views when the fine
-//     search's median residual says so, with the noise variance that interpolating between pixels
-//     removes, estimated from that residual, added back to the cost).
+//     worse than before it, within a tolerance. Views that disagree at their best match (noise,
+//     aliasing) are smoothed (`prefilterSigma`; automatic: stages 2-7 run once, and again on
+//     smoothed views when the fine search's median residual says so, with the noise variance that
+//     interpolating between pixels removes, estimated from that residual, added back to the cost).
 //  3. Aggregation: a guided filter steered by the centre view (`filterRadius`, `filterEpsilon`),
 //     each subset's cost apart, then the lowest subset per label (the centre row and column only
 //     where their cost changes with disparity, or matches better than noise explains). On smoothed

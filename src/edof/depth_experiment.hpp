@@ -52,7 +52,8 @@ struct DepthExperiment {
   // offsetResidualCheck, but a sheen on texture is shrunk too (the view offsets' tests fail with it).
   bool offsetShrink = false;
   // The view offsets removed at full resolution only where, at half resolution, they left the views
-  // agreeing no worse than before (depth.cpp, offsetsKept); off: `depth_bench --no-offset-residual-check`.
+  // agreeing no worse than before, within a tolerance (depth.cpp, offsetsKept); off: `depth_bench
+  // --no-offset-residual-check`.
   bool offsetResidualCheck = true;
   // Views matched at the reference view ((nu - 1) / 2, (nv - 1) / 2), the grid of the guides and of
   // the map, rather than at the aperture centre, half a view step away with an even number of
