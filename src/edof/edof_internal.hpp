@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <type_traits>
 #include <vector>
 
 #include "core/box_filter.hpp"
@@ -14,10 +15,20 @@
 
 namespace lfcam::edof {
 
-// A cost volume or a stack of cost slices: tens to hundreds of MiB, written once and read many
-// times, so on huge pages (huge_page_allocator.hpp); it comes zeroed. With 4 KiB pages a third of
-// `lfcam depth`'s time on antinous went to faulting in and zeroing these buffers (design.md, speed).
-using CostVolume = std::vector<float, HugePageAllocator<float>>;
+// A cost volume or a stack of cost slices: tens to hundreds of MiB, read a plane or a pixel's run
+// at a time; it comes zeroed, first touched on every thread (huge_page_allocator.hpp). On ordinary
+// pages: huge ones bring these sequential reads nothing, and on a virtual machine whose balloon
+// takes freed memory back, fresh huge pages fault in several times slower than ordinary ones
+// (`lfcam depth` on antinous 0.88x wall with ordinary ones; design.md, speed).
+struct CostVolumeAllocator : HugePageAllocator<float> {
+  template <typename U>
+  struct rebind {
+    static_assert(std::is_same_v<U, float>);
+    using other = CostVolumeAllocator;
+  };
+  CostVolumeAllocator() noexcept : HugePageAllocator<float>(Pages::Ordinary) {}
+};
+using CostVolume = std::vector<float, CostVolumeAllocator>;
 
 // Row y of `plane` (ns x nt) shifted by (shiftX, shiftY), sampled bilinearly with positions
 // clamped to the plane, as bilinearSample (core/bilinear.hpp) at (x + shiftX, y + shiftY) but a
