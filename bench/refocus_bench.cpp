@@ -11,8 +11,9 @@
 //                         625x434 RGB, 732 MB), synthesised as layered planes, with its own floor.
 //   BM_RefocusWeighted    the same field with a weight plane (a fifth of it 0), as a decoded raw.
 //   BM_RefocusThreads     refocus of the antinous field on 1 and on 2 threads: the scaling.
-//   BM_RefocusPages       refocus of the antinous field on huge pages (as LightField allocates it)
-//                         and of a copy on 4 KiB pages (ratio = time / huge-page time, alternately).
+//   BM_RefocusPages       refocus of the antinous field on huge pages (as LightField allocates it
+//                         with LFCAM_HUGE_PAGES=1: run it so) and of a copy on 4 KiB pages
+//                         (ratio = time / huge-page time, alternately).
 //   BM_RefocusUpsampled   refocus on a grid K = 2, 3 times finer (upsampled_refocus.hpp) of the
 //                         antinous field (ratio = its time / the plain refocus's, alternately).
 //   BM_RefocusReference   the float64 oracle against the fast kernel on a smaller field

@@ -1,16 +1,17 @@
 // HugePageAllocator: the allocator of the large sample buffers (LightField, depth's cost volumes
-// edof::CostVolume). Buffers of 4 MiB or more are aligned to 2 MiB and marked for transparent huge
-// pages (madvise), because a refocus reads hundreds of short row runs scattered over the whole
-// light field: with 4 KiB pages nearly every run begins with a TLB miss, with 2 MiB pages a few
-// hundred entries cover it all; and faulting in and zeroing 4 KiB at a time was a third of depth's
-// CPU (design.md, speed). Smaller
-// buffers come from operator new as usual. Where the kernel refuses huge pages, memory is the
-// same as before, only aligned. Large buffers are first touched on every thread.
-// A buffer may ask for ordinary pages instead (Pages): on a virtual machine whose host takes
-// freed memory back, a fresh huge page can cost more to fault in than it saves (measured here: a
-// decode of an Illum-size raw, which writes a new 1 GB light field once, is slower with them; a
-// refocus, which reads one many times, faster). LFCAM_HUGE_PAGES=0 in the environment leaves out
-// the advice everywhere.
+// edof::CostVolume). Buffers of 4 MiB or more are aligned to 2 MiB and first touched on every
+// thread: zeroed and faulted in from one thread, depth's cost volumes took a third of its CPU
+// (design.md, speed). Smaller buffers come from operator new as usual.
+// Transparent huge pages are opt-in: with LFCAM_HUGE_PAGES=1 in the environment, the buffers that
+// ask for them (Pages::Huge, the light fields) are marked for them (madvise), since a refocus reads
+// hundreds of short row runs scattered over the whole light field, and with 4 KiB pages nearly
+// every run may begin with a TLB miss. Otherwise, and for buffers that ask for ordinary pages, the
+// advice is against them: on the virtual machines measured, whose balloon hands freed memory back
+// to the host, a fresh huge page faults in several times slower than ordinary ones (256 MiB first
+// touched: 0.3 against 1.6-2.3 GB/s), and a refocus of antinous ran as fast on either
+// (`refocus_bench`, BM_RefocusPages, ratio 0.998); `lfcam depth` took 0.93x wall on ordinary
+// pages against huge ones for its light fields (design.md, speed). Where the kernel refuses huge
+// pages, memory is the same, only aligned.
 // Every buffer comes zeroed (large ones by that first touch), and construct() without a value
 // leaves it so: std::vector<T, HugePageAllocator<T>>(n) is then zero without a second pass over
 // memory that was just written. That holds for fresh allocations only: a vector that shrinks and
@@ -26,8 +27,9 @@
 namespace lfcam {
 
 // Which pages a large buffer asks for: Huge for one that is read many times (a light field being
-// rendered), Ordinary for one written once and passed on (a decode's output), since here a fresh
-// huge page costs more to fault in than it saves on a single pass (bench/decode_bench).
+// rendered), given only with LFCAM_HUGE_PAGES=1 (above); Ordinary for one written once and passed
+// on (a decode's output) or read in order (a cost volume), for which a huge page costs more to fault
+// in than it saves (bench/decode_bench).
 enum class Pages { Huge, Ordinary };
 
 namespace huge_pages {

@@ -19,8 +19,8 @@
 //   decode keeps the raw's lenslet layout as (s, t) and takes view u from the pixel u - (nu - 1) / 2
 //   right of each microlens image's centre (decode.hpp says why).
 //
-// Memory: one contiguous float32 buffer (on huge pages when large: huge_page_allocator.hpp), views
-// outermost:
+// Memory: one contiguous float32 buffer (on huge pages when large and asked for:
+// huge_page_allocator.hpp), views outermost:
 //   index(u, v, s, t, c) = (((v * nu + u) * channels + c) * nt + t) * ns + s
 // so each (view, channel) is a row-major image plane, which a refocus streams through whole.
 // The weight (when present) has one plane per view: weightIndex(u, v, s, t) = ((v * nu + u) * nt

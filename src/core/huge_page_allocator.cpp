@@ -19,11 +19,12 @@ constexpr std::size_t threshold = 2 * hugePage;
 
 std::size_t roundedUp(std::size_t bytes) { return (bytes + hugePage - 1) / hugePage * hugePage; }
 
-// LFCAM_HUGE_PAGES=0 turns the advice off (huge_page_allocator.hpp says when that pays).
+// LFCAM_HUGE_PAGES=1 turns huge pages on for the buffers that ask for them (huge_page_allocator.hpp
+// says when that pays).
 bool hugePagesWanted() {
   static const bool wanted = [] {
     const char* setting = std::getenv("LFCAM_HUGE_PAGES");
-    return !(setting && std::string_view(setting) == "0");
+    return setting && std::string_view(setting) == "1";
   }();
   return wanted;
 }
