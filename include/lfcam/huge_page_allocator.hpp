@@ -7,11 +7,10 @@
 // hundreds of short row runs scattered over the whole light field, and with 4 KiB pages nearly
 // every run may begin with a TLB miss. Otherwise, and for buffers that ask for ordinary pages, the
 // advice is against them: on the virtual machines measured, whose balloon hands freed memory back
-// to the host, a fresh huge page faults in several times slower than ordinary ones (256 MiB first
-// touched: 0.3 against 1.6-2.3 GB/s), and a refocus of antinous ran as fast on either
-// (`refocus_bench`, BM_RefocusPages, ratio 0.998); `lfcam depth` took 0.93x wall on ordinary
-// pages against huge ones for its light fields (design.md, speed). Where the kernel refuses huge
-// pages, memory is the same, only aligned.
+// to the host, fresh huge pages fault in slower than ordinary ones (`lfcam depth` on antinous: the
+// same user time, system time 1.42 -> 0.62 s, wall 0.93x with its light fields on ordinary pages),
+// and a refocus of antinous ran as fast on either (`refocus_bench`, BM_RefocusPages, ratio 0.998;
+// design.md, speed). Where the kernel refuses huge pages, memory is the same, only aligned.
 // Every buffer comes zeroed (large ones by that first touch), and construct() without a value
 // leaves it so: std::vector<T, HugePageAllocator<T>>(n) is then zero without a second pass over
 // memory that was just written. That holds for fresh allocations only: a vector that shrinks and

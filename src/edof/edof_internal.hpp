@@ -17,7 +17,7 @@ namespace lfcam::edof {
 
 // A cost volume or a stack of cost slices: tens to hundreds of MiB, read a plane or a pixel's run
 // at a time; it comes zeroed, first touched on every thread (huge_page_allocator.hpp). On ordinary
-// pages even where huge ones are asked for: huge ones bring these reads in order nothing, and on a
+// pages even with LFCAM_HUGE_PAGES=1: huge ones bring these reads in order nothing, and on a
 // virtual machine whose balloon takes freed memory back, fresh huge pages fault in several times
 // slower than ordinary ones (`lfcam depth` on antinous 0.88x wall with ordinary ones; design.md,
 // speed).
