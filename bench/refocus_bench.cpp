@@ -14,6 +14,8 @@
 //   BM_RefocusPages       refocus of the antinous field on huge pages (as LightField allocates it
 //                         with LFCAM_HUGE_PAGES=1: run it so) and of a copy on 4 KiB pages
 //                         (ratio = time / huge-page time, alternately).
+//   BM_RefocusStack       a focal stack of the antinous field, 48 slopes 1/8 apart (all-in-focus's
+//                         slices) in one call, against one call per slope (ratio, alternately).
 //   BM_RefocusUpsampled   refocus on a grid K = 2, 3 times finer (upsampled_refocus.hpp) of the
 //                         antinous field (ratio = its time / the plain refocus's, alternately).
 //   BM_RefocusReference   the float64 oracle against the fast kernel on a smaller field
@@ -254,6 +256,29 @@ void BM_RefocusPages(benchmark::State& state) {
   state.SetLabel(state.range(0) ? "huge pages" : "4 KiB pages");
 }
 BENCHMARK(BM_RefocusPages)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Ratio = time of the stack / time of one refocus per slope.
+void BM_RefocusStack(benchmark::State& state) {
+  const LightField& lightField = antinous();
+  std::vector<double> slopes;
+  for (int k = 0; k < 48; ++k) slopes.push_back(-3.0 + k / 8.0);
+  double stackSeconds = 0, singleSeconds = 0;
+  for (auto _ : state) {
+    auto start = std::chrono::steady_clock::now();
+    std::vector<lfcam::Image> stack = lfcam::refocus(lightField, slopes);
+    stackSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    benchmark::DoNotOptimize(stack.back().pixels().data());
+    start = std::chrono::steady_clock::now();
+    for (double slope : slopes) {
+      lfcam::Image photo = lfcam::refocus(lightField, slope);
+      benchmark::DoNotOptimize(photo.pixels().data());
+    }
+    singleSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  state.counters["ratio"] = stackSeconds / singleSeconds;
+  state.counters["stack_ms"] = 1e3 * stackSeconds / state.iterations();
+}
+BENCHMARK(BM_RefocusStack)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 // The fast kernel against the reference on one smaller light field (5x5 views, 128x128 RGB).
 const LightField& small() {

@@ -1,6 +1,6 @@
-// refocus (fast, float32) against refocusReference (float64 oracle), and properties that hold
-// for any light field: slope 0 is the mean of the views, a flat field stays flat, an integer
-// slope is an exact shift.
+// refocus (fast, float32) against refocusReference (float64 oracle), a focal stack against one
+// refocus per slope, and properties that hold for any light field: slope 0 is the mean of the
+// views, a flat field stays flat, an integer slope is an exact shift.
 #include "lfcam/refocus.hpp"
 #include "render/references.hpp"
 
@@ -65,6 +65,29 @@ TEST(Refocus, FastMatchesReferenceOnALargerWeightedField) {
 // in turn), at widths around the vector lengths (4, 8, 16 lanes) so that every tail and edge
 // column path runs: odd widths, widths below one vector, one pixel wide; with rows of 1 to 11
 // views, so that every number of rows summed in one pass (up to 9) and a split into two passes run.
+TEST(Refocus, AFocalStackIsEachSlopesRefocus) {
+  // Several row blocks and threads; slopes alike (sharing cached rows), far apart, 0 (one group of
+  // views), and not a number (black), on a field with and without a weight plane.
+  std::mt19937 random(11);
+  const std::vector<double> slopes{-2.3, -2.25, 0.0, 0.75, NAN, 3.0, 0.8};
+  for (bool weighted : {false, true}) {
+    const LightField lightField =
+        randomLightField({.nu = 5, .nv = 4, .ns = 171, .nt = 140, .channels = 3}, random, weighted);
+    const std::vector<Image> stack = refocus(lightField, slopes);
+    ASSERT_EQ(stack.size(), slopes.size());
+    for (std::size_t k = 0; k < slopes.size(); ++k) {
+      const Image one = refocus(lightField, slopes[k]);
+      ASSERT_EQ(stack[k].pixels().size(), one.pixels().size());
+      EXPECT_TRUE(std::equal(one.pixels().begin(), one.pixels().end(), stack[k].pixels().begin()))
+          << "slope " << slopes[k] << (weighted ? ", weighted" : "");
+      if (std::isfinite(slopes[k])) {
+        EXPECT_LT(worstRelativeError(stack[k], refocusReference(lightField, slopes[k])), 1e-5) << "slope " << slopes[k];
+      }
+    }
+  }
+  EXPECT_TRUE(refocus(LightField(), std::vector<double>{1.0, 2.0}).front().empty());
+}
+
 TEST(Refocus, EverySimdTargetMatchesReferenceAtOddWidthsAndTails) {
   std::mt19937 random(1729);
   std::uniform_real_distribution<double> anySlope(-3.0, 3.0);

@@ -14,11 +14,26 @@
 // plain float64 per-pixel oracle (src/render/references.hpp).
 #pragma once
 
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <vector>
+
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
 
 namespace lfcam {
 
 Image refocus(const LightField& lightField, double slope);
+
+// A focal stack: refocus at each slope, bit for bit, in less time than one call per slope (each
+// block of rows is refocused at every slope while its views' rows are in cache).
+std::vector<Image> refocus(const LightField& lightField, std::span<const double> slopes);
+
+// The same stack a batch at a time, so that about `budgetBytes` of photographs at most are held:
+// use(k, photo) for each slopes[k], in order.
+void refocusEach(const LightField& lightField, std::span<const double> slopes,
+                 const std::function<void(std::size_t index, Image&& photo)>& use,
+                 std::size_t budgetBytes = std::size_t(256) << 20);
 
 }  // namespace lfcam

@@ -70,14 +70,19 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
       // on aliased texture), enough to pick the neighbour of the right slice: of the nearest slice
       // and its two neighbours, keep the sharpest. Measured on luminance, a third of the work.
       const LightField grey = edof::luminanceLightField(lightField);
+      std::vector<int> candidates;
+      std::vector<double> slopes;
+      for (int k = 0; k < slices; ++k)
+        if (std::any_of(label.begin(), label.end(), [k](int l) { return std::abs(l - k) <= 1; }))
+          candidates.push_back(k), slopes.push_back(result.slopes[k]);
       std::vector<int> chosen(label);
       std::vector<float> best(n, -1.0f), focus(n);
-      for (int k = 0; k < slices; ++k) {
-        if (std::none_of(label.begin(), label.end(), [k](int l) { return std::abs(l - k) <= 1; })) continue;
-        focusMeasure(refocus(grey, result.slopes[k]), options.focusRadius, focus.data());
+      refocusEach(grey, slopes, [&](std::size_t j, Image&& slice) {
+        const int k = candidates[j];
+        focusMeasure(slice, options.focusRadius, focus.data());
         for (std::size_t i = 0; i < n; ++i)
           if (std::abs(label[i] - k) <= 1 && focus[i] > best[i]) best[i] = focus[i], chosen[i] = k;
-      }
+      });
       label = std::move(chosen);
     }
   } else if (slices > 1) {
@@ -86,10 +91,10 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
     // sharpness varies, not swamped by the penalties that strong texture elsewhere sets.
     edof::CostVolume volume(n * slices);
     std::vector<float> focus(n), mean(n, 0.0f);
-    for (int k = 0; k < slices; ++k) {
-      focusMeasure(refocus(lightField, result.slopes[k]), std::max(options.focusRadius, 0), focus.data());
+    refocusEach(lightField, result.slopes, [&](std::size_t k, Image&& slice) {
+      focusMeasure(slice, std::max(options.focusRadius, 0), focus.data());
       for (std::size_t i = 0; i < n; ++i) volume[i * slices + k] = focus[i], mean[i] += focus[i] / slices;
-    }
+    });
     for (std::size_t i = 0; i < n; ++i) {
       const float inverse = 1.0f / std::max(mean[i], 1e-12f);
       for (int k = 0; k < slices; ++k) volume[i * slices + k] *= -inverse;
@@ -124,15 +129,16 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
   int levels = options.levels;
   if (levels <= 0) levels = std::clamp(int(std::floor(std::log2(std::max(std::min(ns, nt), 1)))) - 3, 1, 6);
   edof::PyramidBlender blender(ns, nt, lightField.channels(), levels);
+  std::vector<int> used;
+  std::vector<double> usedSlopes;
+  for (int k = 0; k < slices; ++k)
+    if (std::find(label.begin(), label.end(), k) != label.end())
+      used.push_back(k), usedSlopes.push_back(result.slopes[k]);
   std::vector<float> mask(n);
-  for (int k = 0; k < slices; ++k) {
-    bool used = false;
-    for (std::size_t i = 0; i < n; ++i) {
-      mask[i] = label[i] == k ? 1.0f : 0.0f;
-      used = used || label[i] == k;
-    }
-    if (used) blender.add(refocus(lightField, result.slopes[k]), mask.data());
-  }
+  refocusEach(lightField, usedSlopes, [&](std::size_t j, Image&& slice) {
+    for (std::size_t i = 0; i < n; ++i) mask[i] = label[i] == used[j] ? 1.0f : 0.0f;
+    blender.add(slice, mask.data());
+  });
   result.photo = blender.result();
   return result;
 }

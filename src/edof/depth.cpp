@@ -311,7 +311,7 @@ void aggregatePlanes(const edof::GuidedFilter& filter, float* planes, std::size_
 // 3.86, 5.35 %) and 3.65, 3.56, 3.41 % at 256 (none: 3.02 and 3.55 %).
 constexpr float kDefocusCeiling = 2.0f;
 
-// The defocus cue at disparity d: the squared Laplacian of the full-aperture photograph, at most
+// The defocus cue at each disparity d: the squared Laplacian of the full-aperture photograph, at most
 // kDefocusCeiling times the centre view's (`centreEnergy`). Refocusing averages shifted copies of
 // the views, so it cannot make a Lambertian scene sharper than the centre view, whose small
 // aperture has everything in focus. Yet a photograph refocused far from a strong edge shows it
@@ -321,13 +321,19 @@ constexpr float kDefocusCeiling = 2.0f;
 // strongly textured backdrop took the range's nearest label along the backdrop's edge (11.98 %
 // BadPix(0.07), with it 3.86 %, when it was chosen; since the cleanup follows slopes, which mends
 // most of that, 1.26 against 0.96 %: `depth_bench --development-only --no-defocus-ceiling`).
-// Without `centreEnergy`, no ceiling (DepthExperiment::defocusCeiling).
-void defocusEnergy(const LightField& grey, double d, const float* centreEnergy, float* energy) {
-  const Image photo = refocus(grey, d);
-  edof::squaredLaplacian(photo, energy);
-  if (!centreEnergy) return;
+// Without `centreEnergy`, no ceiling (DepthExperiment::defocusCeiling). Returns energy[l * n + p],
+// the photographs refocused as a focal stack.
+edof::CostVolume defocusEnergy(const LightField& grey, const std::vector<double>& disparities,
+                               const float* centreEnergy) {
   const std::size_t n = grey.shape().viewPixels();
-  for (std::size_t p = 0; p < n; ++p) energy[p] = std::min(energy[p], kDefocusCeiling * centreEnergy[p]);
+  edof::CostVolume energy(n * disparities.size());
+  refocusEach(grey, disparities, [&](std::size_t l, Image&& photo) {
+    float* out = energy.data() + l * n;
+    edof::squaredLaplacian(photo, out);
+    if (centreEnergy)
+      for (std::size_t p = 0; p < n; ++p) out[p] = std::min(out[p], kDefocusCeiling * centreEnergy[p]);
+  });
+  return energy;
 }
 
 // Steps 2-3: per label, the correspondence cost of each subset of views less the defocus cue,
@@ -355,9 +361,12 @@ edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double
   for (std::size_t j = halves; j < subsets; ++j) oneDimensional.emplace_back(n * labels);
   constexpr int kChunk = 4;
   edof::CostVolume cost(n * labels), planes(std::size_t(kChunk) * subsets * n);
-  std::vector<float> energy(n), centreEnergy(n);
+  std::vector<float> centreEnergy(n);
   if (defocusWeight > 0 && ceiling)
     edof::squaredLaplacian(grey.subApertureImage((grey.nu() - 1) / 2, (grey.nv() - 1) / 2), centreEnergy.data());
+  const edof::CostVolume energy = defocusWeight > 0
+                                      ? defocusEnergy(grey, disparities, ceiling ? centreEnergy.data() : nullptr)
+                                      : edof::CostVolume();
   for (int first = 0; first < labels; first += kChunk) {
     const int last = std::min(labels, first + kChunk);
     correspondenceCost(grey, disparities, first, last, locking, noise, fromReference, planes.data());
@@ -373,12 +382,12 @@ edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double
     };
     if (defocusWeight > 0)
       for (int l = first; l < last; ++l) {
-        defocusEnergy(grey, disparities[l], ceiling ? centreEnergy.data() : nullptr, energy.data());
         const float weight = float(defocusWeight);
+        const float* labelEnergy = energy.data() + std::size_t(l) * n;
         parallelFor(0, perLabel, 1, [&](std::size_t begin, std::size_t end) {
           for (std::size_t i = begin; i < end; ++i) {
             float* target = slice(l, i);
-            for (std::size_t p = 0; p < n; ++p) target[p] -= weight * energy[p];
+            for (std::size_t p = 0; p < n; ++p) target[p] -= weight * labelEnergy[p];
           }
         });
       }

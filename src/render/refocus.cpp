@@ -2,12 +2,14 @@
 // light_field.hpp). Two kernels with one meaning:
 //   refocusReference  the formula of refocus.hpp, per output pixel, in float64: the test oracle.
 //   refocus           the same sums reordered for speed: float32, one view at a time over whole
-//                     rows, threaded over blocks of output rows.
+//                     rows, threaded over blocks of output rows; for a focal stack, each block at
+//                     every slope in turn.
 #include "lfcam/refocus.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "render/bilinear_taps.hpp"
@@ -196,10 +198,9 @@ void refocusRows(const RefocusPlan& plan, int y0, int y1, Image& out) {
 
 namespace {
 
-Image runPlan(RefocusPlan& plan) {
-  const LightField& lightField = *plan.lightField;
-  const LightFieldShape& shape = lightField.shape();
-  Image out(shape.ns, shape.nt, shape.channels);
+// Sorts the plan's terms by vertical shift and groups those that share one.
+void preparePlan(RefocusPlan& plan) {
+  const LightFieldShape& shape = plan.lightField->shape();
   std::stable_sort(plan.terms.begin(), plan.terms.end(),
                    [](const ShiftAndAddTerm& a, const ShiftAndAddTerm& b) { return a.shiftY < b.shiftY; });
   for (const ShiftAndAddTerm& term : plan.terms) {
@@ -213,18 +214,22 @@ Image runPlan(RefocusPlan& plan) {
       plan.groups.push_back({term, term});
     plan.groups.back().end = term + 1;
   }
-
-  // One accumulator plane is summed into at a time.
-  forEachRowBlock(shape.nt, shape.ns, 1, [&](int y0, int y1) { refocusRows(plan, y0, y1, out); });
-  return out;
 }
 
-}  // namespace
+// Each plan's photograph: *out[k] of plans[k]. One accumulator plane is summed into at a time. Each
+// block of rows is summed for every plan before the next: its views' rows, read from memory for
+// the first plan, are still in cache for the next ones when their shifts are alike (a focal stack).
+void runPlans(std::vector<RefocusPlan>& plans, const std::vector<Image*>& out) {
+  if (plans.empty()) return;
+  for (RefocusPlan& plan : plans) preparePlan(plan);
+  const LightFieldShape& shape = plans.front().lightField->shape();
+  forEachRowBlock(shape.nt, shape.ns, 1, [&](int y0, int y1) {
+    for (std::size_t k = 0; k < plans.size(); ++k) refocusRows(plans[k], y0, y1, *out[k]);
+  });
+}
 
-Image refocus(const LightField& lightField, double slope) {
+RefocusPlan refocusPlan(const LightField& lightField, double slope) {
   const LightFieldShape& shape = lightField.shape();
-  if (lightField.empty() || !std::isfinite(slope)) return Image(shape.ns, shape.nt, shape.channels);
-
   RefocusPlan plan;
   plan.lightField = &lightField;
   for (int v = 0; v < shape.nv; ++v)
@@ -238,7 +243,39 @@ Image refocus(const LightField& lightField, double slope) {
     plan.columnWeight = separableWeight(columnShift, shape.ns);
     plan.rowWeight = separableWeight(rowShift, shape.nt);
   }
-  return runPlan(plan);
+  return plan;
+}
+
+}  // namespace
+
+std::vector<Image> refocus(const LightField& lightField, std::span<const double> slopes) {
+  const LightFieldShape& shape = lightField.shape();
+  std::vector<Image> photos;
+  for (std::size_t k = 0; k < slopes.size(); ++k) photos.emplace_back(shape.ns, shape.nt, shape.channels);
+  std::vector<RefocusPlan> plans;
+  std::vector<Image*> out;
+  for (std::size_t k = 0; k < slopes.size(); ++k)
+    if (!lightField.empty() && std::isfinite(slopes[k])) {
+      plans.push_back(refocusPlan(lightField, slopes[k]));
+      out.push_back(&photos[k]);
+    }
+  runPlans(plans, out);
+  return photos;
+}
+
+void refocusEach(const LightField& lightField, std::span<const double> slopes,
+                 const std::function<void(std::size_t, Image&&)>& use, std::size_t budgetBytes) {
+  const std::size_t photoBytes =
+      std::max<std::size_t>(lightField.shape().viewPixels() * lightField.channels(), 1) * sizeof(float);
+  const std::size_t batch = std::max<std::size_t>(budgetBytes / photoBytes, 1);
+  for (std::size_t first = 0; first < slopes.size(); first += batch) {
+    std::vector<Image> photos = refocus(lightField, slopes.subspan(first, std::min(batch, slopes.size() - first)));
+    for (std::size_t k = 0; k < photos.size(); ++k) use(first + k, std::move(photos[k]));
+  }
+}
+
+Image refocus(const LightField& lightField, double slope) {
+  return std::move(refocus(lightField, std::span<const double>(&slope, 1)).front());
 }
 
 Image shiftAndAdd(const LightField& lightField, std::vector<ShiftAndAddTerm> terms) {
@@ -250,7 +287,11 @@ Image shiftAndAdd(const LightField& lightField, std::vector<ShiftAndAddTerm> ter
     return !(term.weight > 0) || !std::isfinite(term.shiftX) || !std::isfinite(term.shiftY);
   });
   plan.terms = std::move(terms);
-  return runPlan(plan);
+  std::vector<RefocusPlan> plans;
+  plans.push_back(std::move(plan));
+  Image photo(shape.ns, shape.nt, shape.channels);
+  runPlans(plans, {&photo});
+  return photo;
 }
 
 }  // namespace lfcam
