@@ -103,6 +103,21 @@ MapSlopes mapSlopes(const float* disparity, int width, int height);
 // like-coloured neighbours lie on one side (a colour edge, a shadow, an occlusion edge) would
 // otherwise take their nearer or farther disparity (weighted_median.cpp).
 void guidedWeightedMedian(const Image& guide, int radius, float sigma, bool slanted, float* disparity);
+// The same, one neighbour at a time, the window sorted: the reference of the fast one.
+void guidedWeightedMedianReference(const Image& guide, int radius, float sigma, bool slanted, float* disparity);
+
+// One row y of guidedWeightedMedian (guided_median_row.cpp): what it reads, each array readable
+// kMedianPadding floats past its end. weights = table[squared colour distance x steps], at most 1.
+struct GuidedMedianInputs {
+  std::vector<const float*> planes;  // the guide's
+  const float* disparity = nullptr;  // the map before the median
+  const float* slopeX = nullptr;     // the map's slopes (mapSlopes), or none: flat
+  const float* slopeY = nullptr;
+  const float* table = nullptr;  // steps + 1 entries
+  int steps = 0, width = 0, height = 0, radius = 0;
+};
+// `values` and `weights`: room for (2 radius + 1)^2 + kMedianPadding floats.
+void guidedMedianRow(const GuidedMedianInputs& inputs, int y, float* values, float* weights, float* out);
 
 // Occlusion edges (occlusion_edges.cpp). Chessboard distance from each pixel to the nearest jump
 // (both pixels of a 4-neighbour pair whose disparities differ by more than `jump`), capped at
