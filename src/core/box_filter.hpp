@@ -5,7 +5,8 @@
 
 namespace lfcam {
 
-// Mean over the (2 r + 1)^2 window clipped to the image, in O(1) per pixel.
+// Mean over the (2 r + 1)^2 window clipped to the image, in O(1) per pixel. `in` and `out` must
+// not overlap.
 void boxFilter(const float* in, float* out, int width, int height, int radius);
 
 }  // namespace lfcam

@@ -59,7 +59,7 @@ class GuidedFilter {
   GuidedFilter(const float* guide, int width, int height, int radius, double epsilon);
   // Buffers of one apply, kept by the caller across slices (no allocation per slice).
   struct Scratch {
-    std::vector<float> a, b, rows;
+    std::vector<float> a, b, rows, product, meanIn, meanProduct;
   };
   void apply(const float* in, float* out) const;
   void apply(const float* in, float* out, Scratch& scratch) const;

@@ -137,7 +137,8 @@ void GuidedFilter::apply(const float* in, float* out, Scratch& scratch) const {
   float* mean0 = column1 + w;
   float* mean1 = mean0 + w;
   if (r > kSmallRadius) {  // wide windows: whole-plane running sums
-    std::vector<float> product(n), meanIn(n), meanProduct(n);
+    std::vector<float>&product = scratch.product, &meanIn = scratch.meanIn, &meanProduct = scratch.meanProduct;
+    product.resize(n), meanIn.resize(n), meanProduct.resize(n);
     for (std::size_t i = 0; i < n; ++i) product[i] = guide_[i] * in[i];
     boxFilter(in, meanIn.data(), w, h, r);
     boxFilter(product.data(), meanProduct.data(), w, h, r);
