@@ -9,16 +9,18 @@
 //     depth map's range; else the metadata; else [-2, 2]), one step 1 / (max(nu, nv) - 1) by
 //     default, so that a surface halfway between two slices is blurred over at most
 //     (n - 1) step / 2 = 1/2 pixel.
-//  2. A slice label per pixel. Given a depth map (`disparity`), the slice nearest the pixel's
-//     disparity. Otherwise a focus measure per slice, the squared Laplacian of its luminance
+//  2. A slice label per pixel. Given a depth map (`disparity`), of the slice nearest the pixel's
+//     disparity and its two neighbours, the sharpest (the focus measure below, unregularised).
+//     Otherwise a focus measure per slice, the squared Laplacian of its luminance
 //     averaged over a (2 r + 1)^2 window, regularised across pixels by semi-global optimisation
 //     whose jump penalty drops across edges of the centre view (edge-aware), then the sharpest.
 //  3. Compositing: Laplacian-pyramid (multi-band) blending of the slices under their label masks
 //     (Burt and Adelson 1983), which hides the seams between labels: each band is blended over a
 //     width matched to its wavelength.
-// Cost: one refocus per slice for the composite (plus one per slice for the focus measure
-// without a depth map) and a pyramid per slice used: about 64 refocus times for HCI antinous
-// (9x9 views of 512x512, 50 slices) given its depth map (bench/depth_bench.cpp).
+// Cost: one refocus per slice, as focal stacks (refocus.hpp), the slices kept from the focus
+// measure to the blend while they fit in 256 MiB, and a pyramid per slice used: about 55 refocus
+// times for HCI antinous (9x9 views of 512x512, 48 slices) given its depth map
+// (bench/depth_bench.cpp, BM_AllInFocus).
 #pragma once
 
 #include <optional>

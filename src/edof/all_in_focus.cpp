@@ -14,6 +14,9 @@ namespace lfcam {
 
 namespace {
 
+// The focal stack's slices kept between the focus measure and the blend, at most.
+constexpr std::size_t kHeldBytes = std::size_t(256) << 20;
+
 // Focus measure of one slice: squared Laplacian of its luminance, window-averaged.
 void focusMeasure(const Image& slice, int radius, float* out) {
   const Image grey = edof::luminance(slice);
@@ -58,7 +61,16 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
   AllInFocus result;
   for (int k = 0; k < slices; ++k) result.slopes.push_back(dmin + k * step);
 
-  // 2. A slice label per pixel.
+  // 2. A slice label per pixel. The slices refocused for it are kept for the blend (3) while they
+  // fit in kHeldBytes, so that most are refocused once.
+  std::vector<Image> held(slices);
+  std::size_t heldBytes = 0;
+  const auto hold = [&](int k, Image&& slice) {
+    const std::size_t bytes = slice.pixels().size() * sizeof(float);
+    if (heldBytes + bytes > kHeldBytes) return;
+    held[k] = std::move(slice);
+    heldBytes += bytes;
+  };
   std::vector<int> label(n, slices / 2);
   if (disparity) {
     for (std::size_t i = 0; i < n; ++i) {
@@ -68,8 +80,7 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
     if (slices > 1 && options.focusRadius >= 0) {
       // A depth map errs by a fraction of a slice step here and there (a few hundredths of a pixel
       // on aliased texture), enough to pick the neighbour of the right slice: of the nearest slice
-      // and its two neighbours, keep the sharpest. Measured on luminance, a third of the work.
-      const LightField grey = edof::luminanceLightField(lightField);
+      // and its two neighbours, keep the sharpest.
       std::vector<int> candidates;
       std::vector<double> slopes;
       for (int k = 0; k < slices; ++k)
@@ -77,11 +88,12 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
           candidates.push_back(k), slopes.push_back(result.slopes[k]);
       std::vector<int> chosen(label);
       std::vector<float> best(n, -1.0f), focus(n);
-      refocusEach(grey, slopes, [&](std::size_t j, Image&& slice) {
+      refocusEach(lightField, slopes, [&](std::size_t j, Image&& slice) {
         const int k = candidates[j];
         focusMeasure(slice, options.focusRadius, focus.data());
         for (std::size_t i = 0; i < n; ++i)
           if (std::abs(label[i] - k) <= 1 && focus[i] > best[i]) best[i] = focus[i], chosen[i] = k;
+        hold(k, std::move(slice));
       });
       label = std::move(chosen);
     }
@@ -94,6 +106,7 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
     refocusEach(lightField, result.slopes, [&](std::size_t k, Image&& slice) {
       focusMeasure(slice, std::max(options.focusRadius, 0), focus.data());
       for (std::size_t i = 0; i < n; ++i) volume[i * slices + k] = focus[i], mean[i] += focus[i] / slices;
+      hold(int(k), std::move(slice));
     });
     for (std::size_t i = 0; i < n; ++i) {
       const float inverse = 1.0f / std::max(mean[i], 1e-12f);
@@ -129,16 +142,23 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
   int levels = options.levels;
   if (levels <= 0) levels = std::clamp(int(std::floor(std::log2(std::max(std::min(ns, nt), 1)))) - 3, 1, 6);
   edof::PyramidBlender blender(ns, nt, lightField.channels(), levels);
-  std::vector<int> used;
-  std::vector<double> usedSlopes;
-  for (int k = 0; k < slices; ++k)
-    if (std::find(label.begin(), label.end(), k) != label.end())
-      used.push_back(k), usedSlopes.push_back(result.slopes[k]);
   std::vector<float> mask(n);
-  refocusEach(lightField, usedSlopes, [&](std::size_t j, Image&& slice) {
-    for (std::size_t i = 0; i < n; ++i) mask[i] = label[i] == used[j] ? 1.0f : 0.0f;
+  const auto blend = [&](int k, const Image& slice) {
+    for (std::size_t i = 0; i < n; ++i) mask[i] = label[i] == k ? 1.0f : 0.0f;
     blender.add(slice, mask.data());
-  });
+  };
+  std::vector<int> missing;
+  std::vector<double> missingSlopes;
+  for (int k = 0; k < slices; ++k) {
+    if (std::find(label.begin(), label.end(), k) == label.end()) continue;
+    if (!held[k].empty()) {
+      blend(k, held[k]);
+      held[k] = Image();
+    } else {
+      missing.push_back(k), missingSlopes.push_back(result.slopes[k]);
+    }
+  }
+  refocusEach(lightField, missingSlopes, [&](std::size_t j, Image&& slice) { blend(missing[j], slice); });
   result.photo = blender.result();
   return result;
 }
