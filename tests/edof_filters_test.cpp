@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "core/bilinear.hpp"
@@ -62,6 +63,28 @@ TEST(SampleShiftedRow, MatchesBilinearSampleOnRandomInputs) {
         ASSERT_NEAR(out[x], bilinearSample(plane.data(), ns, nt, x + shiftX, y + shiftY), 1e-5)
             << ns << "x" << nt << " y " << y << " shift " << shiftX << ", " << shiftY << " x " << x;
     }
+  }
+}
+
+// The squared Laplacian, rows threaded and its interior without clamps, against the formula with
+// every neighbour clamped to the image, bit for bit, down to 1-pixel images.
+TEST(SquaredLaplacian, MatchesTheClampedFormula) {
+  std::mt19937 generator(12);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (const auto& [width, height] :
+       std::vector<std::pair<int, int>>{{1, 1}, {1, 5}, {5, 1}, {2, 2}, {3, 7}, {17, 4}, {300, 211}}) {
+    Image image(width, height, 1);
+    for (float& v : image.pixels()) v = uniform(generator);
+    std::vector<float> out(image.planeSize());
+    squaredLaplacian(image, out.data());
+    const auto at = [&](int x, int y) {
+      return image.at(std::clamp(x, 0, width - 1), std::clamp(y, 0, height - 1), 0);
+    };
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const float lap = at(x - 1, y) + at(x + 1, y) + at(x, y - 1) + at(x, y + 1) - 4 * at(x, y);
+        ASSERT_EQ(out[std::size_t(y) * width + x], lap * lap) << width << "x" << height << " at " << x << ", " << y;
+      }
   }
 }
 
