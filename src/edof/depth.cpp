@@ -633,16 +633,20 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   if (coarseOut) *coarseOut = {std::move(cost), ns, nt};  // no longer needed here: handed over, not copied
   cost.clear();
   cost.shrink_to_fit();
+  // Each pixel's mean cost and contrast (mean less lowest), summed in pixel order.
+  std::vector<float> meanCost(n), contrast(n);
+  parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) {
+      const float* c = &volume[p * labels];
+      double sum = 0;
+      float lowest = c[0];
+      for (int l = 0; l < labels; ++l) sum += c[l], lowest = std::min(lowest, c[l]);
+      meanCost[p] = float(sum / labels);
+      contrast[p] = meanCost[p] - lowest;
+    }
+  });
   double contrastSum = 0;
-  std::vector<float> meanCost(n);
-  for (std::size_t p = 0; p < n; ++p) {
-    const float* c = &volume[p * labels];
-    double sum = 0;
-    float lowest = c[0];
-    for (int l = 0; l < labels; ++l) sum += c[l], lowest = std::min(lowest, c[l]);
-    meanCost[p] = float(sum / labels);
-    contrastSum += meanCost[p] - lowest;
-  }
+  for (std::size_t p = 0; p < n; ++p) contrastSum += contrast[p];
   const double scale = std::max(contrastSum / double(n), 1e-12);
 
   // 4. Regularisation: semi-global optimisation, then the read-out between labels.
@@ -655,11 +659,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // the scaling, the confidence undoes it.
   std::vector<float> gain(n, 1.0f);
   if (options.smoothness > 0 && options.contrastRadius > 0) {
-    std::vector<float> contrast(n), local(n);
-    for (std::size_t p = 0; p < n; ++p) {
-      const float* c = &volume[p * labels];
-      contrast[p] = meanCost[p] - *std::min_element(c, c + labels);
-    }
+    std::vector<float> local(n);
     boxFilter(contrast.data(), local.data(), ns, nt, options.contrastRadius);
     parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
       for (std::size_t p = begin; p < end; ++p) {
@@ -714,8 +714,8 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
       const int i = std::min(int(l), labels - 2);
       return c[i] + (l - i) * (c[i + 1] - c[i]);
     };
-    const double contrast = gain[p] * meanCost[p] - *std::min_element(c, c + labels);
-    return at(to) - at(from) <= kReclaimCostMargin * contrast;
+    const double scaledContrast = gain[p] * meanCost[p] - *std::min_element(c, c + labels);
+    return at(to) - at(from) <= kReclaimCostMargin * scaledContrast;
   };
   // 5-6. Refinement and cleanup, `refineRounds` times: each round's fine search starts from the
   // map the previous round cleaned, a window's slices then follow the surface where the first
