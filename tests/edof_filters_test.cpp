@@ -71,8 +71,9 @@ TEST(SampleShiftedRow, MatchesBilinearSampleOnRandomInputs) {
 TEST(SquaredLaplacian, MatchesTheClampedFormula) {
   std::mt19937 generator(12);
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
-  for (const auto& [width, height] :
+  for (const std::pair<int, int>& size :
        std::vector<std::pair<int, int>>{{1, 1}, {1, 5}, {5, 1}, {2, 2}, {3, 7}, {17, 4}, {300, 211}}) {
+    const int width = size.first, height = size.second;  // named, not bound: lambdas capture them
     Image image(width, height, 1);
     for (float& v : image.pixels()) v = uniform(generator);
     std::vector<float> out(image.planeSize());
