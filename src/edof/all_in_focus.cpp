@@ -26,6 +26,13 @@ void focusMeasure(const Image& slice, int radius, float* out) {
   boxFilter(energy.data(), out, w, h, radius);
 }
 
+// How many pixels take each of `slices` labels.
+std::vector<std::size_t> labelCounts(const std::vector<int>& label, int slices) {
+  std::vector<std::size_t> count(slices, 0);
+  for (int l : label) ++count[l];
+  return count;
+}
+
 }  // namespace
 
 Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOptions& options) {
@@ -81,10 +88,11 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
       // A depth map errs by a fraction of a slice step here and there (a few hundredths of a pixel
       // on aliased texture), enough to pick the neighbour of the right slice: of the nearest slice
       // and its two neighbours, keep the sharpest.
+      const std::vector<std::size_t> count = labelCounts(label, slices);
       std::vector<int> candidates;
       std::vector<double> slopes;
       for (int k = 0; k < slices; ++k)
-        if (std::any_of(label.begin(), label.end(), [k](int l) { return std::abs(l - k) <= 1; }))
+        if (count[k] > 0 || (k > 0 && count[k - 1] > 0) || (k + 1 < slices && count[k + 1] > 0))
           candidates.push_back(k), slopes.push_back(result.slopes[k]);
       std::vector<int> chosen(label);
       std::vector<float> best(n, -1.0f), focus(n);
@@ -149,8 +157,9 @@ Result<AllInFocus> allInFocus(const LightField& lightField, const AllInFocusOpti
   };
   std::vector<int> missing;
   std::vector<double> missingSlopes;
+  const std::vector<std::size_t> count = labelCounts(label, slices);
   for (int k = 0; k < slices; ++k) {
-    if (std::find(label.begin(), label.end(), k) == label.end()) continue;
+    if (count[k] == 0) continue;
     if (!held[k].empty()) {
       blend(k, held[k]);
       held[k] = Image();

@@ -3,8 +3,8 @@
 // the table by a gather, the disparities carried along the slope), instead of one neighbour at a
 // time, then the median is selected (weighted_median_select.cpp). Its reference is
 // guidedWeightedMedianReference (weighted_median.cpp), whose bits it gives (no fused a * b + c:
-// CMakeLists.txt). foreach_target.h compiles this file once
-// per instruction set; HWY_DYNAMIC_DISPATCH picks one on the first call.
+// CMakeLists.txt). foreach_target.h compiles this file once per instruction set;
+// HWY_DYNAMIC_DISPATCH picks one on the first call.
 #include <algorithm>
 #include <cstddef>
 
