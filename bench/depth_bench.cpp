@@ -22,7 +22,7 @@
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
 //      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--no-first-round-cost-check]
 //      [--no-offset-slope-correction] [--offset-shrink] [--no-offset-residual-check]
-//      [--no-one-dimensional-gate] [--match-at-reference] [--no-coarse-cost] [--scene TEXT]
+//      [--no-one-dimensional-gate] [--match-at-reference] [--no-coarse-cost] [--scene TEXT] [--stages]
 //      [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared. Given
@@ -32,6 +32,8 @@
 //   --size N            the development scenes at N x N pixels per view (default 128)
 //   --scene TEXT        only the development scenes whose name contains TEXT
 //   --write DIR         also each scene's map, truth and centre view: DIR/<scene>.pfm, -truth.pfm, -centre.png
+//   --stages            under each row, the scores of the map each stage left (the full resolution's
+//                       last pass, DepthExperiment::observeStage); with --write, DIR/<scene>-<stage>.pfm
 //   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what
 //                       aggregating them apart brings
 //   --no-noise-correction  without the noise variance that interpolation removes added back
@@ -57,6 +59,7 @@
 #include <ctime>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "depth_scenes.hpp"
@@ -230,24 +233,66 @@ void printRow(const std::string& name, const lfcam::DepthMap& depth, const lfcam
     std::printf(" %6s %8s\n", "0", "-");
 }
 
+// A scene's map as each stage left it, in the order the stages first ran, at the truth's size: a
+// later pass's map (noisy views are matched twice) replaces the earlier one's.
+struct StageMaps {
+  int width = 0, height = 0;
+  std::vector<std::pair<std::string, lfcam::Image>> maps;
+
+  void observe(const std::string& stage, const lfcam::Image& disparity) {
+    if (disparity.width() != width || disparity.height() != height) return;
+    for (auto& [name, map] : maps)
+      if (name == stage) return void(map = disparity.copy());
+    maps.emplace_back(stage, disparity.copy());
+  }
+};
+
+// Each stage's scores, indented under the scene's row.
+void printStages(const StageMaps& stages, const lfcam::Image& truth) {
+  for (const auto& [stage, map] : stages.maps)
+    if (auto scores = lfcam::scoreHci(map, truth))
+      std::printf("  %-26s %8.2f %8.2f %9.3f %9.3f\n", stage.c_str(), scores->badPix007, scores->badPix003,
+                  scores->mse100, scores->bumpiness);
+}
+
 // Every scene's HCI scores with each of `candidates` (disparity_scores.hpp; 15-pixel border;
 // bumpiness on the planes of the ground truth): the development scenes, on which defaults are
 // chosen, then HCI antinous, held out: never used to choose a parameter. With more than one
 // candidate, each row is named with its label. With `folder` not empty, each scene's disparity,
-// truth and centre view are written there.
+// truth and centre view are written there. With `stages`, each stage's scores (and maps) too.
 void printScores(const std::vector<Candidate>& candidates, const lfcam::edof::DepthExperiment& experiment, bool heldOut,
-                 const std::string& folder, int size, const std::string& only) {
-  auto write = [&](const std::string& scene, const lfcam::Image& disparity, const lfcam::Image& truth,
-                   const lfcam::LightField& lightField) {
+                 const std::string& folder, int size, const std::string& only, bool stages) {
+  const auto writeMap = [&](const std::string& stem, const std::string& suffix, const lfcam::Image& image) {
+    if (auto written = lfcam::writeImage(folder + "/" + stem + suffix, image); !written)
+      std::fprintf(stderr, "depth_bench: %s\n", written.error().message.c_str());
+  };
+  // One row: the map of `lightField` with `options`, scored against `truth` (and its stages').
+  const auto run = [&](const std::string& row, const LightField& lightField, const lfcam::DepthOptions& options,
+                       const lfcam::Image& truth) {
+    StageMaps stageMaps{truth.width(), truth.height(), {}};
+    lfcam::edof::DepthExperiment observed = experiment;
+    if (stages)
+      observed.observeStage = [&](const std::string& stage, const lfcam::Image& map) { stageMaps.observe(stage, map); };
+    const auto start = std::chrono::steady_clock::now();
+    auto depth = lfcam::edof::estimateDepth(lightField, options, observed);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!depth) return (void)std::printf("%-28s %s\n", row.c_str(), depth.error().message.c_str());
+    printRow(row, *depth, truth, seconds);
+    printStages(stageMaps, truth);
     if (folder.empty()) return;
-    std::string name = scene.substr(0, scene.find(" ("));
-    for (char& c : name)
+    std::string stem = row;  // without a parenthesis, "(held out)"
+    if (const auto open = stem.find(" ("); open != std::string::npos) stem.erase(open, stem.find(')', open) - open + 1);
+    for (char& c : stem)
       if (c == ' ' || c == ',') c = '-';
-    const lfcam::Image centre = lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2);
-    for (const auto& [file, image] : {std::pair{name + ".pfm", &disparity}, std::pair{name + "-truth.pfm", &truth},
-                                      std::pair{name + "-centre.png", &centre}})
-      if (auto written = lfcam::writeImage(folder + "/" + file, *image); !written)
-        std::fprintf(stderr, "depth_bench: %s\n", written.error().message.c_str());
+    writeMap(stem, ".pfm", depth->disparity);
+    writeMap(stem, "-truth.pfm", truth);
+    writeMap(stem, "-centre.png", lightField.subApertureImage((lightField.nu() - 1) / 2, (lightField.nv() - 1) / 2));
+    for (const auto& [stage, map] : stageMaps.maps) {
+      std::string suffix = "-" + stage + ".pfm";
+      for (char& c : suffix)
+        if (c == ' ') c = '-';
+      writeMap(stem, suffix, map);
+    }
   };
   std::printf("%-28s %8s %8s %9s %9s %7s %9s %9s %8s %6s %8s\n", "scene", "BP(0.07)", "BP(0.03)", "MSEx100",
               "bumpiness", "seconds", "residual", "prefilter", "farther", "steep", "steep BP");
@@ -257,28 +302,17 @@ void printScores(const std::vector<Candidate>& candidates, const lfcam::edof::De
   for (const lfcam::bench::DepthScene& scene : lfcam::bench::developmentScenes(size)) {
     if (scene.name.find(only) == std::string::npos) continue;
     for (const Candidate& candidate : candidates) {
-      const auto start = std::chrono::steady_clock::now();
       lfcam::DepthOptions sceneOptions = candidate.options;
       sceneOptions.disparityMin = scene.disparityMin;
       sceneOptions.disparityMax = scene.disparityMax;
-      auto depth = lfcam::edof::estimateDepth(scene.lightField, sceneOptions, experiment);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const std::string name = rowName(scene.name, candidate);
-      if (depth) printRow(name, *depth, scene.disparity, seconds);
-      if (depth) write(name, depth->disparity, scene.disparity, scene.lightField);
+      run(rowName(scene.name, candidate), scene.lightField, sceneOptions, scene.disparity);
     }
   }
   if (!heldOut) return;
   auto truth = lfcam::readImage(kFolder + "/gt_disp_lowres.pfm");
   if (!truth) return (void)std::printf("hci-antinous (held out): not found in %s\n", kFolder.c_str());
-  const lfcam::LightField& lightField = antinous();
-  for (const Candidate& candidate : candidates) {
-    const auto start = std::chrono::steady_clock::now();
-    auto depth = lfcam::edof::estimateDepth(lightField, candidate.options, experiment);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (depth) printRow(rowName("hci-antinous (held out)", candidate), *depth, *truth, seconds);
-    if (depth) write(rowName("hci-antinous", candidate), depth->disparity, *truth, lightField);
-  }
+  for (const Candidate& candidate : candidates)
+    run(rowName("hci-antinous (held out)", candidate), antinous(), candidate.options, *truth);
 }
 
 }  // namespace
@@ -287,7 +321,7 @@ int main(int argc, char** argv) {
   // The table's own flags, taken out before the benchmark library reads the rest.
   std::vector<Candidate> candidates;
   lfcam::edof::DepthExperiment experiment;
-  bool heldOut = true;
+  bool heldOut = true, stages = false;
   std::string folder, only;
   int kept = 1, size = 128;
   for (int i = 1; i < argc; ++i) {
@@ -298,6 +332,8 @@ int main(int argc, char** argv) {
       size = std::atoi(argv[++i]);
     } else if (argument == "--scene" && i + 1 < argc) {
       only = argv[++i];
+    } else if (argument == "--stages") {
+      stages = true;
     } else if (argument == "--write" && i + 1 < argc) {
       folder = argv[++i];
     } else if (argument == "--gradient" && i + 1 < argc) {
@@ -342,7 +378,7 @@ int main(int argc, char** argv) {
   }
   argc = kept;
   if (candidates.empty()) candidates.push_back({"defaults", {}});
-  printScores(candidates, experiment, heldOut, folder, size, only);
+  printScores(candidates, experiment, heldOut, folder, size, only, stages);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -630,6 +630,13 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     for (std::size_t p = begin; p < end; ++p)
       for (int l = 0; l < labels; ++l) volume[p * labels + l] = cost[std::size_t(l) * n + p];
   });
+  if (experiment.observeStage) {
+    std::vector<float> lowest(n);
+    edof::winnerTakesAll(volume, ns, nt, labels, lowest.data());
+    Image map(ns, nt, 1);
+    for (std::size_t p = 0; p < n; ++p) map.plane(0)[p] = float(dmin + lowest[p] * step);
+    experiment.observeStage("cost", map);
+  }
   if (coarseOut) *coarseOut = {std::move(cost), ns, nt};  // no longer needed here: handed over, not copied
   cost.clear();
   cost.shrink_to_fit();
@@ -698,6 +705,10 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
       result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
   };
   for (std::size_t p = 0; p < n; ++p) result.disparity.plane(0)[p] = float(dmin + label[p] * step);
+  const auto observe = [&](const std::string& stage) {
+    if (experiment.observeStage) experiment.observeStage(stage, result.disparity);
+  };
+  observe("optimised");
   // The cost volume's word on a move of the occlusion edges' reclaim: its aggregated cost (as the
   // optimisation saw it) at the farther disparity may exceed that at the pixel's own by at most
   // kReclaimCostMargin times the pixel's cost contrast. Run again from the boundary the first round
@@ -751,6 +762,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
                       0.25 * std::max(experiment.lockingCorrection, 0.0), noise, experiment.refineAggregateHalves,
                       experiment.oneDimensionalGate, experiment.matchAtReference, curvature.data(), residual.data());
       keepInRange();
+      observe("refined " + std::to_string(round + 1));
       // The first round's residual, the one the automatic prefilter's threshold was chosen on.
       if (round == 0) {
         std::vector<float> sorted(residual);
@@ -761,6 +773,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     // 6. Cleanup: the edge-aware fill, occlusion edges, the weighted median, each guided by the
     // centre view's sRGB colours.
     if (options.fillLambda > 0 && options.refineSteps > 0) fillUncertain(colours, curvature, residual, options, map);
+    observe("filled " + std::to_string(round + 1));
     if (round == 0 || experiment.reclaimEveryRound) {
       const bool checked = experiment.reclaimCostCheck && labels > 1 && (round > 0 || experiment.firstRoundCostCheck);
       edof::reclaimOcclusionEdges(colours, options.occlusionBand, experiment.slantedCleanup, map,
@@ -768,10 +781,12 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
                                     return !checked || (round == 0 && ownVoters > 0) || costAllows(p, from, to);
                                   });
     }
+    observe("reclaimed " + std::to_string(round + 1));
     if (options.medianRadius > 0)
       edof::guidedWeightedMedian(colours, options.medianRadius, float(std::max(options.medianSigma, 1e-6)),
                                  experiment.slantedCleanup, map);
     keepInRange();
+    observe("median " + std::to_string(round + 1));
   }
   // 7. Confidence.
   for (std::size_t p = 0; p < n; ++p) {

@@ -3,6 +3,9 @@
 // defaults are what estimateDepth does.
 #pragma once
 
+#include <functional>
+#include <string>
+
 #include "lfcam/depth.hpp"
 
 namespace lfcam::edof {
@@ -64,6 +67,12 @@ struct DepthExperiment {
   // Noisy views: the half-resolution cost added where texture is weak (depth.cpp, addCoarseCost);
   // off: `depth_bench --no-coarse-cost`.
   bool noisyCoarseCost = true;
+  // Shown each stage's map as it leaves it, at every resolution and pass the estimator runs (a
+  // coarse pass's maps are smaller; noisy views are matched twice, the second pass last): "cost",
+  // the aggregated cost's lowest label; "optimised"; then per round of refinement and cleanup
+  // "refined N", "filled N", "reclaimed N", "median N". Where an error enters:
+  // `depth_bench --stages`.
+  std::function<void(const std::string& stage, const Image& disparity)> observeStage;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,
