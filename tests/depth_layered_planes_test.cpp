@@ -2,10 +2,13 @@
 // benchmark's scores on hand-made maps, distances from disparities, and the colour map.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "depth_scenes.hpp"
 #include "edof/depth_experiment.hpp"
@@ -253,6 +256,37 @@ TEST(DepthLayeredPlanes, DefocusCeilingKeepsGhostEdgesOffWeakTexture) {
   std::printf("weak texture beside strong: BadPix(0.07) %.2f %% with the defocus ceiling, %.2f %% without\n", with,
               without);
   EXPECT_LT(with, without - 0.5);
+}
+
+// The stages shown to DepthExperiment::observeStage (`depth_bench --stages`): in the order of
+// depth.hpp, every round's, at every resolution and pass run; the full resolution's last is the
+// map returned, and looking changes nothing.
+TEST(DepthLayeredPlanes, StagesAreShownInOrderAndTheLastIsTheMap) {
+  const LayeredPlanesLightField scene = renderLayeredPlanes(defaultLayeredPlanesScene(5, 48));
+  std::vector<std::string> fullSize;
+  std::vector<float> last;
+  int smaller = 0;
+  edof::DepthExperiment observed;
+  observed.observeStage = [&](const std::string& stage, const Image& map) {
+    if (map.width() < scene.disparity.width()) return void(++smaller);
+    fullSize.push_back(stage);
+    last.assign(map.pixels().begin(), map.pixels().end());
+  };
+  auto seen = edof::estimateDepth(scene.lightField, {}, observed);
+  auto unseen = estimateDepth(scene.lightField);
+  ASSERT_TRUE(seen && unseen);
+  // Views that read as noisy are matched twice, the second time smoothed (DepthMap::prefilterSigma).
+  std::vector<std::string> expected;
+  for (int pass = 0; pass < (seen->prefilterSigma > 0 ? 2 : 1); ++pass)
+    for (const char* stage : {"cost", "optimised", "refined 1", "filled 1", "reclaimed 1", "median 1", "refined 2",
+                              "filled 2", "reclaimed 2", "median 2"})
+      expected.push_back(stage);
+  EXPECT_EQ(fullSize, expected);
+  EXPECT_GT(smaller, 0);  // the view offsets' half-resolution passes
+  const auto pixels = seen->disparity.pixels();
+  EXPECT_TRUE(std::equal(pixels.begin(), pixels.end(), last.begin(), last.end()));
+  const auto other = unseen->disparity.pixels();
+  EXPECT_TRUE(std::equal(pixels.begin(), pixels.end(), other.begin(), other.end()));
 }
 
 // Views of a few pixels: the view offsets' half-resolution maps are 2 or 3 pixels across (views of
