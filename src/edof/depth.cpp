@@ -614,6 +614,10 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   const edof::GuidedFilter filter(guide.plane(0), ns, nt, std::max(options.filterRadius, 0),
                                   std::max(options.filterEpsilon, 1e-12));
   const double locking = std::max(experiment.lockingCorrection, 0.0);
+  // A map of labels (fractional between them) in disparity.
+  const auto writeDisparities = [&](const std::vector<float>& labelOf, Image& map) {
+    for (std::size_t p = 0; p < n; ++p) map.plane(0)[p] = float(dmin + labelOf[p] * step);
+  };
   // 2. Cost: the correspondence cue over each subset of views, less the defocus cue (the
   // full-aperture photograph at each label, sharpest where it is right); 3. aggregation: guided
   // filter per slice, steered by the reference view; the lowest subset.
@@ -634,7 +638,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     std::vector<float> lowest(n);
     edof::winnerTakesAll(volume, ns, nt, labels, lowest.data());
     Image map(ns, nt, 1);
-    for (std::size_t p = 0; p < n; ++p) map.plane(0)[p] = float(dmin + lowest[p] * step);
+    writeDisparities(lowest, map);
     experiment.observeStage("cost", map);
   }
   if (coarseOut) *coarseOut = {std::move(cost), ns, nt};  // no longer needed here: handed over, not copied
@@ -704,7 +708,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     for (std::size_t p = 0; p < n; ++p)
       result.disparity.plane(0)[p] = std::clamp(result.disparity.plane(0)[p], float(dmin), float(dmax));
   };
-  for (std::size_t p = 0; p < n; ++p) result.disparity.plane(0)[p] = float(dmin + label[p] * step);
+  writeDisparities(label, result.disparity);
   const auto observe = [&](const std::string& stage) {
     if (experiment.observeStage) experiment.observeStage(stage, result.disparity);
   };
