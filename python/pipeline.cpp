@@ -332,18 +332,24 @@ void bindPipeline(py::module_& m) {
       "the light field's stated disparity range, else (-2, 2); bandwidth in cycles per view step (default 0.11).");
   m.def(
       "score",
-      [](const py::array& estimate, const py::array& truth, std::optional<py::array> mask, int border) {
+      [](const py::array& estimate, const py::array& truth, std::optional<py::array> mask, int border,
+         const std::vector<double>& badpix) {
         const Image e = imageFromArray(estimate, "estimate"), t = imageFromArray(truth, "truth");
         const Image planes = mask ? imageFromArray(*mask, "mask") : Image();
-        const HciScores s = interruptible([&] { return valueOrThrow(scoreHci(e, t, planes, border)); });
         py::dict d;
-        d["badpix_0.01"] = s.badPix001, d["badpix_0.03"] = s.badPix003, d["badpix_0.07"] = s.badPix007;
+        const HciScores s = interruptible([&] { return valueOrThrow(scoreHci(e, t, planes, border)); });
+        d[badPixKey(0.01).c_str()] = s.badPix001, d[badPixKey(0.03).c_str()] = s.badPix003,
+        d[badPixKey(0.07).c_str()] = s.badPix007;
+        for (double threshold : badpix)
+          d[badPixKey(threshold).c_str()] =
+              interruptible([&] { return valueOrThrow(scoreDisparity(e, t, threshold, border)); }).badPix;
         d["mse_x100"] = s.mse100, d["bumpiness"] = s.bumpiness, d["pixels"] = s.pixels;
         return d;
       },
       py::arg("estimate"), py::arg("truth"), py::kw_only(), py::arg("mask") = py::none(), py::arg("border") = 15,
+      py::arg("badpix") = std::vector<double>{},
       "The HCI benchmark's scores of a disparity map against its ground truth, as `lfcam score --json` prints "
-      "them.");
+      "them; badpix: more thresholds, as its --badpix.");
 }
 
 }  // namespace lfcam::python

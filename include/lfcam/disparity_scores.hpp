@@ -18,6 +18,8 @@
 // as the clip.
 #pragma once
 
+#include <string>
+
 #include "lfcam/image.hpp"
 #include "lfcam/result.hpp"
 
@@ -31,7 +33,8 @@ struct DisparityScores {
   double fartherShare = 0;
   long pixels = 0;
 };
-// Usage error when the sizes differ or no pixel has ground truth inside the border.
+// Usage error when the sizes differ, no pixel has ground truth inside the border or the threshold
+// is not positive.
 Result<DisparityScores> scoreDisparity(const Image& estimate, const Image& truth, double threshold = 0.07,
                                        int border = 15);
 
@@ -50,5 +53,9 @@ struct HciScores {
   long pixels = 0;
 };
 Result<HciScores> scoreHci(const Image& estimate, const Image& truth, const Image& planes = {}, int border = 15);
+
+// The name of BadPix at `threshold` in `lfcam score --json` and the Python module's scores:
+// "badpix_0.07", "badpix_0.035".
+std::string badPixKey(double threshold);
 
 }  // namespace lfcam

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,7 @@ Plane truthPlane(const Image& truth) {
 }  // namespace
 
 Result<DisparityScores> scoreDisparity(const Image& estimate, const Image& truth, double threshold, int border) {
+  if (!(threshold > 0)) return makeError(ErrorCode::Usage, "scores: a BadPix threshold must be positive");
   LFCAM_TRY(sameSize(estimate, truth));
   DisparityScores scores;
   long bad = 0, farther = 0;
@@ -139,6 +141,12 @@ Result<HciScores> scoreHci(const Image& estimate, const Image& truth, const Imag
   LFCAM_ASSIGN_OR_RETURN(auto rough, bumpiness(estimate, truth, planes, border));
   scores.bumpiness = rough;
   return scores;
+}
+
+std::string badPixKey(double threshold) {
+  char digits[32];
+  std::snprintf(digits, sizeof digits, "%g", threshold);
+  return std::string("badpix_") + digits;
 }
 
 }  // namespace lfcam

@@ -40,6 +40,17 @@ TEST(CliScore, PrintsTheBenchmarkScoresAsTextAndJson) {
   EXPECT_GT(scores["bumpiness"].get<double>(), 0.0) << "the step of the error is bumpy";
   EXPECT_EQ(scores["pixels"].get<long>(), 34 * 34);
 
+  // More thresholds: the error 0.05 on the right half is bad at 0.04, not at 0.06.
+  const auto more =
+      runLfcam({"score", estimate, truth, "--border", "0", "--badpix", "0.04", "--badpix", "0.06"}, dir.path());
+  ASSERT_EQ(more.exitStatus, 0) << more.err;
+  EXPECT_NE(more.out.find("BadPix(0.04)    50.00 %"), std::string::npos) << more.out;
+  EXPECT_NE(more.out.find("BadPix(0.06)     0.00 %"), std::string::npos) << more.out;
+  EXPECT_NE(more.out.find("BadPix(0.07)     0.00 %"), std::string::npos) << more.out;
+  const auto moreJson = runLfcam({"score", estimate, truth, "--badpix", "0.035", "--json"}, dir.path());
+  ASSERT_EQ(moreJson.exitStatus, 0) << moreJson.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(moreJson.out)["badpix_0.035"].get<double>(), 50.0) << moreJson.out;
+
   // A mask of planes away from the error's step: no bumpiness.
   Image planes(64, 64, 1);
   for (int y = 0; y < 64; ++y)
@@ -67,6 +78,7 @@ TEST(CliScore, ErrorsNameTheFileInOneLine) {
       {{"score", at("colour.png"), at("truth.pfm")}, 2, "colour.png"},                           // not one channel
       {{"score", at("truth.pfm"), at("truth.pfm"), "--mask", at("small.pfm")}, 2, "small.pfm"},  // mask's size
       {{"score", at("truth.pfm")}, 2, "truth"},                                                  // no ground truth
+      {{"score", at("truth.pfm"), at("truth.pfm"), "--badpix", "0"}, 2, "--badpix"},             // no threshold
   };
   for (const Case& c : cases) {
     const auto result = runLfcam(c.args, dir.path());

@@ -140,6 +140,16 @@ def test_score_of_the_truth_is_perfect():
         lfcam.score(truth, truth[:32], border=4)
 
 
+def test_score_at_more_thresholds():
+    truth = np.zeros((64, 64), np.float32)
+    estimate = truth.copy()
+    estimate[:, 32:] = 0.05  # bad at 0.035 and 0.04 on half the pixels, not at 0.07
+    scores = lfcam.score(estimate, truth, border=0, badpix=[0.035, 0.04])
+    assert scores["badpix_0.035"] == 50 and scores["badpix_0.04"] == 50 and scores["badpix_0.07"] == 0
+    with pytest.raises(lfcam.UsageError, match="threshold must be positive"):
+        lfcam.score(estimate, truth, badpix=[0])
+
+
 def test_bad_arrays_and_arguments_raise_one_line_errors():
     with pytest.raises(lfcam.UsageError, match="expected an array of 5 dimensions, got 3"):
         lfcam.LightField(np.zeros((2, 3, 4), np.float32))

@@ -1,8 +1,9 @@
-// lfcam score DISPARITY GROUND_TRUTH [--mask PLANES] [--border N] [--json]: the HCI benchmark's
+// lfcam score DISPARITY GROUND_TRUTH [--mask PLANES] [--border N] [--badpix T]... [--json]: the HCI benchmark's
 // scores of any disparity map, lfcam's or another method's (disparity_scores.hpp).
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,7 @@ void addScoreCommand(CLI::App& app, Job& job) {
   struct Options {
     std::string estimate, truth, mask;
     int border = 15;
+    std::vector<double> thresholds;  // BadPix besides the benchmark's three
     bool json = false;
   };
   auto options = std::make_shared<Options>();
@@ -44,8 +46,15 @@ void addScoreCommand(CLI::App& app, Job& job) {
   command->add_option("--border", options->border, "pixels left out along each edge, as the benchmark")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  command->add_flag("--json", options->json,
-                    "print a JSON object (badpix_0.01, badpix_0.03, badpix_0.07, mse_x100, bumpiness, pixels)");
+  command
+      ->add_option(
+          "--badpix", options->thresholds,
+          "BadPix at this threshold too (pixels per view step; repeatable), e.g. 0.035 to score a map of twice "
+          "the benchmark's resolution as strictly, in the scene, as 0.07 at its own")
+      ->check(CLI::PositiveNumber);
+  command->add_flag(
+      "--json", options->json,
+      "print a JSON object (badpix_0.01, badpix_0.03, badpix_0.07, one per --badpix, mse_x100, bumpiness, pixels)");
   command->callback([options, &job] {
     job = [options]() -> Status {
       LFCAM_ASSIGN_OR_RETURN(auto estimate, readDisparity(options->estimate));
@@ -65,20 +74,29 @@ void addScoreCommand(CLI::App& app, Job& job) {
       }
       auto scores = scoreHci(estimate, truth, planes, options->border);
       if (!scores) return makeError(scores.error().code, options->truth + ": " + scores.error().message);
+      std::vector<std::pair<double, double>> badPix = {
+          {0.01, scores->badPix001}, {0.03, scores->badPix003}, {0.07, scores->badPix007}};
+      for (double threshold : options->thresholds) {
+        LFCAM_ASSIGN_OR_RETURN(auto extra, scoreDisparity(estimate, truth, threshold, options->border));
+        badPix.emplace_back(threshold, extra.badPix);
+      }
       const std::string planesFrom = options->mask.empty() ? "the ground truth's planes" : options->mask;
       if (options->json) {
-        const nlohmann::json json = {{"disparity", options->estimate},   {"truth", options->truth},
-                                     {"badpix_0.01", scores->badPix001}, {"badpix_0.03", scores->badPix003},
-                                     {"badpix_0.07", scores->badPix007}, {"mse_x100", scores->mse100},
-                                     {"bumpiness", scores->bumpiness},   {"planes", planesFrom},
-                                     {"border", options->border},        {"pixels", scores->pixels}};
+        nlohmann::json json = {{"disparity", options->estimate}, {"truth", options->truth},
+                               {"mse_x100", scores->mse100},     {"bumpiness", scores->bumpiness},
+                               {"planes", planesFrom},           {"border", options->border},
+                               {"pixels", scores->pixels}};
+        for (const auto& [threshold, share] : badPix) json[badPixKey(threshold)] = share;
         std::printf("%s\n", json.dump(2).c_str());
       } else {
+        for (const auto& [threshold, share] : badPix) {
+          char name[32];
+          std::snprintf(name, sizeof name, "BadPix(%g)", threshold);
+          std::printf("%-13s %7.2f %%\n", name, share);
+        }
         std::printf(
-            "BadPix(0.01)  %7.2f %%\nBadPix(0.03)  %7.2f %%\nBadPix(0.07)  %7.2f %%\nMSE x100      %7.3f\n"
-            "Bumpiness     %7.3f   (on %s)\npixels        %7ld   (%d-pixel border left out)\n",
-            scores->badPix001, scores->badPix003, scores->badPix007, scores->mse100, scores->bumpiness,
-            planesFrom.c_str(), scores->pixels, options->border);
+            "MSE x100      %7.3f\nBumpiness     %7.3f   (on %s)\npixels        %7ld   (%d-pixel border left out)\n",
+            scores->mse100, scores->bumpiness, planesFrom.c_str(), scores->pixels, options->border);
       }
       return {};
     };
