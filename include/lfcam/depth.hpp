@@ -10,7 +10,8 @@
 // step before the aperture's centre, where a surface at disparity d lies d / 2 pixels aside (the
 // simulator's truth for it: idealDepthOfView, simulate.hpp).
 //
-// Stages (src/edof/depth.cpp, the same numbers; why each is there: docs/design.md, "Depth"):
+// Stages (src/edof/depth.cpp, the larger in the files src/edof/depth_stages.hpp names; the same
+// numbers; why each is there: docs/design.md, "Depth"):
 //  1. Range: candidate disparities ("labels") evenly over [disparityMin, disparityMax] (options,
 //     else the metadata, else [-2, 2]).
 //  2. Cost per label: squared differences of sRGB luminance between the centre view and the views

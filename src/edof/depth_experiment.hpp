@@ -30,11 +30,11 @@ struct DepthExperiment {
   // The noise variance that bilinear sampling removes added back to the cost of noisy views
   // (depth.cpp, ViewNoise); off: `depth_bench --no-noise-correction`.
   bool noiseCorrection = true;
-  // The defocus cue capped at kDefocusCeiling times the centre view's own (depth.cpp); off:
+  // The defocus cue capped at kDefocusCeiling times the centre view's own (cost_volume.cpp); off:
   // `depth_bench --no-defocus-ceiling`.
   bool defocusCeiling = true;
   // The centre row and column join the lowest subset only where their cost has contrast or matches
-  // better than noise explains (depth.cpp, joinOneDimensional); off: `depth_bench --no-one-dimensional-gate`.
+  // better than noise explains (cost_volume.cpp, joinOneDimensional); off: `depth_bench --no-one-dimensional-gate`.
   bool oneDimensionalGate = true;
   // The weighted median and the occlusion edges carry disparities along the map's slope
   // (guidedWeightedMedian, reclaimOcclusionEdges); off: `depth_bench --flat-cleanup`.
@@ -48,14 +48,14 @@ struct DepthExperiment {
   bool reclaimCostCheck = true;
   bool firstRoundCostCheck = true;
   // The view offsets measured after the part of each view's difference that the map's error
-  // explains is taken out (depth.cpp, removeViewOffsets); off: `depth_bench --no-offset-slope-correction`.
+  // explains is taken out (view_offsets.cpp, removeViewOffsets); off: `depth_bench --no-offset-slope-correction`.
   bool offsetSlopeCorrection = true;
-  // Each view offset kept only where it exceeds what a map error could make (depth.cpp,
+  // Each view offset kept only where it exceeds what a map error could make (view_offsets.cpp,
   // kOffsetMapErrorPx): `depth_bench --offset-shrink`. Better development means before
   // offsetResidualCheck, but a sheen on texture is shrunk too (the view offsets' tests fail with it).
   bool offsetShrink = false;
   // The view offsets removed at full resolution only where, at half resolution, they left the views
-  // agreeing no worse than before, within a tolerance (depth.cpp, offsetsKept); off: `depth_bench
+  // agreeing no worse than before, within a tolerance (view_offsets.cpp, offsetsKept); off: `depth_bench
   // --no-offset-residual-check`.
   bool offsetResidualCheck = true;
   // Views matched at the reference view ((nu - 1) / 2, (nv - 1) / 2), the grid of the guides and of

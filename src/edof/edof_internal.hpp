@@ -51,6 +51,9 @@ std::vector<float> gaussianTaps(double sigma);
 // Squared 4-neighbour Laplacian of channel 0, borders clamped: a focus energy per pixel.
 void squaredLaplacian(const Image& image, float* out);
 
+// A plane's gradient times `scale`, by central differences (the border pixels repeated beyond it).
+void centralDifferences(const float* in, int ns, int nt, float scale, float* dx, float* dy);
+
 // Guided filter (He, Sun and Tang 2010) with a grey guide: an edge-preserving smoothing whose
 // output is locally a linear function of the guide. Prepared once per guide, applied to many
 // inputs (the slices of a cost volume). Thread-safe apply.

@@ -1,4 +1,4 @@
-// Luminance, box filter and guided filter (edof_internal.hpp).
+// Luminance, box filter, guided filter and central differences (edof_internal.hpp).
 #include <algorithm>
 #include <cmath>
 
@@ -206,6 +206,17 @@ void squaredLaplacian(const Image& image, float* out) {
       if (w > 1) at(w - 1, w - 2, w - 1);
     }
   });
+}
+
+void centralDifferences(const float* in, int ns, int nt, float scale, float* dx, float* dy) {
+  for (int y = 0; y < nt; ++y) {
+    const float *row = in + std::size_t(y) * ns, *up = in + std::size_t(std::max(y - 1, 0)) * ns,
+                *down = in + std::size_t(std::min(y + 1, nt - 1)) * ns;
+    for (int x = 0; x < ns; ++x) {
+      dx[std::size_t(y) * ns + x] = 0.5f * scale * (row[std::min(x + 1, ns - 1)] - row[std::max(x - 1, 0)]);
+      dy[std::size_t(y) * ns + x] = 0.5f * scale * (down[x] - up[x]);
+    }
+  }
 }
 
 }  // namespace lfcam::edof

@@ -162,7 +162,7 @@ void fineCostRowReference(const FineCostViews& views, int y, const float* dispar
             bilinearSample(views.planes[i * channels + c], ns, nt, x - uc * d, double(y) - vc * d) - reference[c];
         squares += difference * difference;
       }
-      // The interpolation-bias term (depth.cpp's correspondenceCost).
+      // The interpolation-bias term (cost_volume.cpp's correspondenceCost).
       float bias = 0;
       if (views.locking > 0) {
         const double bx = interpolationBlur(-uc * d), by = interpolationBlur(-vc * d);

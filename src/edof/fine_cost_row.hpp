@@ -1,4 +1,4 @@
-// The correspondence cost of depth's fine search (refineDisparity, depth.cpp), a row of one slice
+// The correspondence cost of depth's fine search (refineDisparity, fine_search.cpp), a row of one slice
 // at a time: the reference view and every star view sampled bilinearly at each pixel's own
 // disparity, their squared differences, less the interpolation-bias term, plus the noise
 // interpolation removes (interpolation_terms.hpp), averaged over each subset of views. The fast
@@ -12,7 +12,7 @@
 
 namespace lfcam::edof {
 
-// Subsets of views a cost is taken over, at most (depth.cpp's half-apertures, centre row, column).
+// Subsets of views a cost is taken over, at most (cost_volume.cpp's half-apertures, centre row, column).
 constexpr int kMaxCostSubsets = 6;
 
 struct FineCostViews {

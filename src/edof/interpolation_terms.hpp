@@ -1,4 +1,4 @@
-// What bilinear sampling between pixels does to the correspondence cost, which depth.cpp's cost
+// What bilinear sampling between pixels does to the correspondence cost, which the depth cost
 // volume and fine search (fine_cost_row.hpp) correct for: it blurs the texture and lowers the
 // noise of a view, both by amounts that depend on the fraction of its shift.
 #pragma once
