@@ -109,6 +109,85 @@ void addCoarseCost(const CoarseCost& coarse, const LightField& grey, const edof:
   });
 }
 
+// Each pixel's mean cost and contrast (mean less lowest) over the labels of a pixel-major volume,
+// and the typical depth of a cost minimum (the contrast's mean, summed in pixel order): the scale
+// of the penalties and of the confidence.
+struct CostContrast {
+  std::vector<float> mean, contrast;
+  double scale = 0;
+};
+
+CostContrast costContrast(const edof::CostVolume& volume, std::size_t n, int labels) {
+  CostContrast out{std::vector<float>(n), std::vector<float>(n)};
+  parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) {
+      const float* c = &volume[p * labels];
+      double sum = 0;
+      float lowest = c[0];
+      for (int l = 0; l < labels; ++l) sum += c[l], lowest = std::min(lowest, c[l]);
+      out.mean[p] = float(sum / labels);
+      out.contrast[p] = out.mean[p] - lowest;
+    }
+  });
+  double contrastSum = 0;
+  for (std::size_t p = 0; p < n; ++p) contrastSum += out.contrast[p];
+  out.scale = std::max(contrastSum / double(n), 1e-12);
+  return out;
+}
+
+// Step 4 on a pixel-major cost volume: each pixel's label, fractional between labels, and the gain
+// its costs were scaled by (`volume` is left scaled).
+struct Optimised {
+  std::vector<float> label, gain;
+};
+
+Optimised optimise(edof::CostVolume& volume, int ns, int nt, int labels, const CostContrast& costs, const Image& guide,
+                   const DepthOptions& options) {
+  const std::size_t n = std::size_t(ns) * nt;
+  const double scale = costs.scale;
+  Optimised out{std::vector<float>(n), std::vector<float>(n, 1.0f)};
+  std::vector<float>& label = out.label;
+  std::vector<float>& gain = out.gain;
+  // Penalties that follow the cost's contrast near each pixel: image-wide ones outweigh the faint
+  // evidence of weak texture, so a confident surface's disparity runs over a weakly textured one
+  // beside it for as long as that evidence takes to add up to a jump (halos several pixels wide
+  // where texture is coarse). Each pixel's costs are scaled by sqrt(image contrast / local
+  // contrast), the penalties' scale the geometric mean of both; the parabola below does not see
+  // the scaling, the confidence undoes it.
+  if (options.smoothness > 0 && options.contrastRadius > 0) {
+    std::vector<float> local(n);
+    boxFilter(costs.contrast.data(), local.data(), ns, nt, options.contrastRadius);
+    parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t p = begin; p < end; ++p) {
+        gain[p] = float(std::sqrt(scale / std::max(double(local[p]), 1e-3 * scale)));
+        for (int l = 0; l < labels; ++l) volume[p * labels + l] *= gain[p];
+      }
+    });
+  }
+  if (options.smoothness > 0) {
+    // A small step penalty: slanted surfaces climb one label at a time (the fine search, step 5,
+    // then smooths the steps); a large one for jumps, lowered across intensity edges.
+    const float p1 = float(0.01 * scale * options.smoothness), p2 = float(0.6 * scale * options.smoothness);
+    const edof::CostVolume summed =
+        edof::semiGlobalMatching(volume, ns, nt, labels, guide.plane(0), p1, p2, /*edgeScale=*/0.01f);
+    edof::winnerTakesAll(summed, ns, nt, labels, label.data());
+    // Between labels: the parabola through the aggregated (not optimised) cost around the
+    // optimiser's label, whose curve is not flattened by the penalties.
+    parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t p = begin; p < end; ++p) {
+        const int best = std::clamp(int(std::lround(label[p])), 0, labels - 1);
+        const float* c = &volume[p * labels];
+        double offset = 0;
+        if (best > 0 && best + 1 < labels) offset = parabolaVertex(c[best - 1], c[best], c[best + 1]);
+        label[p] = float(best + offset);
+      }
+    });
+  } else {
+    edof::winnerTakesAll(volume, ns, nt, labels, label.data());
+  }
+  return out;
+}
+
 // Stages 2-7 (depth.hpp) on `grey`, the sRGB luminance the views are matched on, steered by
 // `guide` (its centre view before any prefilter) and `colours`, the centre view's sRGB colours.
 // `noise`: that of `grey`'s samples, whose loss under interpolation the costs add back.
@@ -137,8 +216,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   if (coarseIn && !coarseIn->volume.empty() && noise.variance > 0 && experiment.noisyCoarseCost)
     addCoarseCost(*coarseIn, grey, noise, cost);
 
-  // Pixel-major for the optimisation; and the typical depth of a cost minimum (mean over pixels
-  // of mean - min), the scale of the penalties and of the confidence.
+  // Pixel-major for the optimisation.
   edof::CostVolume volume(n * labels);
   parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
     for (std::size_t p = begin; p < end; ++p)
@@ -154,62 +232,13 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   if (coarseOut) *coarseOut = {std::move(cost), ns, nt};  // no longer needed here: handed over, not copied
   cost.clear();
   cost.shrink_to_fit();
-  // Each pixel's mean cost and contrast (mean less lowest), summed in pixel order.
-  std::vector<float> meanCost(n), contrast(n);
-  parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) {
-      const float* c = &volume[p * labels];
-      double sum = 0;
-      float lowest = c[0];
-      for (int l = 0; l < labels; ++l) sum += c[l], lowest = std::min(lowest, c[l]);
-      meanCost[p] = float(sum / labels);
-      contrast[p] = meanCost[p] - lowest;
-    }
-  });
-  double contrastSum = 0;
-  for (std::size_t p = 0; p < n; ++p) contrastSum += contrast[p];
-  const double scale = std::max(contrastSum / double(n), 1e-12);
-
+  const CostContrast costs = costContrast(volume, n, labels);
+  const std::vector<float>& meanCost = costs.mean;
+  const double scale = costs.scale;
   // 4. Regularisation: semi-global optimisation, then the read-out between labels.
-  std::vector<float> label(n);
-  // Penalties that follow the cost's contrast near each pixel: image-wide ones outweigh the faint
-  // evidence of weak texture, so a confident surface's disparity runs over a weakly textured one
-  // beside it for as long as that evidence takes to add up to a jump (halos several pixels wide
-  // where texture is coarse). Each pixel's costs are scaled by sqrt(image contrast / local
-  // contrast), the penalties' scale the geometric mean of both; the parabola below does not see
-  // the scaling, the confidence undoes it.
-  std::vector<float> gain(n, 1.0f);
-  if (options.smoothness > 0 && options.contrastRadius > 0) {
-    std::vector<float> local(n);
-    boxFilter(contrast.data(), local.data(), ns, nt, options.contrastRadius);
-    parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t p = begin; p < end; ++p) {
-        gain[p] = float(std::sqrt(scale / std::max(double(local[p]), 1e-3 * scale)));
-        for (int l = 0; l < labels; ++l) volume[p * labels + l] *= gain[p];
-      }
-    });
-  }
-  if (options.smoothness > 0) {
-    // A small step penalty: slanted surfaces climb one label at a time (the fine search below
-    // then smooths the steps); a large one for jumps, lowered across intensity edges.
-    const float p1 = float(0.01 * scale * options.smoothness), p2 = float(0.6 * scale * options.smoothness);
-    const edof::CostVolume summed =
-        edof::semiGlobalMatching(volume, ns, nt, labels, guide.plane(0), p1, p2, /*edgeScale=*/0.01f);
-    edof::winnerTakesAll(summed, ns, nt, labels, label.data());
-    // Between labels: the parabola through the aggregated (not optimised) cost around the
-    // optimiser's label, whose curve is not flattened by the penalties.
-    parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t p = begin; p < end; ++p) {
-        const int best = std::clamp(int(std::lround(label[p])), 0, labels - 1);
-        const float* c = &volume[p * labels];
-        double offset = 0;
-        if (best > 0 && best + 1 < labels) offset = parabolaVertex(c[best - 1], c[best], c[best + 1]);
-        label[p] = float(best + offset);
-      }
-    });
-  } else {
-    edof::winnerTakesAll(volume, ns, nt, labels, label.data());
-  }
+  const Optimised optimised = optimise(volume, ns, nt, labels, costs, guide, options);
+  const std::vector<float>& label = optimised.label;
+  const std::vector<float>& gain = optimised.gain;
 
   DepthMap result{Image(ns, nt, 1), Image(ns, nt, 1), dmin, dmax, labels};
   // The fine search may step past the ends of the range searched, and the cleanup, carrying

@@ -61,11 +61,10 @@ TEST_F(HciAntinousDepth, ScoresAndAllInFocus) {
       scores->badPix007, scores->badPix003, scores->mse100, scores->bumpiness,
       100.0 * double(planar) / double(truth->width() * truth->height()));
   // Held out: no setting's value was chosen on it (the view offsets' step was shaped while its score
-  // was printed beside the development scenes; design.md, "Tuning protocol"). Measured 5.33 % and
-  // MSE x100 6.84 with today's defaults (`build/bench/depth_bench` prints every scene's table; 5.65 %
-  // and 8.78 before the later rounds' reclaim was checked against the cost volume); the history of
-  // the figure is in git.
-  EXPECT_LT(scores->badPix007, 6.0);
+  // was printed beside the development scenes; design.md, "Tuning protocol"). Measured 4.44 % and
+  // MSE x100 6.30 with today's defaults (`build/bench/depth_bench` prints every scene's table; other
+  // processors read up to 0.15 point apart); the goal is 5 %, and the history of the figure is in git.
+  EXPECT_LT(scores->badPix007, 5.0);
   EXPECT_LT(scores->mse100, 7.5);
 
   // In millimetres: the estimate against the ground truth, both converted with parameters.cfg.
