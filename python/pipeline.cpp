@@ -336,8 +336,8 @@ void bindPipeline(py::module_& m) {
          const std::vector<double>& badpix) {
         const Image e = imageFromArray(estimate, "estimate"), t = imageFromArray(truth, "truth");
         const Image planes = mask ? imageFromArray(*mask, "mask") : Image();
-        py::dict d;
         const HciScores s = interruptible([&] { return valueOrThrow(scoreHci(e, t, planes, border)); });
+        py::dict d;
         d[badPixKey(0.01).c_str()] = s.badPix001, d[badPixKey(0.03).c_str()] = s.badPix003,
         d[badPixKey(0.07).c_str()] = s.badPix007;
         for (double threshold : badpix)

@@ -14,7 +14,7 @@
 
 namespace lfcam::edof {
 
-// Views and subsets (cost_volume.cpp).
+// Views, their subsets and the cost volume: steps 2-3 (cost_volume.cpp).
 
 // Subsets of views compared separately, as bits (a view may belong to several): four strict
 // half-apertures for occlusion boundaries, u < 0, u > 0, v < 0, v > 0; and the centre row and

@@ -1,8 +1,9 @@
-// lfcam score DISPARITY GROUND_TRUTH [--mask PLANES] [--border N] [--badpix T]... [--json]: the HCI benchmark's
-// scores of any disparity map, lfcam's or another method's (disparity_scores.hpp).
+// lfcam score DISPARITY GROUND_TRUTH [--mask PLANES] [--border N] [--badpix T]... [--json]: the HCI
+// benchmark's scores of any disparity map, lfcam's or another method's (disparity_scores.hpp).
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
