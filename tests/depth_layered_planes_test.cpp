@@ -220,7 +220,7 @@ TEST(DepthLayeredPlanes, SecondRefinementRoundGainsPrecision) {
 // (offsetSlopeCorrection): with the check, 3.97 against 2.76 %; with both, 4.04 against 4.02 %.
 // And without the centre row and column's gate (oneDimensionalGate): with it, 4.50 against 3.97 %,
 // the ceiling no longer helping here (not looked into why).
-// The development means with and without the ceiling: docs/design.md, "Depth".
+// The development means with and without the ceiling: kDefocusCeiling's comment (cost_volume.cpp).
 TEST(DepthLayeredPlanes, DefocusCeilingKeepsGhostEdgesOffWeakTexture) {
   LayeredPlanesScene scene;
   scene.ns = scene.nt = 96;

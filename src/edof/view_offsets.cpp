@@ -163,7 +163,7 @@ namespace {
 // its offsets: 1.707 -> 1.620 % at 128 px and 1.718 -> 1.696 % at 256 (the glossy unevenly lit
 // slants 5.77 -> 4.25 %, the coarse texture at 256 5.91 -> 4.97 %); 0.1, 0.3, 1 and 2 gave 1.703 /
 // 1.746, 1.600 / 1.710, 1.645 / 1.693 and 1.655 / 1.692 %. Other radii and soft shares measured
-// worse (design.md, "Depth").
+// worse.
 constexpr int kOffsetCheckRadius = 2;
 
 constexpr double kOffsetCheckTolerance = 0.6;
