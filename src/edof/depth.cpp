@@ -10,26 +10,22 @@
 #include <span>
 #include <string>
 
-#include "core/bilinear.hpp"
 #include "core/parabola.hpp"
 #include "core/quadratic_filter.hpp"
-#include "core/target_clones.hpp"
 #include "edof/depth_experiment.hpp"
 #include "edof/depth_stages.hpp"
 #include "edof/edof_internal.hpp"
-#include "edof/fine_cost_row.hpp"
 #include "edof/interpolation_terms.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/parallel.hpp"
-#include "lfcam/refocus.hpp"
 
 namespace lfcam {
 
 namespace {
 
-using edof::aggregatedCost, edof::fullResolution, edof::halfResolution, edof::offsetsKept, edof::refineDisparity,
-    edof::removeViewOffsets, edof::Residual, edof::sampleHalfResolution, edof::StarView, edof::starViews,
-    edof::centralDifferences, edof::stepsU, edof::stepsV;
+using edof::aggregatedCost, edof::centralDifferences, edof::fullResolution, edof::halfResolution, edof::offsetsKept,
+    edof::refineDisparity, edof::removeViewOffsets, edof::Residual, edof::sampleHalfResolution, edof::StarView,
+    edof::starViews, edof::stepsU, edof::stepsV;
 
 // Edge-aware fill of the pixels whose fine search was unsure (depth.hpp, step 6): each disparity
 // weighted by the curvature of its fine-search cost at the minimum (flat where there is no
