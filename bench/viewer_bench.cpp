@@ -2,10 +2,10 @@
 // cores), measured over HTTP on loopback from sending the request to the last byte of the JPEG,
 // as ratios to a floor measured in the same run:
 //   BM_Refocus        one refocus of the light field (the floor: the least a new photo costs).
-//   BM_ClickToPhoto   GET /api/image?focus=X,Y: pick the sharpest slope at a clicked point, render
+//   BM_ClickToPhoto   GET /api/image?focus-at=X,Y: pick the sharpest slope at a clicked point, render
 //                     the full-aperture photograph, encode JPEG, send. Cache off, so every click
 //                     renders. Counters: median_ms, p99_ms, ratio = median / refocus.
-//   BM_SliderToPhoto  GET /api/image?slope=D&f=2 (a focus-slider step through a smaller aperture).
+//   BM_SliderToPhoto  GET /api/image?slope=D&f-number=2 (a focus-slider step through a smaller aperture).
 //   BM_FocusSearch, BM_EncodeJpeg   the parts of a click besides the render (ratio = time / refocus).
 // The light field: ../shared/data/hci-antinous (9x9 views, 512x512 RGB), else layered planes of
 // the same size (said on stderr).
@@ -133,7 +133,7 @@ void BM_ClickToPhoto(benchmark::State& state) {
     // Points spread over the image by a low-discrepancy walk, away from the border.
     const int x = 16 + int((i * 0.6180339887 - int(i * 0.6180339887)) * (lf.ns() - 32));
     const int y = 16 + int((i * 0.7548776662 - int(i * 0.7548776662)) * (lf.nt() - 32));
-    return "/api/image?focus=" + std::to_string(x) + "," + std::to_string(y);
+    return "/api/image?focus-at=" + std::to_string(x) + "," + std::to_string(y);
   });
 }
 
@@ -141,7 +141,7 @@ void BM_SliderToPhoto(benchmark::State& state) {
   measure(state, [&](int i) {
     const auto& s = viewer().session;
     const double slope = s.slopeMin() + (s.slopeMax() - s.slopeMin()) * ((i * 37) % 101) / 100.0;
-    return "/api/image?f=2&slope=" + std::to_string(slope);
+    return "/api/image?f-number=2&slope=" + std::to_string(slope);
   });
 }
 

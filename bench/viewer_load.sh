@@ -46,9 +46,9 @@ request = function()
   local r = counter % 20
   if r < 12 then
     local slope = -1.5 + (counter * 0.0173) % 3.0
-    return wrk.format("GET", string.format("/api/image?slope=%.4f&f=%d", slope, 1 + counter % 4))
+    return wrk.format("GET", string.format("/api/image?slope=%.4f&f-number=%d", slope, 1 + counter % 4))
   elseif r < 17 then
-    return wrk.format("GET", string.format("/api/image?focus=%d,%d", 20 + (counter * 37) % 470, 20 + (counter * 53) % 470))
+    return wrk.format("GET", string.format("/api/image?focus-at=%d,%d", 20 + (counter * 37) % 470, 20 + (counter * 53) % 470))
   elseif r < 19 then
     return wrk.format("GET", "/api/status")
   else

@@ -9,6 +9,7 @@ namespace py = pybind11;
 namespace lfcam::python {
 
 void bindPipeline(py::module_& module);
+void bindPhotos(py::module_& module);
 void bindSimulate(py::module_& module);
 void bindBatch(py::module_& module);
 
@@ -31,6 +32,7 @@ PYBIND11_MODULE(_lfcam, m) {
   lfcam::python::registerErrors(m);
   lfcam::python::bindArrays(m);
   lfcam::python::bindPipeline(m);
+  lfcam::python::bindPhotos(m);
   lfcam::python::bindSimulate(m);
   lfcam::python::bindBatch(m);
 }

@@ -19,15 +19,11 @@
 #include "lfcam/depth_knobs.hpp"
 #include "lfcam/disparity_scores.hpp"
 #include "lfcam/focal_stack.hpp"
-#include "lfcam/focus_spread.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/lenslet_grid.hpp"
 #include "lfcam/light_field_io.hpp"
-#include "lfcam/photo_settings.hpp"
 #include "lfcam/raw_io.hpp"
 #include "lfcam/synthetic_camera.hpp"
-#include "lfcam/tilted_focus.hpp"
-#include "lfcam/upsampled_refocus.hpp"
 
 namespace py = pybind11;
 
@@ -49,35 +45,6 @@ T choice(const std::map<std::string, T>& names, const std::string& name, const c
 ColorFilter colorFilterNamed(const std::string& name) {
   if (auto filter = parseColorFilterName(name)) return *filter;
   throw LibraryError(ErrorCode::Usage, "bayer: '" + name + "' is not one of RGGB, BGGR, GRBG, GBRG, mono");
-}
-
-PhotoSettings photoSettings(std::optional<double> aperture, const std::string& shape,
-                            std::optional<std::array<double, 2>> centre, std::optional<py::array> mask,
-                            const std::string& method, int supersampling, std::optional<double> beta) {
-  PhotoSettings settings;
-  settings.apertureRadius = aperture;
-  settings.squareAperture = choice<bool>({{"circle", false}, {"square", true}}, shape, "aperture_shape");
-  settings.apertureCentre = centre;
-  if (mask) settings.apertureMask = std::make_shared<const Image>(imageFromArray(*mask, "aperture_mask"));
-  settings.method = choice<PhotoMethod>(
-      {{"fast", PhotoMethod::Fast}, {"quadrature", PhotoMethod::Quadrature}, {"fourier", PhotoMethod::Fourier}}, method,
-      "method");
-  settings.supersampling = supersampling;
-  settings.beta = beta;
-  return settings;
-}
-
-std::vector<Image> photographs(const LightField& lf, const PhotoSettings& settings, const std::vector<double>& slopes) {
-  const PhotoSetup setup = valueOrThrow(photoSetup(settings, lf, "light field"));
-  std::vector<Image> photos;
-  interruptible([&] {
-    throwIfError(renderPhotos(lf, setup, slopes, [&](int, double, Image&& photo) -> Status {
-      if (cancellationRequested()) return makeError(ErrorCode::Usage, "cancelled");  // no more photographs
-      photos.push_back(std::move(photo));
-      return {};
-    }));
-  });
-  return photos;
 }
 
 // Sets the depth knobs given as keyword arguments (their flag names with '_' for '-').
@@ -188,83 +155,6 @@ void bindPipeline(py::module_& m) {
       "Decodes a raw lenslet image into a light field; the grid is calibrated from the white image when no grid "
       "file is given.");
 
-  m.def(
-      "refocus",
-      [](const LightField& lf, std::optional<double> slope, std::optional<double> alpha,
-         std::optional<std::array<double, 2>> focusAt, std::optional<std::array<ImagePoint, 3>> focusPlane,
-         std::optional<double> aperture, const std::string& shape, std::optional<std::array<double, 2>> centre,
-         std::optional<py::array> mask, const std::string& method, int supersampling, std::optional<double> beta,
-         int upsample, std::optional<std::array<double, 2>> focusRange, std::optional<py::array> depth) {
-        if (int(slope.has_value()) + int(alpha.has_value()) + int(focusAt.has_value()) + int(focusPlane.has_value()) +
-                int(focusRange.has_value()) !=
-            1)
-          throw LibraryError(ErrorCode::Usage,
-                             "refocus: give the focus depth with one of slope, alpha, focus_at, "
-                             "focus_plane or focus_range");
-        const bool fullApertureFast =
-            !aperture && shape == "circle" && !centre && !mask && method == "fast" && supersampling == 0 && !beta;
-        if (depth && !focusRange) throw LibraryError(ErrorCode::Usage, "refocus: depth goes with focus_range");
-        if (focusRange) {
-          if (!fullApertureFast || upsample != 1)
-            throw LibraryError(ErrorCode::Usage,
-                               "refocus: focus_range renders with the full aperture and the fast method only");
-          std::optional<Image> disparity;
-          if (depth) disparity = imageFromArray(*depth, "depth");
-          return interruptible([&] {
-            if (!disparity) disparity = std::move(valueOrThrow(estimateDepth(lf)).disparity);
-            return valueOrThrow(refocusSpread(lf, *disparity, (*focusRange)[1], (*focusRange)[0]));
-          });
-        }
-        if (upsample != 1 && (focusPlane || !fullApertureFast))
-          throw LibraryError(ErrorCode::Usage,
-                             "refocus: upsample renders a fronto-parallel focus with the full aperture and the fast "
-                             "method only");
-        if (focusPlane) {
-          if (aperture || shape != "circle" || centre || mask || method != "fast" || supersampling != 0 || beta)
-            throw LibraryError(ErrorCode::Usage,
-                               "refocus: focus_plane renders with the full aperture and the fast method only");
-          return interruptible([&] {
-            const FocusPlane plane = valueOrThrow(focusPlaneThroughPoints(lf, *focusPlane));
-            return refocusTilted(lf, plane);
-          });
-        }
-        const PhotoSettings settings = photoSettings(aperture, shape, centre, mask, method, supersampling, beta);
-        double value = slope.value_or(0.0);
-        if (alpha) value = valueOrThrow(slopeFromAlpha(lf, *alpha, "light field"));
-        if (focusAt)
-          value = interruptible([&] { return valueOrThrow(slopeAtPixel(lf, (*focusAt)[0], (*focusAt)[1])); });
-        if (upsample != 1) return interruptible([&] { return valueOrThrow(refocusUpsampled(lf, value, upsample)); });
-        return std::move(photographs(lf, settings, {value}).front());
-      },
-      py::arg("light_field"), py::arg("slope") = py::none(), py::kw_only(), py::arg("alpha") = py::none(),
-      py::arg("focus_at") = py::none(), py::arg("focus_plane") = py::none(), py::arg("aperture") = py::none(),
-      py::arg("aperture_shape") = "circle", py::arg("aperture_centre") = py::none(),
-      py::arg("aperture_mask") = py::none(), py::arg("method") = "fast", py::arg("supersampling") = 0,
-      py::arg("beta") = py::none(), py::arg("upsample") = 1, py::arg("focus_range") = py::none(),
-      py::arg("depth") = py::none(),
-      "A photograph refocused at a slope (pixels per view step), a relative film depth alpha, the depth of image "
-      "point focus_at=(x, y), or on the tilted plane through three image points focus_plane=((x1, y1), (x2, y2), "
-      "(x3, y3)), each at its sharpest; aperture radius and centre in view steps; method 'fast', 'quadrature' or "
-      "'fourier'; upsample=K (2 or 3) renders on a grid K times finer, each view's samples placed where they land; "
-      "focus_range=(near, far) in slopes keeps everything between them in focus, on the disparity map depth (e.g. "
-      "depth(...).disparity.array) or one estimated on the way.");
-  m.def(
-      "stack",
-      [](const LightField& lf, std::optional<std::vector<double>> slopes, std::optional<std::vector<double>> alphas,
-         std::optional<double> aperture, const std::string& shape, std::optional<std::array<double, 2>> centre,
-         std::optional<py::array> mask, const std::string& method, int supersampling, std::optional<double> beta) {
-        if (slopes.has_value() == alphas.has_value())
-          throw LibraryError(ErrorCode::Usage, "stack: give the depths with one of slopes or alphas");
-        const PhotoSettings settings = photoSettings(aperture, shape, centre, mask, method, supersampling, beta);
-        std::vector<double> values = slopes ? *slopes : *alphas;
-        if (alphas)
-          for (double& value : values) value = valueOrThrow(slopeFromAlpha(lf, value, "light field"));
-        return photographs(lf, settings, values);
-      },
-      py::arg("light_field"), py::arg("slopes") = py::none(), py::kw_only(), py::arg("alphas") = py::none(),
-      py::arg("aperture") = py::none(), py::arg("aperture_shape") = "circle", py::arg("aperture_centre") = py::none(),
-      py::arg("aperture_mask") = py::none(), py::arg("method") = "fast", py::arg("supersampling") = 0,
-      py::arg("beta") = py::none(), "A focal stack: one photograph per slope (or alpha), as refocus makes them.");
   m.def(
       "observer",
       [](const LightField& lf, double u, double v, double beta, bool clamp) {

@@ -9,7 +9,7 @@
 
 #include "lfcam/image_io.hpp"
 #include "lfcam/light_field.hpp"
-#include "lfcam/photo_settings.hpp"
+#include "lfcam/photo_request.hpp"
 #include "lfcam/result.hpp"
 
 namespace lfcam {
@@ -18,7 +18,7 @@ namespace lfcam {
 std::string stackSliceName(int index, const std::string& extension);
 
 // progress(fraction) after each slice written.
-Status writeFocalStack(const std::filesystem::path& folder, const LightField& lightField, const PhotoSetup& camera,
+Status writeFocalStack(const std::filesystem::path& folder, const LightField& lightField, const ResolvedPhoto& camera,
                        const std::vector<double>& slopes, const std::string& extension,
                        const ImageWriteOptions& writeOptions, const std::function<void(double)>& progress);
 

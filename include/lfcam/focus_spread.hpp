@@ -23,8 +23,10 @@ namespace lfcam {
 // step): above the noise of an estimated map, below the steps between surfaces people separate.
 constexpr double kOccluderMargin = 0.2;
 
-// Usage errors: a disparity map of another size than the views (or not one channel), or a range
-// with its near end behind its far end (nearSlope < farSlope; slopes grow towards the camera).
+// Usage errors: a disparity map of another size than the views (or not one channel, or not finite),
+// or a range with its near end behind its far end (nearSlope < farSlope; slopes grow towards the
+// camera). checkFocusSpread says so before any work.
+Status checkFocusSpread(const LightField& lightField, const Image& disparity, double farSlope, double nearSlope);
 Result<Image> refocusSpread(const LightField& lightField, const Image& disparity, double farSlope, double nearSlope);
 
 }  // namespace lfcam

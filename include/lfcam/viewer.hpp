@@ -28,6 +28,7 @@
 
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
+#include "lfcam/photo_request.hpp"
 #include "lfcam/result.hpp"
 #include "lfcam/tilted_focus.hpp"
 
@@ -35,18 +36,12 @@ namespace lfcam {
 
 enum class ViewerLayer { Photo, AllInFocus, Depth };
 
-// One photograph as the page describes it. Units of light_field.hpp.
+// One photograph as the page describes it: the photo layer's fields of the photograph request
+// (photo_request.hpp) by name, as the query gave them (no focus: slope 0), or another layer.
 struct ViewerView {
   ViewerLayer layer = ViewerLayer::Photo;
-  double slope = 0;                                  // focus: the disparity brought into focus
-  std::optional<std::pair<double, double>> focusAt;  // pixel (x, y): pick the slope that makes it sharpest
-  double fNumber = 1;   // aperture, relative to the whole lens (1): radius = lens radius / fNumber
-  double u = 0, v = 0;  // observer: the aperture's centre, view steps from the lens centre
-  int quality = 80;     // JPEG quality
-  // At most one of these three, each with the whole lens seen from its centre (fNumber 1, u = v = 0):
-  std::optional<std::array<ImagePoint, 3>> focusPlane;  // tilted focus through three points (tilted_focus.hpp)
-  std::optional<std::pair<double, double>> focusRange;  // {far, near} slopes in focus (focus_spread.hpp)
-  int upsample = 1;  // the photograph on a grid this many times finer (upsampled_refocus.hpp)
+  std::map<std::string, std::string> photo;  // "slope" -> "0.5", "f-number" -> "2", ...
+  int quality = 80;                          // JPEG quality
 };
 
 struct ViewerLimits {
@@ -88,7 +83,8 @@ class ViewerSession {
     std::optional<FocusPlane> plane;  // the tilted plane rendered, for focusPlane
     bool cached = false;
   };
-  // The photograph `view` describes. Errors: Usage for a view outside the light field's range;
+  // The photograph `view` describes. Errors: Usage for a view the light field refuses (the request's
+  // own one-line message);
   // Resource when the render queue is full (503) or when the layer is being computed by another
   // request (202: poll statusJson).
   Result<Photo> render(const ViewerView& view);
@@ -119,14 +115,14 @@ struct ViewerAnswer {
 //   GET /, /index.html, /viewer.js, /viewer.css   the embedded page
 //   GET /api/info, /api/status                    JSON (above)
 //   GET /api/focus?x=X&y=Y                         {"slope": D}
-//   GET /api/image?layer=photo|allinfocus|depth&slope=D&focus=X,Y&f=N&u=U&v=V&q=Q
-//                  &plane=X1,Y1:X2,Y2:X3,Y3 | &range=NEAR:FAR | &upsample=K
-//       image/jpeg, the slope rendered in header X-Lfcam-Slope (for a plane, at the image centre, and
-//       the plane in X-Lfcam-Plane: "slope,gradientX,gradientY"); every parameter optional
-// Anything else: 404 (unknown path), 405 (not GET/HEAD), 400 (bad, unknown or repeated
-// parameter, three points on one line, a range with its near end behind its far end or outside
-// the slope range, K outside 1-4, or plane/range/upsample with another aperture or observer), 202
-// (layer being computed, or the depth map a range needs), 503 (render queue full).
+//   GET /api/image?layer=photo|allinfocus|depth&q=Q&NAME=TEXT...
+//       every field of the photograph request that is not a file, by its name (photoFields():
+//       slope, focus-at, f-number, aperture-centre, focus-plane, focus-range, upsample, ...);
+//       image/jpeg, the slope rendered in header X-Lfcam-Slope (for a tilted plane, at the image
+//       centre, and the plane in X-Lfcam-Plane: "slope,gradientX,gradientY"); every parameter optional
+// Anything else: 404 (unknown path), 405 (not GET/HEAD), 400 (a bad, unknown or repeated
+// parameter, or a request the photograph request refuses: its one line), 202 (layer being
+// computed, or the depth map a range needs), 503 (render queue full).
 ViewerAnswer answerRequest(ViewerSession& session, const ViewerRequest& request);
 
 // The parameters of /api/image, checked (400 material on error) against the light field.

@@ -14,7 +14,7 @@ Errors raise lfcam.UsageError (a wrong argument) or lfcam.Error (a file or input
 with the command line's one-line messages.
 """
 from ._lfcam import (AllInFocus, DepthMap, Error, Image, LensletGrid, LightField, UsageError, calibrate, decode,
-                     denoise, depth, edof, observer, read, read_image, refocus, score, simulate, stack, write, write_image)
+                     denoise, depth, edof, observer, photo_fields, read, read_image, refocus, score, simulate, stack, write, write_image)
 
 
 def __getattr__(name):
@@ -26,5 +26,5 @@ def __getattr__(name):
 
 
 __all__ = ["AllInFocus", "DepthMap", "Error", "Image", "LensletGrid", "LightField", "UsageError", "batch",
-           "calibrate", "decode", "denoise", "depth", "edof", "observer", "read", "read_image", "refocus", "score", "simulate",
+           "calibrate", "decode", "denoise", "depth", "edof", "observer", "photo_fields", "read", "read_image", "refocus", "score", "simulate",
            "stack", "write", "write_image"]

@@ -81,16 +81,23 @@ def calibrate(white: _Path, *, metadata: Optional[_Path] = None, pinhole: bool =
 def decode(raw: str, *, white: str = "", dark: str = "", grid: str = "", bayer: Optional[str] = None,
            black_level: Optional[float] = None, views: int = 0, demosaic: str = "mhc",
            sampling: str = "subpixel") -> LightField: ...
+# The keywords of refocus and stack are the photograph request's fields (photo_fields(), the
+# command line's flags): tests/python checks this list against that table.
 def refocus(light_field: LightField, slope: Optional[float] = None, *, alpha: Optional[float] = None,
-            focus_at: Optional[tuple[float, float]] = None, aperture: Optional[float] = None,
-            aperture_shape: str = "circle", aperture_centre: Optional[tuple[float, float]] = None,
-            aperture_mask: Optional[_Array] = None, method: str = "fast", supersampling: int = 0,
-            beta: Optional[float] = None, upsample: int = 1, focus_range: Optional[tuple[float, float]] = None,
-            depth: Optional[_Array] = None) -> Image: ...
+            focus_at: Optional[tuple[float, float]] = None,
+            focus_plane: Optional[tuple[tuple[float, float], tuple[float, float], tuple[float, float]]] = None,
+            tilt: Optional[float] = None, tilt_direction: Optional[float] = None,
+            focus_range: Optional[tuple[float, float] | str] = None, depth: Optional[_Array | str] = None,
+            aperture: Optional[float] = None, f_number: Optional[float] = None, aperture_shape: Optional[str] = None,
+            aperture_centre: Optional[tuple[float, float]] = None, aperture_mask: Optional[_Array | str] = None,
+            clamp: bool = False, beta: Optional[float] = None, method: str = "fast", supersampling: int = 0,
+            upsample: int = 1) -> Image: ...
 def stack(light_field: LightField, slopes: Optional[Sequence[float]] = None, *,
-          alphas: Optional[Sequence[float]] = None, aperture: Optional[float] = None, aperture_shape: str = "circle",
-          aperture_centre: Optional[tuple[float, float]] = None, aperture_mask: Optional[_Array] = None,
-          method: str = "fast", supersampling: int = 0, beta: Optional[float] = None) -> list[Image]: ...
+          alphas: Optional[Sequence[float]] = None, aperture: Optional[float] = None, f_number: Optional[float] = None,
+          aperture_shape: Optional[str] = None, aperture_centre: Optional[tuple[float, float]] = None,
+          aperture_mask: Optional[_Array | str] = None, clamp: bool = False, beta: Optional[float] = None,
+          method: str = "fast", supersampling: int = 0) -> list[Image]: ...
+def photo_fields() -> list[dict[str, str]]: ...
 def observer(light_field: LightField, u: float, v: float, *, beta: float = 1.0, clamp: bool = False) -> Image: ...
 def depth(light_field: LightField, *, options: Optional[_Path] = None, **knobs: float) -> DepthMap: ...
 def edof(light_field: LightField, *, depth: Optional[_Array] = None, min: Optional[float] = None,

@@ -16,7 +16,7 @@
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/living_picture.hpp"
 #include "lfcam/parallel.hpp"
-#include "lfcam/photo_settings.hpp"
+#include "lfcam/photo_request.hpp"
 
 namespace lfcam {
 namespace fs = std::filesystem;
@@ -63,13 +63,13 @@ bool completeAlready(const fs::path& folder, const nlohmann::json& marker, const
 Status runStep(const BatchStep& step, const LightField& lightField, const fs::path& input, const fs::path& folder) {
   switch (step.kind) {
     case BatchStep::Kind::Refocus: {
-      LFCAM_ASSIGN_OR_RETURN(auto camera, photoSetup({}, lightField, input.string()));
-      return renderPhotos(lightField, camera, {step.slope}, [&](int, double, Image&& photo) {
-        return writeImage(folder / step.outputs().front(), photo);
-      });
+      LFCAM_ASSIGN_OR_RETURN(auto photo,
+                             renderPhoto(lightField, PhotoRequest{.slope = step.slope}, {.inputName = input.string()}));
+      return writeImage(folder / step.outputs().front(), photo);
     }
     case BatchStep::Kind::Stack: {
-      LFCAM_ASSIGN_OR_RETURN(auto camera, photoSetup({}, lightField, input.string()));
+      LFCAM_ASSIGN_OR_RETURN(auto camera,
+                             resolvePhoto(PhotoRequest{.slope = 0.0}, lightField, {.inputName = input.string()}));
       return writeFocalStack(folder / "stack", lightField, camera, step.slopes, "png", {}, [](double) {});
     }
     case BatchStep::Kind::Edof: {

@@ -11,6 +11,8 @@
 #include "lfcam/image.hpp"
 #include "lfcam/light_field.hpp"
 #include "render/bilinear_taps.hpp"
+#include "render/occluders.hpp"
+#include "render/ray_paths.hpp"
 #include "render/row_blocks.hpp"
 #include "render/shift_and_add_rows.hpp"
 
@@ -27,10 +29,11 @@ struct KeepEveryTap {
 // slopeAt(x, y) is the slope of output pixel (x, y) (pixel indices; not finite: the pixel is 0);
 // keep(u, v, row, column, x, y) says whether the tap at (column, row) of view (u, v) counts for it;
 // a pixel whose every tap it leaves out takes them all (the test misjudged that pixel: with an
-// estimated depth map, a pixel read as farther than every surface its rays meet).
+// estimated depth map, a pixel read as farther than every surface its rays meet). viewWeights, when
+// given, is the aperture's weight of each view (index v nu + u; views of weight 0 are skipped).
 template <typename SlopeAt, typename Keep>
-void refocusSlopeFieldRows(const LightField& lightField, const SlopeAt& slopeAt, const Keep& keep, int y0, int y1,
-                           Image& out) {
+void refocusSlopeFieldRows(const LightField& lightField, const SlopeAt& slopeAt, const Keep& keep,
+                           const std::vector<float>* viewWeights, int y0, int y1, Image& out) {
   const int ns = lightField.ns(), nt = lightField.nt(), channels = lightField.channels();
   const int rows = y1 - y0;
   // One (rows x ns) plane per channel, then one for the weight sum.
@@ -38,11 +41,16 @@ void refocusSlopeFieldRows(const LightField& lightField, const SlopeAt& slopeAt,
   auto accumulatorRow = [&](int plane, int y) {
     return accumulator.data() + (std::size_t(plane) * rows + (y - y0)) * ns;
   };
+  auto apertureWeight = [&](int u, int v) {
+    return viewWeights ? (*viewWeights)[std::size_t(v) * lightField.nu() + u] : 1.0f;
+  };
   std::vector<const float*> viewPlanes(channels);
   for (int v = 0; v < lightField.nv(); ++v) {
     const double vc = lightField.vFromCentre(v);
     for (int u = 0; u < lightField.nu(); ++u) {
       const double uc = lightField.uFromCentre(u);
+      const float aperture = apertureWeight(u, v);
+      if (aperture == 0.0f) continue;
       for (int c = 0; c < channels; ++c) viewPlanes[c] = lightField.plane(u, v, c);
       for (int y = y0; y < y1; ++y) {
         float* weightRow = accumulatorRow(channels, y);
@@ -52,7 +60,7 @@ void refocusSlopeFieldRows(const LightField& lightField, const SlopeAt& slopeAt,
           forEachBilinearTap(lightField, u, v, x, y, axisShift(uc, slope, ns), axisShift(vc, slope, nt),
                              [&](int row, int column, double w) {
                                if (!keep(u, v, row, column, x, y)) return;
-                               const float tapWeight = float(w);
+                               const float tapWeight = aperture * float(w);
                                const std::size_t at = std::size_t(row) * ns + column;
                                weightRow[x] += tapWeight;
                                for (int c = 0; c < channels; ++c)
@@ -68,14 +76,18 @@ void refocusSlopeFieldRows(const LightField& lightField, const SlopeAt& slopeAt,
         const double slope = slopeAt(x, y);
         if (accumulatorRow(channels, y)[x] != 0.0f || !std::isfinite(slope)) continue;
         for (int v = 0; v < lightField.nv(); ++v)
-          for (int u = 0; u < lightField.nu(); ++u)
+          for (int u = 0; u < lightField.nu(); ++u) {
+            const float aperture = apertureWeight(u, v);
+            if (aperture == 0.0f) continue;
             forEachBilinearTap(lightField, u, v, x, y, axisShift(lightField.uFromCentre(u), slope, ns),
                                axisShift(lightField.vFromCentre(v), slope, nt), [&](int row, int column, double w) {
                                  const std::size_t at = std::size_t(row) * ns + column;
-                                 accumulatorRow(channels, y)[x] += float(w);
+                                 const float tapWeight = aperture * float(w);
+                                 accumulatorRow(channels, y)[x] += tapWeight;
                                  for (int c = 0; c < channels; ++c)
-                                   accumulatorRow(c, y)[x] += float(w) * lightField.plane(u, v, c)[at];
+                                   accumulatorRow(c, y)[x] += tapWeight * lightField.plane(u, v, c)[at];
                                });
+          }
       }
   // Divide by the weight of the rays that arrived (section 5.2).
   for (int y = y0; y < y1; ++y)
@@ -85,13 +97,19 @@ void refocusSlopeFieldRows(const LightField& lightField, const SlopeAt& slopeAt,
 
 // The photograph of refocusSlopeFieldRows over the whole image, threaded over blocks of rows.
 template <typename SlopeAt, typename Keep = KeepEveryTap>
-Image refocusSlopeField(const LightField& lightField, const SlopeAt& slopeAt, const Keep& keep = {}) {
+Image refocusSlopeField(const LightField& lightField, const SlopeAt& slopeAt, const Keep& keep = {},
+                        const std::vector<float>* viewWeights = nullptr) {
   const LightFieldShape& shape = lightField.shape();
   Image out(shape.ns, shape.nt, shape.channels);
   if (lightField.empty()) return out;
   forEachRowBlock(shape.nt, shape.ns, shape.channels + 1,
-                  [&](int y0, int y1) { refocusSlopeFieldRows(lightField, slopeAt, keep, y0, y1, out); });
+                  [&](int y0, int y1) { refocusSlopeFieldRows(lightField, slopeAt, keep, viewWeights, y0, y1, out); });
   return out;
 }
+
+// The photograph of `film` (a tilted plane, or a range with the rays `occluders` hide left out),
+// through the aperture's weight of each view (nullptr: the whole lens): film_refocus.cpp.
+Image refocusFilm(const LightField& lightField, const FilmSlopes& film, const Occluders* occluders,
+                  const std::vector<float>* viewWeights);
 
 }  // namespace lfcam

@@ -90,7 +90,7 @@ FocusPlane focusPlaneFromTilt(const LightField& lightField, double slope, double
 }
 
 Image refocusTilted(const LightField& lightField, const FocusPlane& plane) {
-  return refocusSlopeField(lightField, [&plane](int x, int y) { return plane.slopeAt(x + 0.5, y + 0.5); });
+  return refocusFilm(lightField, {.plane = plane}, nullptr, nullptr);
 }
 
 Image refocusTiltedReference(const LightField& lightField, const FocusPlane& plane) {

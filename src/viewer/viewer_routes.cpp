@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/upsampled_refocus.hpp"
+#include "lfcam/photo_request.hpp"
 #include "lfcam/viewer.hpp"
 #include "viewer/viewer_assets.hpp"
 
@@ -54,62 +54,14 @@ const std::string* param(const std::multimap<std::string, std::string>& params, 
   return it == params.end() ? nullptr : &it->second;
 }
 
-// "NEAR:FAR" in slopes within the session's range, near the larger -> {far, near}; the command
-// line's --focus-range wording.
-Result<std::pair<double, double>> parseFocusRange(const std::string& text, const ViewerSession& session) {
-  const auto colon = text.find(':');
-  const auto nearEnd = parseNumber(text.substr(0, colon)),
-             farEnd = colon == std::string::npos ? std::nullopt : parseNumber(text.substr(colon + 1));
-  char expected[128];
-  std::snprintf(expected, sizeof expected, "parameter range: expected NEAR:FAR as slopes in [%g, %g]",
-                session.slopeMin(), session.slopeMax());
-  if (!nearEnd || !farEnd) return makeError(ErrorCode::Usage, expected);
-  if (*nearEnd < *farEnd)
-    return makeError(ErrorCode::Usage, "parameter range: the near end (slope " + text.substr(0, colon) +
-                                           ") lies behind the far end (slope " + text.substr(colon + 1) +
-                                           "); slopes grow towards the camera");
-  if (*farEnd < session.slopeMin() || *nearEnd > session.slopeMax()) return makeError(ErrorCode::Usage, expected);
-  return std::pair{*farEnd, *nearEnd};
-}
-
-// The tilted plane, the focus range and the finer grid: each value checked, at most one of them,
-// and each with the whole lens from its centre (as the command line's refocus accepts them).
-Status parseFocusShape(const std::multimap<std::string, std::string>& params, const ViewerSession& session,
-                       ViewerView& view) {
-  if (auto* plane = param(params, "plane")) {
-    auto points = parseFocusPlanePoints(*plane);
-    Status valid = points ? checkFocusPlanePoints(session.lightField(), *points) : Status(points.error());
-    if (!valid) return makeError(ErrorCode::Usage, "parameter plane: " + valid.error().message);
-    view.focusPlane = *points;
-  }
-  if (auto* range = param(params, "range")) {
-    LFCAM_ASSIGN_OR_RETURN(auto value, parseFocusRange(*range, session));
-    view.focusRange = value;
-  }
-  if (auto* upsample = param(params, "upsample")) {
-    const auto value = parseNumber(*upsample);
-    if (!value || *value != std::floor(*value) || *value < 1 || *value > kMaxUpsampleFactor)
-      return makeError(ErrorCode::Usage, "parameter upsample: expected 1 to " + std::to_string(kMaxUpsampleFactor) +
-                                             ", got '" + upsample->substr(0, 20) + "'");
-    view.upsample = int(*value);
-  }
-  const int shapes = int(view.focusPlane.has_value()) + int(view.focusRange.has_value()) + int(view.upsample > 1);
-  if (shapes == 0) return {};
-  if (shapes > 1) return makeError(ErrorCode::Usage, "parameters plane, range and upsample: at most one at a time");
-  if (view.layer != ViewerLayer::Photo || view.fNumber != 1 || view.u != 0 || view.v != 0)
-    return makeError(ErrorCode::Usage,
-                     "parameters plane, range and upsample render the photo layer with the whole lens from its "
-                     "centre only (no f, u or v)");
-  if ((view.focusPlane || view.focusRange) && (param(params, "slope") || view.focusAt))
-    return makeError(ErrorCode::Usage, "parameters plane and range set the focus themselves (no slope or focus)");
-  return {};
-}
-
 }  // namespace
 
 Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>& params,
                                    const ViewerSession& session) {
-  LFCAM_TRY(checkNames(params, {"layer", "slope", "focus", "f", "u", "v", "q", "plane", "range", "upsample"}));
+  std::set<std::string> known{"layer", "q"};
+  for (const PhotoField& field : photoFields())
+    if (!field.fromFile) known.insert(field.name);
+  LFCAM_TRY(checkNames(params, known));
   const LightField& lf = session.lightField();
   ViewerView view;
   if (auto* layer = param(params, "layer")) {
@@ -122,38 +74,39 @@ Result<ViewerView> parseViewerView(const std::multimap<std::string, std::string>
     else
       return makeError(ErrorCode::Usage, "parameter layer: expected photo, allinfocus or depth");
   }
-  // Slopes beyond the image's width shift every view out of the picture: nothing to see there.
-  const double slopeLimit = std::max(8.0, double(std::max(lf.ns(), lf.nt())));
-  if (auto* slope = param(params, "slope")) {
-    LFCAM_ASSIGN_OR_RETURN(auto value, numberIn("slope", *slope, -slopeLimit, slopeLimit));
-    view.slope = value;
-  }
-  if (auto* focus = param(params, "focus")) {
-    const auto comma = focus->find(',');
-    if (comma == std::string::npos) return makeError(ErrorCode::Usage, "parameter focus: expected X,Y");
-    LFCAM_ASSIGN_OR_RETURN(const double x,
-                           numberIn("focus", focus->substr(0, comma), 0, std::nextafter(double(lf.ns()), 0.0)));
-    LFCAM_ASSIGN_OR_RETURN(const double y,
-                           numberIn("focus", focus->substr(comma + 1), 0, std::nextafter(double(lf.nt()), 0.0)));
-    view.focusAt = std::pair{x, y};
-  }
-  if (auto* f = param(params, "f")) {
-    LFCAM_ASSIGN_OR_RETURN(auto value, numberIn("f", *f, 1, 1000));
-    view.fNumber = value;
-  }
-  // The observer stays on the lens: clamped to its views rather than refused, as a drag overshoots.
-  for (const char* axis : {"u", "v"}) {
-    if (auto* text = param(params, axis)) {
-      LFCAM_ASSIGN_OR_RETURN(auto value, numberIn(axis, *text, -1000, 1000));
-      const double half = 0.5 * ((axis[0] == 'u' ? lf.nu() : lf.nv()) - 1);
-      (axis[0] == 'u' ? view.u : view.v) = std::clamp(value, -half, half);
-    }
-  }
   if (auto* q = param(params, "q")) {
     LFCAM_ASSIGN_OR_RETURN(auto value, numberIn("q", *q, 10, 100));
     view.quality = int(std::lround(value));
   }
-  LFCAM_TRY(parseFocusShape(params, session, view));
+  PhotoRequest request;
+  for (const auto& [name, text] : params)
+    if (name != "layer" && name != "q") {
+      LFCAM_TRY(setPhotoField(request, name, text));
+      view.photo[name] = text;
+    }
+  if (view.layer != ViewerLayer::Photo) {
+    if (!view.photo.empty())
+      return makeError(ErrorCode::Usage, "the layers allinfocus and depth take no photo setting");
+    return view;
+  }
+  // No focus setting at all: the focus of the lens as it was (slope 0).
+  if (!request.slope && !request.alpha && !request.focusAt && !request.focusPlane && !request.focusRange &&
+      !request.tilt && !request.tiltDirection)
+    request.slope = 0.0, view.photo["slope"] = "0";
+  LFCAM_TRY(checkPhotoRequest(request));
+  // Slopes beyond the image's width shift every view out of the picture: nothing to see there.
+  const double slopeLimit = std::max(8.0, double(std::max(lf.ns(), lf.nt())));
+  if (request.slope && std::abs(*request.slope) > slopeLimit)
+    return makeError(ErrorCode::Usage, "slope: expected a number in [" + std::to_string(-slopeLimit) + ", " +
+                                           std::to_string(slopeLimit) + "]");
+  // The observer stays on the lens: clamped to its views rather than refused, as a drag overshoots.
+  if (request.apertureCentre) {
+    const double halfU = 0.5 * (lf.nu() - 1), halfV = 0.5 * (lf.nv() - 1);
+    char centre[64];
+    std::snprintf(centre, sizeof centre, "%.6g,%.6g", std::clamp((*request.apertureCentre)[0], -halfU, halfU),
+                  std::clamp((*request.apertureCentre)[1], -halfV, halfV));
+    view.photo["aperture-centre"] = centre;
+  }
   return view;
 }
 

@@ -14,11 +14,8 @@
 #include "lfcam/color_map.hpp"
 #include "lfcam/depth.hpp"
 #include "lfcam/focal_stack.hpp"
-#include "lfcam/focus_spread.hpp"
+#include "lfcam/photo_request.hpp"
 #include "lfcam/refocus.hpp"
-#include "lfcam/synthetic_camera.hpp"
-#include "lfcam/tilted_focus.hpp"
-#include "lfcam/upsampled_refocus.hpp"
 #include "lfcam/viewer.hpp"
 #include "viewer/image_encode.hpp"
 
@@ -181,8 +178,7 @@ FocusSearch ViewerSession::focusSearch() const {
 
 Result<double> ViewerSession::focusAt(double x, double y) const {
   const LightField& lf = state_->lightField;
-  if (!(x >= 0 && y >= 0 && x < lf.ns() && y < lf.nt()))
-    return makeError(ErrorCode::Usage, "focus point outside the image");
+  LFCAM_TRY(checkImagePoint(lf, "focus-at", {x, y}));
   return slopeAtPixel(lf, x, y, focusSearch());
 }
 
@@ -213,13 +209,8 @@ Result<const LayerImages*> lazyLayer(std::mutex& mutex, LazyLayer& layer,
 }
 
 std::string cacheKey(const ViewerView& view) {
-  char key[256];
-  int n = std::snprintf(key, sizeof key, "%d|%.4f|%.3f|%.3f|%.3f|%d|%d", int(view.layer), view.slope, view.fNumber,
-                        view.u, view.v, view.quality, view.upsample);
-  if (const auto& p = view.focusPlane)
-    n += std::snprintf(key + n, sizeof key - n, "|plane %.2f,%.2f:%.2f,%.2f:%.2f,%.2f", (*p)[0][0], (*p)[0][1],
-                       (*p)[1][0], (*p)[1][1], (*p)[2][0], (*p)[2][1]);
-  if (const auto& r = view.focusRange) std::snprintf(key + n, sizeof key - n, "|range %.4f:%.4f", r->first, r->second);
+  std::string key = std::to_string(int(view.layer)) + "|" + std::to_string(view.quality);
+  for (const auto& [name, text] : view.photo) key += "|" + name + "=" + text;
   return key;
 }
 
@@ -230,13 +221,18 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
   const LightField& lf = s.lightField;
   if (lf.empty()) return makeError(ErrorCode::Usage, "empty light field");
   ViewerView view = request;
-  if (view.layer == ViewerLayer::Photo && view.focusAt) {
-    LFCAM_ASSIGN_OR_RETURN(auto slope, focusAt(view.focusAt->first, view.focusAt->second));
-    view.slope = slope;
-    view.focusAt.reset();
+  PhotoRequest photoRequest;
+  for (const auto& [name, text] : view.photo) LFCAM_TRY(setPhotoField(photoRequest, name, text));
+  // A click is answered, and cached, as the slope it chose (a tilt about it keeps its point).
+  if (view.layer == ViewerLayer::Photo && photoRequest.focusAt && !photoRequest.tilt) {
+    LFCAM_ASSIGN_OR_RETURN(auto slope, focusAt((*photoRequest.focusAt)[0], (*photoRequest.focusAt)[1]));
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4f", slope);
+    view.photo.erase("focus-at");
+    view.photo["slope"] = text;
+    photoRequest.focusAt.reset();
+    photoRequest.slope = slope;
   }
-  if (view.layer != ViewerLayer::Photo) view.slope = view.fNumber = view.u = view.v = 0;
-  if (view.focusPlane || view.focusRange) view.slope = 0;
   const std::string key = cacheKey(view);
   {
     std::lock_guard lock(s.mutex);
@@ -246,7 +242,7 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
     }
   }
 
-  Photo photo{.slope = view.slope};
+  Photo photo;
   Image computed;
   const Image* image = nullptr;
   auto depthLayer = [&] {
@@ -273,11 +269,10 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
     LFCAM_ASSIGN_OR_RETURN(const LayerImages* layer, depthLayer());
     image = &layer->shown;
   } else {
-    // A focus range waits for the depth map (202 while another request computes it).
-    const Image* disparity = nullptr;
-    if (view.focusRange) {
+    // A focus range waits for the depth layer's map (202 while another request computes it).
+    if (photoRequest.focusRange) {
       LFCAM_ASSIGN_OR_RETURN(const LayerImages* layer, depthLayer());
-      disparity = &layer->values;
+      photoRequest.depth = std::shared_ptr<const Image>(std::shared_ptr<const Image>(), &layer->values);  // held by s
     }
     // A render slot, or 503 after waiting: bounds the memory and CPU of concurrent renders.
     if (!s.renderSlots.try_acquire_for(std::chrono::duration<double>(s.limits.renderWaitSeconds)))
@@ -286,25 +281,10 @@ Result<ViewerSession::Photo> ViewerSession::render(const ViewerView& request) {
       std::counting_semaphore<1024>& slots;
       ~Release() { slots.release(); }
     } release{s.renderSlots};
-    const double radius = s.lensRadius / view.fNumber;
-    auto render = [&]() -> Result<Image> {
-      if (view.focusRange) return refocusSpread(lf, *disparity, view.focusRange->first, view.focusRange->second);
-      if (view.focusPlane) {
-        LFCAM_ASSIGN_OR_RETURN(auto plane, focusPlaneThroughPoints(lf, *view.focusPlane, focusSearch()));
-        photo.plane = plane;
-        photo.slope = plane.slope;
-        return refocusTilted(lf, plane);
-      }
-      if (view.upsample > 1) return refocusUpsampled(lf, view.slope, view.upsample);
-      // A circle narrower than half a view diagonal can fall between the views: below that the
-      // aperture is a pinhole, one ray per pixel interpolated between the views.
-      if (radius < 0.71) return observe(lf, Observer{.u = view.u, .v = view.v, .clampToLens = true});
-      SyntheticCamera camera;
-      camera.slope = view.slope;
-      camera.aperture = Aperture::circle(radius, view.u, view.v);
-      return renderSyntheticPhoto(lf, camera);
-    };
-    LFCAM_ASSIGN_OR_RETURN(computed, render());
+    LFCAM_ASSIGN_OR_RETURN(auto resolved, resolvePhoto(photoRequest, lf, {.search = focusSearch()}));
+    photo.slope = resolved.film.plane.slope;
+    if (photoRequest.focusPlane || photoRequest.tilt) photo.plane = resolved.film.plane;
+    LFCAM_ASSIGN_OR_RETURN(computed, renderPhoto(lf, resolved));
     image = &computed;
   }
   LFCAM_ASSIGN_OR_RETURN(photo.jpeg, encodeImage(*image, {.format = EncodedFormat::Jpeg, .jpegQuality = view.quality}));

@@ -3,14 +3,17 @@
 // subcommand: commands_test.cpp.)
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
+#include <fstream>
+#include <random>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
 #include "lfcam/animation.hpp"
 #include "lfcam/image_io.hpp"
 #include "lfcam/light_field_io.hpp"
+#include "random_light_field.hpp"
 
 namespace lfcam {
 namespace {
@@ -220,35 +223,13 @@ TEST(CliRender, UsageErrorsExitTwoWithOneLine) {
   const std::string input = test::makeSynthLightField(dir, 5, 40).string();
   const std::string out = (dir / "x.png").string();
   const std::vector<std::vector<std::string>> cases = {
-      {"refocus", input, "--focus-at", "3", "-o", out},
-      {"refocus", input, "--focus-at", "500,500", "-o", out},
-      {"refocus", input, "--slope", "1", "--focus-at", "3,3", "-o", out},
-      {"refocus", input, "--slope", "1", "--method", "magic", "-o", out},
-      {"refocus", input, "--focus-plane", "5,5:10,10:20,20", "-o", out},  // collinear
-      {"refocus", input, "--focus-plane", "5,5:45,10:20,30", "-o", out},  // outside the 40x40 image
-      {"refocus", input, "--focus-plane", "5,5:10,10", "-o", out},
-      {"refocus", input, "--focus-plane", "5,5:35,8:20,34", "--slope", "1", "-o", out},
-      {"refocus", input, "--focus-plane", "5,5:35,8:20,34", "--aperture", "1", "-o", out},
-      {"refocus", input, "--tilt", "1", "-o", out},
-      {"refocus", input, "--slope", "1", "--upsample", "5", "-o", out},
-      {"refocus", input, "--slope", "1", "--upsample", "0", "-o", out},
-      {"refocus", input, "--slope", "1", "--upsample", "2", "--aperture", "1", "-o", out},
-      {"refocus", input, "--slope", "1", "--upsample", "2", "--tilt", "1", "-o", out},
-      {"refocus", input, "--focus-range", "0.5:1.5", "-o", out},  // near behind far
-      {"refocus", input, "--focus-range", "2000mm:1000mm", "-o", out},
-      {"refocus", input, "--focus-range", "1:0mm", "-o", out},
-      {"refocus", input, "--focus-range", "1.5", "-o", out},
-      {"refocus", input, "--focus-range", "1.5:0.5", "--slope", "1", "-o", out},
-      {"refocus", input, "--focus-range", "1.5:0.5", "--aperture", "1", "-o", out},
-      {"refocus", input, "--slope", "1", "--depth", out, "-o", out},  // --depth needs --focus-range
-      {"refocus", input, "--slope", "1", "--tilt-direction", "30", "-o", out},
-      {"refocus", input, "--slope", "1", "--aperture-center", "1,1", "-o", out},
-      {"refocus", input, "--slope", "1", "--aperture", "0.2", "--aperture-center", "9,9", "-o", out},
+      {"refocus", input, "--no-such-flag", "1", "-o", out},
       {"stack", input, "-o", (dir / "s").string()},
       {"stack", input, "--slopes", "1:2", "-o", (dir / "s").string()},
       {"stack", input, "--slopes", "0:1:2", "--alphas", "1:2:2", "-o", (dir / "s").string()},
       {"observer", input, "--u", "1", "-o", out},
-      {"refocus", input, "--slope", "1", "--method", "fourier", "--aperture", "1", "-o", out},
+      {"stack", input, "--slopes", "0:1:2", "--tilt", "1", "-o", (dir / "s").string()},
+      {"stack", input, "--slopes", "0:1:2", "--upsample", "2", "-o", (dir / "s").string()},
       {"bench", input, "--repeat", "0"},
       {"animate", input, "-o", (dir / "a.gif").string()},
       {"animate", input, "--orbit", "-o", (dir / "a.avi").string()},
@@ -266,6 +247,57 @@ TEST(CliRender, UsageErrorsExitTwoWithOneLine) {
       {"refocus", input, "--slope", "0", "--aperture-mask", (dir / "none.png").string(), "-o", out}, dir.path());
   EXPECT_EQ(missing.exitStatus, 1) << missing.err;
   EXPECT_EQ(missing.errLines(), 1);
+}
+
+// The requests of the shared table (tests/photo_request/refusals.json), as flags: exit 2, the
+// table's line, no output. Python and the viewer are held to the same lines.
+TEST(CliRender, TheTableOfRefusalsIsRefusedWithItsLine) {
+  test::TempDir dir;
+  // The table's light field: 5x5 views of 40x40, no optics.
+  std::mt19937 random(1);
+  const std::string input = (dir / "plain.lf.h5").string();
+  ASSERT_TRUE(writeLightField(
+                  input, test::randomLightField({.nu = 5, .nv = 5, .ns = 40, .nt = 40, .channels = 1}, random, false))
+                  .ok());
+  const std::string out = (dir / "x.png").string();
+  std::ifstream in(LFCAM_PHOTO_REFUSALS);
+  ASSERT_TRUE(in) << LFCAM_PHOTO_REFUSALS;
+  const nlohmann::json table = nlohmann::json::parse(in);
+  for (const auto& entry : table.at("cases")) {
+    std::vector<std::string> args{"refocus", input, "-o", out};
+    for (const auto& [name, text] : entry.at("fields").items()) {
+      args.push_back("--" + name);
+      args.push_back(text.get<std::string>());
+    }
+    const auto result = runLfcam(args, dir.path());
+    EXPECT_EQ(result.exitStatus, 2) << testing::PrintToString(args) << ": " << result.err;
+    EXPECT_EQ(result.errLines(), 1) << result.err;
+    EXPECT_NE(result.err.find(entry.at("message").get<std::string>()), std::string::npos) << result.err;
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Combinations the command once refused render now: a tilt or a range through a stopped-down
+// aperture, a tilt on a finer grid, an observer on a tilted plane.
+TEST(CliRender, EveryCombinationOfFocusApertureAndGridRenders) {
+  test::TempDir dir;
+  const std::string input = test::makeSynthLightField(dir, 5, 40).string();
+  const std::vector<std::vector<std::string>> cases = {
+      {"--focus-plane", "5,5:35,8:20,34", "--aperture", "1"},
+      {"--slope", "0.5", "--tilt", "1", "--aperture", "1.5", "--aperture-centre", "0.5,0"},
+      {"--slope", "0.5", "--tilt", "1", "--upsample", "2"},
+      {"--slope", "0.5", "--upsample", "2", "--f-number", "2"},
+      {"--focus-range", "1.5:0.5", "--aperture", "1"},
+      {"--slope", "0.2", "--tilt", "1", "--aperture", "0", "--aperture-centre", "3,0", "--clamp"},
+  };
+  for (const auto& extra : cases) {
+    std::vector<std::string> args{"refocus", input, "-o", (dir / "c.png").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto result = runLfcam(args, dir.path());
+    EXPECT_EQ(result.exitStatus, 0) << testing::PrintToString(args) << ": " << result.err;
+    EXPECT_TRUE(fs::exists(dir / "c.png"));
+    fs::remove(dir / "c.png");
+  }
 }
 
 }  // namespace

@@ -80,9 +80,8 @@ def test_upsample_renders_on_a_finer_grid_and_repeats_pixels_on_the_microlens_pl
     plain = lfcam.refocus(lf, 0.0).array
     repeated = np.repeat(np.repeat(plain, 2, axis=1), 2, axis=2)
     np.testing.assert_allclose(lfcam.refocus(lf, 0.0, upsample=2).array, repeated, atol=1e-5)
-    for bad in ({"upsample": 5}, {"upsample": 2, "aperture": 1}):
-        with pytest.raises(lfcam.UsageError):
-            lfcam.refocus(lf, 0.5, **bad)
+    with pytest.raises(lfcam.UsageError, match="upsample: expected 1 to 4, got 5"):
+        lfcam.refocus(lf, 0.5, upsample=5)
 
 
 def test_focus_plane_through_three_points_of_a_fronto_parallel_plane_is_its_refocus():
@@ -103,7 +102,7 @@ def test_focus_range_over_a_plane_is_its_refocus_and_bad_ranges_raise():
     # The plane lies beyond a range nearer than it: rendered at the range's far end, as a lens focused there.
     beyond = lfcam.refocus(lf, focus_range=(2.0, 1.5), depth=flat).array[0]
     np.testing.assert_allclose(beyond[inner], lfcam.refocus(lf, 1.5).array[0][inner], atol=1e-5)
-    for bad in ({"focus_range": (0.5, 1.5)}, {"focus_range": (1.5, 0.5), "aperture": 1}, {"depth": flat},
+    for bad in ({"focus_range": (0.5, 1.5)}, {"depth": flat},
                 {"focus_range": (1.5, 0.5), "depth": np.ones((10, 10), np.float32)}):
         with pytest.raises(lfcam.UsageError):
             lfcam.refocus(lf, **bad)
@@ -156,12 +155,16 @@ def test_bad_arrays_and_arguments_raise_one_line_errors():
     with pytest.raises(lfcam.UsageError, match="expected a numeric array"):
         lfcam.Image(np.array([["a", "b"], ["c", "d"]]))
     lf = sloped_light_field()
-    with pytest.raises(lfcam.UsageError, match="give the focus depth"):
+    with pytest.raises(lfcam.UsageError, match="give the focus: slope, alpha"):
         lfcam.refocus(lf)
     with pytest.raises(lfcam.UsageError, match="no optics metadata"):
         lfcam.refocus(lf, alpha=1.1)
-    with pytest.raises(lfcam.UsageError, match="'wavelet' is not one of"):
+    with pytest.raises(lfcam.UsageError, match="method: expected fast, quadrature or fourier, got 'wavelet'"):
         lfcam.refocus(lf, 0.0, method="wavelet")
+    with pytest.raises(lfcam.UsageError, match="unknown keyword 'aperture_radius'"):
+        lfcam.refocus(lf, 0.0, aperture_radius=1)
+    with pytest.raises(lfcam.UsageError, match="clamp: expected true or false, got 'maybe'"):
+        lfcam.refocus(lf, 0.0, clamp="maybe")
     with pytest.raises(lfcam.Error) as failed:
         lfcam.read("/no/such/light/field.lf.h5")
     assert "\n" not in str(failed.value) and "/no/such/light/field.lf.h5" in str(failed.value)
@@ -217,3 +220,48 @@ def test_ctrl_c_stops_a_long_call_soon():
         signal.signal(signal.SIGINT, previous)
     assert stopped_after < 0.75 * count * per_photo  # it did not run to the end (a loaded machine may be slow to stop)
     np.testing.assert_array_equal(lfcam.refocus(lf, 0.1).array, lfcam.stack(lf, [0.1])[0].array)  # usable again
+
+
+REFUSALS = os.path.join(os.path.dirname(__file__), "..", "photo_request", "refusals.json")
+
+
+def test_the_table_of_refusals_is_refused_with_the_command_lines_line():
+    import json
+    lf = lfcam.LightField(np.random.default_rng(0).random((5, 5, 1, 40, 40), np.float32))
+    with open(REFUSALS) as table:
+        cases = json.load(table)["cases"]
+    for case in cases:
+        keywords = {name.replace("-", "_"): text for name, text in case["fields"].items()}
+        with pytest.raises(lfcam.UsageError) as refused:
+            lfcam.refocus(lf, **keywords)
+        assert case["message"] in str(refused.value), (keywords, str(refused.value))
+        assert "\n" not in str(refused.value)
+
+
+def test_every_combination_renders_from_python_values():
+    lf = sloped_light_field(disparity=1)
+    flat = np.ones((48, 48), np.float32)
+    for keywords in ({"slope": 0.5, "tilt": 1.0, "aperture": 1.5, "aperture_centre": (0.5, 0)},
+                     {"focus_plane": ((12, 12), (36, 14), (20, 36)), "f_number": 2},
+                     {"slope": 0.5, "tilt": 1, "upsample": 2},
+                     {"focus_range": (1.5, 0.5), "depth": flat, "aperture": 1},
+                     {"focus_range": "1.5:0.5", "depth": flat, "method": "quadrature"},
+                     {"slope": 0.2, "aperture": 0, "aperture_centre": [3, 0], "clamp": True}):
+        photo = lfcam.refocus(lf, **keywords).array
+        scale = keywords.get("upsample", 1)
+        assert photo.shape == (1, 48 * scale, 48 * scale), keywords
+        assert np.isfinite(photo).all() and photo.max() > 0, keywords
+
+
+def test_the_stub_lists_the_photograph_requests_fields():
+    import ast
+    with open(os.path.join(os.path.dirname(lfcam.__file__), "__init__.pyi")) as stub:
+        tree = ast.parse(stub.read())
+    signatures = {node.name: node for node in tree.body if isinstance(node, ast.FunctionDef)}
+    fields = [field["name"] for field in lfcam.photo_fields()]
+    refocus = signatures["refocus"].args
+    assert [a.arg for a in refocus.args[1:] + refocus.kwonlyargs] == fields
+    stack = signatures["stack"].args
+    focus = {field["name"] for field in lfcam.photo_fields() if field["group"] == "focus"}
+    assert [a.arg for a in stack.kwonlyargs[1:]] == [f for f in fields if f not in focus and f != "upsample"]
+    assert all(field["name"] in lfcam.refocus.__doc__ for field in lfcam.photo_fields())

@@ -14,7 +14,6 @@
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/synthetic_camera.hpp"
 #include "progress_bar.hpp"
-#include "render_cli.hpp"
 
 namespace lfcam::cli {
 

@@ -6,8 +6,9 @@
 #include "image_output.hpp"
 #include "lfcam/focal_stack.hpp"
 #include "lfcam/focal_stack_output.hpp"
+#include "lfcam/photo_request.hpp"
+#include "photo_options.hpp"
 #include "progress_bar.hpp"
-#include "render_cli.hpp"
 
 namespace lfcam::cli {
 
@@ -15,7 +16,7 @@ void addStackCommand(CLI::App& app, Job& job) {
   struct Options {
     InputOptions input;
     std::string slopes, alphas;
-    CameraOptions camera;
+    PhotoOptions photo;
     std::string extension = "png", depth;
     std::string output;
   };
@@ -25,7 +26,7 @@ void addStackCommand(CLI::App& app, Job& job) {
   auto* slopes = command->add_option("--slopes", options->slopes, "FIRST:LAST:COUNT slopes, pixels per view step");
   auto* alphas = command->add_option("--alphas", options->alphas, "FIRST:LAST:COUNT film depths (needs optics)");
   slopes->excludes(alphas);
-  addCameraOptions(*command, options->camera);
+  addPhotoOptions(*command, options->photo, {"aperture", "lens", "sampling"}, {"upsample"});
   command->add_option("--format", options->extension, "image format of the slices")
       ->check(CLI::IsMember({"png", "tif", "exr", "jpg", "pfm"}));
   addBitDepthOption(*command, options->depth);
@@ -39,8 +40,12 @@ void addStackCommand(CLI::App& app, Job& job) {
       LFCAM_ASSIGN_OR_RETURN(auto writeOptions, imageWriteOptionsFor(std::filesystem::path(options->output) /
                                                                          stackSliceName(0, options->extension),
                                                                      options->depth));
+      PhotoRequest slice;
+      slice.slope = 0;  // each slice sets its own
+      LFCAM_ASSIGN_OR_RETURN(auto request, photoRequestFrom(options->photo, slice));
+      LFCAM_TRY(checkPhotoRequest(request));
       LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
-      LFCAM_ASSIGN_OR_RETURN(auto camera, cameraFrom(options->camera, lightField, options->input.path));
+      LFCAM_ASSIGN_OR_RETURN(auto camera, resolvePhoto(request, lightField, {.inputName = options->input.path}));
       std::vector<double> slopeValues = values;
       if (!options->alphas.empty())
         for (double& value : slopeValues) {

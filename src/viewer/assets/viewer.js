@@ -85,11 +85,12 @@ function showMarkers() {
 
 function imageUrl() {
   if (state.layer !== 'photo') return `/api/image?layer=${state.layer}`;
-  if (state.mode === 'tilt' && state.points.length === 3) return `/api/image?plane=${state.points.map(([x, y]) => `${x.toFixed(1)},${y.toFixed(1)}`).join(':')}`;
-  if (state.mode === 'range') return `/api/image?range=${state.near.toFixed(3)}:${state.far.toFixed(3)}`;
+  // The parameters are the photograph request's fields (lfcam refocus's flags without the dashes).
+  if (state.mode === 'tilt' && state.points.length === 3) return `/api/image?focus-plane=${state.points.map(([x, y]) => `${x.toFixed(1)},${y.toFixed(1)}`).join(':')}`;
+  if (state.mode === 'range') return `/api/image?focus-range=${state.near.toFixed(3)}:${state.far.toFixed(3)}`;
   const p = wholeLens() ? new URLSearchParams({ upsample: String(state.upsample) })
-    : new URLSearchParams({ f: state.fNumber.toFixed(3), u: state.u.toFixed(3), v: state.v.toFixed(3) });
-  if (state.focus) p.set('focus', `${state.focus[0].toFixed(1)},${state.focus[1].toFixed(1)}`);
+    : new URLSearchParams({ 'f-number': state.fNumber.toFixed(3), 'aperture-centre': `${state.u.toFixed(3)},${state.v.toFixed(3)}` });
+  if (state.focus) p.set('focus-at', `${state.focus[0].toFixed(1)},${state.focus[1].toFixed(1)}`);
   else p.set('slope', state.slope.toFixed(4));
   return `/api/image?${p}`;
 }

@@ -22,7 +22,7 @@ std::string stackSliceName(int index, const std::string& extension) {
   return name;
 }
 
-Status writeFocalStack(const std::filesystem::path& folder, const LightField& lightField, const PhotoSetup& camera,
+Status writeFocalStack(const std::filesystem::path& folder, const LightField& lightField, const ResolvedPhoto& camera,
                        const std::vector<double>& slopes, const std::string& extension,
                        const ImageWriteOptions& writeOptions, const std::function<void(double)>& progress) {
   const auto& optics = lightField.metadata.optics;
