@@ -4,10 +4,13 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <climits>
 #include <cstring>
 #include <string>
 
 #include "errors.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/memory_budget.hpp"
 
 namespace py = pybind11;
 
@@ -35,6 +38,10 @@ py::array_t<float, py::array::c_style> floatArray(const py::array& array, std::i
     throw LibraryError(ErrorCode::Usage, std::string(what) + ": expected an array of " + expected +
                                              " dimensions, got " + std::to_string(array.ndim()));
   }
+  for (py::ssize_t axis = 0; axis < array.ndim(); ++axis)
+    if (array.shape(axis) < 1 || array.shape(axis) > INT_MAX)
+      throw LibraryError(ErrorCode::Usage, std::string(what) + ": shape " + std::string(py::str(array.attr("shape"))) +
+                                               " has an empty or absurd dimension");
   return py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
 }
 
@@ -110,16 +117,24 @@ the channel, then the sub-aperture image's row t and column s. `weights`, when p
                lf.enableWeight();
                std::memcpy(lf.weights().data(), w.data(), lf.weights().size_bytes());
              }
+             // Refused as the file readers refuse them, in their words, as a wrong argument.
+             if (const Status finite = checkFinite(lf, "LightField"); !finite)
+               throw LibraryError(ErrorCode::Usage, finite.error().message);
              return lf;
            }),
            py::arg("samples"), py::arg("weights") = py::none(),
-           "A copy of samples (nv, nu, channels, nt, ns) and optional weights (nv, nu, nt, ns). To fill a large "
-           "light field without the copy, make LightField.zeros(...) and write into its samples.")
+           "A copy of samples (nv, nu, channels, nt, ns) and optional weights (nv, nu, nt, ns), all finite as in "
+           "files. To fill a large light field without the copy, make LightField.zeros(...) and write into its "
+           "samples.")
       .def_static(
           "zeros",
           [](int nu, int nv, int ns, int nt, int channels) {
             if (nu < 1 || nv < 1 || ns < 1 || nt < 1 || channels < 1)
               throw LibraryError(ErrorCode::Usage, "LightField.zeros: every size must be at least 1");
+            using U = std::uint64_t;  // the readers' budget (memory_budget.hpp), before allocating
+            throwIfError(checkMemory("LightField.zeros",
+                                     checkedProduct({U(nu), U(nv), U(ns), U(nt), U(channels), sizeof(float)}),
+                                     "its samples"));
             return LightField(LightFieldShape{nu, nv, ns, nt, channels});
           },
           py::arg("nu"), py::arg("nv"), py::arg("ns"), py::arg("nt"), py::arg("channels") = 3)

@@ -168,6 +168,30 @@ def test_bad_arrays_and_arguments_raise_one_line_errors():
     assert not isinstance(failed.value, lfcam.UsageError)
 
 
+def test_light_fields_with_non_finite_samples_or_impossible_shapes_are_refused_as_files_are(tmp_path):
+    lf = lfcam.LightField.zeros(3, 3, 8, 8, channels=1)
+    lf.samples[1, 2, 0, 3, 4] = np.inf  # through the view, unchecked: what a file could hold
+    lfcam.write(tmp_path / "inf.lf.h5", lf)
+    with pytest.raises(lfcam.Error) as read:
+        lfcam.read(tmp_path / "inf.lf.h5")
+    with pytest.raises(lfcam.UsageError) as given:
+        lfcam.LightField(lf.samples)
+    assert str(given.value) == str(read.value).replace(str(tmp_path / "inf.lf.h5"), "LightField")
+    assert str(given.value) == f"LightField: sample {5 * 64 + 3 * 8 + 4} is infinite; only finite values are accepted"
+    with pytest.raises(lfcam.UsageError, match="^LightField: sample 0 is NaN; only finite values are accepted$"):
+        lfcam.LightField(np.full((3, 3, 1, 8, 8), np.nan, np.float32))
+    with pytest.raises(lfcam.UsageError, match="^LightField: weight 0 is NaN"):
+        lfcam.LightField(np.ones((3, 3, 1, 8, 8), np.float32), weights=np.full((3, 3, 8, 8), np.nan, np.float32))
+    with pytest.raises(lfcam.UsageError, match=r"^samples: shape \(3, 3, 1, 0, 8\) has an empty or absurd dimension$"):
+        lfcam.LightField(np.zeros((3, 3, 1, 0, 8), np.float32))
+    with pytest.raises(lfcam.UsageError, match=r"^Image: shape \(0, 4\) has an empty or absurd dimension$"):
+        lfcam.Image(np.zeros((0, 4), np.float32))
+    with pytest.raises(lfcam.UsageError, match="every size must be at least 1"):
+        lfcam.LightField.zeros(-1, 3, 8, 8)
+    with pytest.raises(lfcam.Error, match="^LightField.zeros: needs more than 16 EiB of memory for its samples"):
+        lfcam.LightField.zeros(10**5, 10**5, 10**5, 10**5)
+
+
 def test_threads_overlap_calls_with_the_same_results():
     lf = sloped_light_field(size=96)
     alone = lfcam.refocus(lf, 0.5).array.copy()
