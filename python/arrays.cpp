@@ -1,4 +1,5 @@
-// lfcam.Image and lfcam.LightField: numpy views of their samples (arrays.hpp).
+// lfcam.Image and lfcam.LightField: numpy views of their samples (arrays.hpp), and PNG pictures of
+// them for Jupyter.
 #include "arrays.hpp"
 
 #include <pybind11/stl.h>
@@ -11,6 +12,7 @@
 #include "errors.hpp"
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/memory_budget.hpp"
+#include "viewer/image_encode.hpp"
 
 namespace py = pybind11;
 
@@ -64,6 +66,9 @@ py::array samplesView(LightField& lf, py::handle owner) {
   return viewOf(lf.samples().data(), {lf.nv(), lf.nu(), lf.channels(), lf.nt(), lf.ns()}, owner);
 }
 
+// What IPython shows for an image (_repr_png_): 8-bit sRGB, as lfcam writes a PNG file.
+py::bytes png(const Image& image) { return valueOrThrow(encodeImage(image, {.format = EncodedFormat::Png})); }
+
 py::object opticsDict(const std::optional<Optics>& optics) {
   if (!optics) return py::none();
   py::dict d;
@@ -94,6 +99,7 @@ view changes the image. For matplotlib: numpy.moveaxis(image.array, 0, -1).)doc"
                                {image.channels(), image.height(), image.width()},
                                {sizeof(float) * image.planeSize(), sizeof(float) * image.width(), sizeof(float)});
       })
+      .def("_repr_png_", &png, "The image as PNG bytes (8-bit sRGB), which Jupyter shows.")
       .def("__repr__", [](const Image& image) {
         return "<lfcam.Image " + std::to_string(image.width()) + "x" + std::to_string(image.height()) + ", " +
                std::to_string(image.channels()) + " channel(s)>";
@@ -180,6 +186,10 @@ the channel, then the sub-aperture image's row t and column s. `weights`, when p
                                {s * lf.nu() * lf.channels() * lf.nt() * lf.ns(), s * lf.channels() * lf.nt() * lf.ns(),
                                 s * lf.nt() * lf.ns(), s * lf.ns(), s});
       })
+      .def(
+          "_repr_png_",
+          [](const LightField& lf) { return png(lf.subApertureImage((lf.nu() - 1) / 2, (lf.nv() - 1) / 2)); },
+          "The centre view as PNG bytes (8-bit sRGB), which Jupyter shows.")
       .def("__repr__", [](const LightField& lf) {
         return "<lfcam.LightField " + std::to_string(lf.nu()) + "x" + std::to_string(lf.nv()) + " views of " +
                std::to_string(lf.ns()) + "x" + std::to_string(lf.nt()) + ", " + std::to_string(lf.channels()) +

@@ -23,6 +23,7 @@ class Image:
     def channels(self) -> int: ...
     @property
     def array(self) -> npt.NDArray[np.float32]: ...  # (channels, height, width), no copy
+    def _repr_png_(self) -> bytes: ...  # 8-bit sRGB, for Jupyter
 
 class LightField:
     def __init__(self, samples: _Array, weights: Optional[_Array] = None) -> None: ...
@@ -49,6 +50,7 @@ class LightField:
     def optics(self) -> Optional[dict[str, Optional[float]]]: ...
     @property
     def disparity_range(self) -> Optional[tuple[float, float]]: ...
+    def _repr_png_(self) -> bytes: ...  # the centre view, 8-bit sRGB, for Jupyter
 
 class LensletGrid:
     pitch_x: float

@@ -192,6 +192,29 @@ def test_light_fields_with_non_finite_samples_or_impossible_shapes_are_refused_a
         lfcam.LightField.zeros(10**5, 10**5, 10**5, 10**5)
 
 
+def png_header(data):
+    """(width, height, bit depth, colour type) of PNG bytes."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[12:16] == b"IHDR"
+    return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big"), data[24], data[25]
+
+
+def test_images_and_light_fields_show_themselves_in_jupyter_as_srgb_png(tmp_path):
+    image = lfcam.Image(np.full((3, 20, 30), 0.5, np.float32))
+    png = image._repr_png_()
+    assert png_header(png) == (30, 20, 8, 2)  # 8-bit RGB
+    (tmp_path / "image.png").write_bytes(png)
+    # An 8-bit PNG holds sRGB codes: read back as such, it is the linear value to 8 bits (0.5 is code 188).
+    np.testing.assert_allclose(lfcam.read_image(tmp_path / "image.png").array, image.array, atol=0.005)
+
+    for views in (5, 4):  # the centre view, or the view left of and above the centre
+        lf = sloped_light_field(views=views)
+        png = lf._repr_png_()
+        assert png_header(png) == (48, 48, 8, 0)  # 8-bit grey: one channel
+        (tmp_path / "lf.png").write_bytes(png)
+        centre = lf.view((views - 1) // 2, (views - 1) // 2).array
+        np.testing.assert_allclose(lfcam.read_image(tmp_path / "lf.png").array, centre, atol=0.01)
+
+
 def test_threads_overlap_calls_with_the_same_results():
     lf = sloped_light_field(size=96)
     alone = lfcam.refocus(lf, 0.5).array.copy()
