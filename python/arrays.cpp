@@ -1,13 +1,18 @@
-// lfcam.Image and lfcam.LightField: numpy views of their samples (arrays.hpp).
+// lfcam.Image and lfcam.LightField: numpy views of their samples (arrays.hpp), and PNG pictures of
+// them for Jupyter.
 #include "arrays.hpp"
 
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <climits>
 #include <cstring>
 #include <string>
 
 #include "errors.hpp"
+#include "lfcam/light_field_io.hpp"
+#include "lfcam/memory_budget.hpp"
+#include "viewer/image_encode.hpp"
 
 namespace py = pybind11;
 
@@ -35,6 +40,10 @@ py::array_t<float, py::array::c_style> floatArray(const py::array& array, std::i
     throw LibraryError(ErrorCode::Usage, std::string(what) + ": expected an array of " + expected +
                                              " dimensions, got " + std::to_string(array.ndim()));
   }
+  for (py::ssize_t axis = 0; axis < array.ndim(); ++axis)
+    if (array.shape(axis) < 1 || array.shape(axis) > INT_MAX)
+      throw LibraryError(ErrorCode::Usage, std::string(what) + ": shape " + std::string(py::str(array.attr("shape"))) +
+                                               " has an empty or absurd dimension");
   return py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
 }
 
@@ -56,6 +65,9 @@ py::array imageView(Image& image, py::handle owner) {
 py::array samplesView(LightField& lf, py::handle owner) {
   return viewOf(lf.samples().data(), {lf.nv(), lf.nu(), lf.channels(), lf.nt(), lf.ns()}, owner);
 }
+
+// What IPython shows for an image (_repr_png_): 8-bit sRGB, as lfcam writes a PNG file.
+py::bytes png(const Image& image) { return valueOrThrow(encodeImage(image, {.format = EncodedFormat::Png})); }
 
 py::object opticsDict(const std::optional<Optics>& optics) {
   if (!optics) return py::none();
@@ -87,6 +99,7 @@ view changes the image. For matplotlib: numpy.moveaxis(image.array, 0, -1).)doc"
                                {image.channels(), image.height(), image.width()},
                                {sizeof(float) * image.planeSize(), sizeof(float) * image.width(), sizeof(float)});
       })
+      .def("_repr_png_", &png, "The image as PNG bytes (8-bit sRGB), which Jupyter shows.")
       .def("__repr__", [](const Image& image) {
         return "<lfcam.Image " + std::to_string(image.width()) + "x" + std::to_string(image.height()) + ", " +
                std::to_string(image.channels()) + " channel(s)>";
@@ -110,16 +123,24 @@ the channel, then the sub-aperture image's row t and column s. `weights`, when p
                lf.enableWeight();
                std::memcpy(lf.weights().data(), w.data(), lf.weights().size_bytes());
              }
+             // Refused as the file readers refuse them, in their words, as a wrong argument.
+             if (const Status finite = checkFinite(lf, "LightField"); !finite)
+               throw LibraryError(ErrorCode::Usage, finite.error().message);
              return lf;
            }),
            py::arg("samples"), py::arg("weights") = py::none(),
-           "A copy of samples (nv, nu, channels, nt, ns) and optional weights (nv, nu, nt, ns). To fill a large "
-           "light field without the copy, make LightField.zeros(...) and write into its samples.")
+           "A copy of samples (nv, nu, channels, nt, ns) and optional weights (nv, nu, nt, ns), all finite as in "
+           "files. To fill a large light field without the copy, make LightField.zeros(...) and write into its "
+           "samples.")
       .def_static(
           "zeros",
           [](int nu, int nv, int ns, int nt, int channels) {
             if (nu < 1 || nv < 1 || ns < 1 || nt < 1 || channels < 1)
               throw LibraryError(ErrorCode::Usage, "LightField.zeros: every size must be at least 1");
+            using U = std::uint64_t;  // the readers' budget (memory_budget.hpp), before allocating
+            throwIfError(checkMemory("LightField.zeros",
+                                     checkedProduct({U(nu), U(nv), U(ns), U(nt), U(channels), sizeof(float)}),
+                                     "its samples"));
             return LightField(LightFieldShape{nu, nv, ns, nt, channels});
           },
           py::arg("nu"), py::arg("nv"), py::arg("ns"), py::arg("nt"), py::arg("channels") = 3)
@@ -165,6 +186,10 @@ the channel, then the sub-aperture image's row t and column s. `weights`, when p
                                {s * lf.nu() * lf.channels() * lf.nt() * lf.ns(), s * lf.channels() * lf.nt() * lf.ns(),
                                 s * lf.nt() * lf.ns(), s * lf.ns(), s});
       })
+      .def(
+          "_repr_png_",
+          [](const LightField& lf) { return png(lf.subApertureImage((lf.nu() - 1) / 2, (lf.nv() - 1) / 2)); },
+          "The centre view as PNG bytes (8-bit sRGB), which Jupyter shows.")
       .def("__repr__", [](const LightField& lf) {
         return "<lfcam.LightField " + std::to_string(lf.nu()) + "x" + std::to_string(lf.nv()) + " views of " +
                std::to_string(lf.ns()) + "x" + std::to_string(lf.nt()) + ", " + std::to_string(lf.channels()) +

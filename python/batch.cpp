@@ -3,13 +3,13 @@
 // capture's outputs are the same bytes whichever way it runs.
 #include <pybind11/stl.h>
 
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "errors.hpp"
 #include "interruptible.hpp"
 #include "lfcam/batch_run.hpp"
+#include "progress.hpp"
 
 namespace py = pybind11;
 
@@ -77,19 +77,10 @@ void bindBatch(py::module_& m) {
       py::arg("inputs"), py::arg("output"), py::arg("steps"), py::arg("white"), py::arg("report"));
   m.def(
       "_batch_run_local",
-      [](const BatchPlan& plan, int jobs, std::optional<py::function> progress) {
-        const std::size_t total = plan.captures.size();
-        const auto report = [&](double fraction) {  // on the batch's thread: takes the GIL for the callback
-          const py::gil_scoped_acquire acquire;
-          try {
-            (*progress)(std::size_t(fraction * double(total) + 0.5), total);
-          } catch (py::error_already_set& e) {  // as Python does for a callback's error it cannot raise
-            e.discard_as_unraisable("lfcam.batch.run(progress=...)");
-          }
-        };
+      [](const BatchPlan& plan, int jobs, const py::object& progress) {
+        const Progress report(progress, "batch.run");
         const auto outcomes = interruptible([&] {
-          return valueOrThrow(runBatchCaptures(plan, jobs > 0 ? jobs : defaultBatchJobs(),
-                                               progress ? ProgressCallback(report) : ProgressCallback()));
+          return valueOrThrow(runBatchCaptures(plan, jobs > 0 ? jobs : defaultBatchJobs(), report.callback()));
         });
         return finish(plan, outcomes);
       },

@@ -24,6 +24,7 @@
 #include "lfcam/light_field_io.hpp"
 #include "lfcam/raw_io.hpp"
 #include "lfcam/synthetic_camera.hpp"
+#include "progress.hpp"
 
 namespace py = pybind11;
 
@@ -89,15 +90,22 @@ void bindPipeline(py::module_& m) {
 
   m.def(
       "read",
-      [](const Path& path, std::optional<int> lensletViews) {
-        return interruptible([&] { return valueOrThrow(readLightField(path, {.lensletViews = lensletViews})); });
+      [](const Path& path, std::optional<int> lensletViews, const py::object& progress) {
+        const Progress report(progress, "read");
+        return interruptible(
+            [&] { return valueOrThrow(readLightField(path, {.lensletViews = lensletViews}, report.callback())); });
       },
-      py::arg("path"), py::kw_only(), py::arg("lenslet_views") = py::none(),
-      "Reads a light field: .lf.h5, an HCI or RR_CC folder of views, or a lenslet image.");
+      py::arg("path"), py::kw_only(), py::arg("lenslet_views") = py::none(), py::arg("progress") = py::none(),
+      "Reads a light field: .lf.h5, an HCI or RR_CC folder of views, or a lenslet image. progress: a callable of "
+      "the fraction done, or True for a tqdm bar.");
   m.def(
       "write",
-      [](const Path& path, const LightField& lf) { interruptible([&] { throwIfError(writeLightField(path, lf)); }); },
-      py::arg("path"), py::arg("light_field"), "Writes a light field; the format follows the name (.lf.h5, a folder).");
+      [](const Path& path, const LightField& lf, const py::object& progress) {
+        const Progress report(progress, "write");
+        interruptible([&] { throwIfError(writeLightField(path, lf, {}, report.callback())); });
+      },
+      py::arg("path"), py::arg("light_field"), py::kw_only(), py::arg("progress") = py::none(),
+      "Writes a light field; the format follows the name (.lf.h5, a folder). progress: as read's.");
   m.def(
       "read_image", [](const Path& path) { return interruptible([&] { return valueOrThrow(readImage(path)); }); },
       py::arg("path"), "Reads an image in linear light (PNG, JPEG, TIFF, EXR, PFM).");
@@ -136,7 +144,7 @@ void bindPipeline(py::module_& m) {
       "decode",
       [](const std::string& raw, std::string white, std::string dark, std::string grid,
          std::optional<std::string> bayer, std::optional<double> blackLevel, int views, const std::string& demosaic,
-         const std::string& sampling) {
+         const std::string& sampling, const py::object& progress) {
         RawFiles files{.raw = raw, .white = white, .dark = dark, .grid = grid, .blackLevel = blackLevel};
         if (bayer) files.bayer = colorFilterNamed(*bayer);
         files.decode.views = views;
@@ -147,13 +155,14 @@ void bindPipeline(py::module_& m) {
                                                        demosaic, "demosaic");
         files.decode.sampling = choice<Sampling>(
             {{"subpixel", Sampling::SubPixel}, {"integral", Sampling::IntegralPitch}}, sampling, "sampling");
-        return interruptible([&] { return valueOrThrow(decodeRawFiles(std::move(files))); });
+        const Progress report(progress, "decode");
+        return interruptible([&] { return valueOrThrow(decodeRawFiles(std::move(files), report.callback())); });
       },
       py::arg("raw"), py::kw_only(), py::arg("white") = "", py::arg("dark") = "", py::arg("grid") = "",
       py::arg("bayer") = py::none(), py::arg("black_level") = py::none(), py::arg("views") = 0,
-      py::arg("demosaic") = "mhc", py::arg("sampling") = "subpixel",
+      py::arg("demosaic") = "mhc", py::arg("sampling") = "subpixel", py::arg("progress") = py::none(),
       "Decodes a raw lenslet image into a light field; the grid is calibrated from the white image when no grid "
-      "file is given.");
+      "file is given. progress: as read's.");
 
   m.def(
       "observer",

@@ -7,6 +7,7 @@
 #include "lfcam/raw_io.hpp"
 #include "lfcam/simulate.hpp"
 #include "lfcam/simulate_setup.hpp"
+#include "progress.hpp"
 
 namespace py = pybind11;
 
@@ -19,7 +20,7 @@ void bindSimulate(py::module_& m) {
          std::optional<double> imageFNumber, std::optional<double> focusMm, std::optional<int> size,
          std::optional<double> pixelsPerLens, bool hexagonal, int samples, std::optional<std::uint64_t> seed,
          std::optional<double> exposure, bool conventional, std::optional<bool> noise, const std::string& rawFormat,
-         std::optional<std::string> container, bool white, bool groundTruth) {
+         std::optional<std::string> container, bool white, bool groundTruth, const py::object& progress) {
         if (samples < 1 || samples > 1024)
           throw LibraryError(ErrorCode::Usage,
                              "simulate: samples " + std::to_string(samples) + " is outside [1, 1024]");
@@ -38,8 +39,10 @@ void bindSimulate(py::module_& m) {
                                                                 .exposure = exposure,
                                                                 .noise = noise}));
         const CaptureOutputs outputs{.white = white, .groundTruth = groundTruth, .rawExtension = "." + rawFormat};
+        const Progress report(progress, "simulate");
         interruptible([&] {
-          throwIfError(writeSimulation(output, made, made.camera, {.samplesPerPixel = samples}, outputs));
+          throwIfError(
+              writeSimulation(output, made, made.camera, {.samplesPerPixel = samples}, outputs, report.callback()));
           if (container)
             throwIfError(writeSimulationContainers(
                 output, *container == "lfp" ? LytroStyle::FirstGeneration : LytroStyle::Illum));
@@ -50,14 +53,15 @@ void bindSimulate(py::module_& m) {
       py::arg("pixels_per_lens") = py::none(), py::arg("hexagonal") = false, py::arg("samples") = 16,
       py::arg("seed") = py::none(), py::arg("exposure") = py::none(), py::arg("conventional") = false,
       py::arg("noise") = py::none(), py::arg("raw_format") = "png", py::arg("container") = py::none(),
-      py::arg("white") = true, py::arg("ground_truth") = true,
+      py::arg("white") = true, py::arg("ground_truth") = true, py::arg("progress") = py::none(),
       "Captures a scene (a scene file, or built-in: people, chart, pinhole, white) with the simulated plenoptic "
       "camera, traced ray by ray, as `lfcam simulate SCENE -o OUTPUT` does: writes raw.png, white.png, camera.json, "
       "depth.pfm and ideal.lf.h5 into the folder `output`. The keywords override the scene's camera: f_number or "
       "image_f_number, focus_mm, size (sensor pixels across), pixels_per_lens, hexagonal, samples (ray samples per "
       "pixel), seed, exposure, conventional (no microlenses), noise (True/False; default: the camera's), raw_format "
       "('png' or 'tiff'), container ('lfp' or 'lfr': also a Lytro-style container); white=False and "
-      "ground_truth=False skip white.png and depth.pfm with ideal.lf.h5. Read the result back with "
+      "ground_truth=False skip white.png and depth.pfm with ideal.lf.h5; progress: a callable of the fraction done, or "
+      "True for a tqdm bar. Read the result back with "
       "lfcam.read(output + '/ideal.lf.h5') or lfcam.decode(output + '/raw.png', white=output + '/white.png').");
 }
 

@@ -9,6 +9,7 @@ packages=(
   python3-dev pybind11-dev python3-numpy python3-pytest  # the Python package (python/) and its tests
   python3-dask python3-distributed  # lfcam batch --dask / lfcam.batch.run(client=): one task per capture on a Dask cluster
   python3-h5py         # tests/h5py: the native .lf.h5 as Python users read it
+  python3-tqdm         # progress=True of the Python package's long calls: a tqdm bar (a widget in Jupyter)
   clang-format-14      # tests/format: the check of the one style (.clang-format)
   ccache               # repeat builds (scripts/build.sh, build-san) reuse earlier compiles
   libpng-dev libjpeg-dev libtiff-dev libopenexr-dev libgif-dev  # image formats: their own libraries (docs/design.md, "Start-up")

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "lfcam/image_io.hpp"
 #include "lfcam/light_field.hpp"
@@ -63,5 +64,11 @@ Result<LightField> readLightField(const std::filesystem::path& path, const Light
                                   const ProgressCallback& progress = {});
 Status writeLightField(const std::filesystem::path& path, const LightField& lightField,
                        const LightFieldWriteOptions& options = {}, const ProgressCallback& progress = {});
+
+// Ok when every sample and weight is finite, else a Format error "<where>: sample 12 is NaN; only
+// finite values are accepted" (or a weight, or infinite): samples are radiance and weights trust, and
+// a non-finite one would spread through every photograph made from it. readLightField checks what it
+// read, the Python package the arrays it is given.
+Status checkFinite(const LightField& lightField, std::string_view where);
 
 }  // namespace lfcam

@@ -1,6 +1,6 @@
 # Type stub of the package lfcam (python/), so that editors complete and check its calls.
 from os import PathLike
-from typing import Optional, Sequence, Union
+from typing import Callable, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -9,6 +9,7 @@ from . import batch as batch
 
 _Path = Union[str, PathLike[str]]
 _Array = npt.ArrayLike
+_Progress = Union[bool, Callable[[float], object], None]  # a callable of the fraction done (0..1), or True: a tqdm bar
 
 class Error(RuntimeError): ...
 class UsageError(Error): ...
@@ -23,6 +24,7 @@ class Image:
     def channels(self) -> int: ...
     @property
     def array(self) -> npt.NDArray[np.float32]: ...  # (channels, height, width), no copy
+    def _repr_png_(self) -> bytes: ...  # 8-bit sRGB, for Jupyter
 
 class LightField:
     def __init__(self, samples: _Array, weights: Optional[_Array] = None) -> None: ...
@@ -49,6 +51,7 @@ class LightField:
     def optics(self) -> Optional[dict[str, Optional[float]]]: ...
     @property
     def disparity_range(self) -> Optional[tuple[float, float]]: ...
+    def _repr_png_(self) -> bytes: ...  # the centre view, 8-bit sRGB, for Jupyter
 
 class LensletGrid:
     pitch_x: float
@@ -72,15 +75,15 @@ class AllInFocus:
     slope: Image
     slopes: list[float]
 
-def read(path: _Path, *, lenslet_views: Optional[int] = None) -> LightField: ...
-def write(path: _Path, light_field: LightField) -> None: ...
+def read(path: _Path, *, lenslet_views: Optional[int] = None, progress: _Progress = None) -> LightField: ...
+def write(path: _Path, light_field: LightField, *, progress: _Progress = None) -> None: ...
 def read_image(path: _Path) -> Image: ...
 def write_image(path: _Path, image: Image, *, bit_depth: Optional[str] = None) -> None: ...
 def calibrate(white: _Path, *, metadata: Optional[_Path] = None, pinhole: bool = False, scene: bool = False,
               bayer: Optional[str] = None, black_level: Optional[float] = None) -> LensletGrid: ...
 def decode(raw: str, *, white: str = "", dark: str = "", grid: str = "", bayer: Optional[str] = None,
            black_level: Optional[float] = None, views: int = 0, demosaic: str = "mhc",
-           sampling: str = "subpixel") -> LightField: ...
+           sampling: str = "subpixel", progress: _Progress = None) -> LightField: ...
 # The keywords of refocus and stack are the photograph request's fields (photo_fields(), the
 # command line's flags): tests/python checks this list against that table.
 def refocus(light_field: LightField, slope: Optional[float] = None, *, alpha: Optional[float] = None,
@@ -109,4 +112,5 @@ def simulate(scene: str, output: _Path, *, f_number: Optional[float] = None, ima
              focus_mm: Optional[float] = None, size: Optional[int] = None, pixels_per_lens: Optional[float] = None,
              hexagonal: bool = False, samples: int = 16, seed: Optional[int] = None, exposure: Optional[float] = None,
              conventional: bool = False, noise: Optional[bool] = None, raw_format: str = "png",
-             container: Optional[str] = None, white: bool = True, ground_truth: bool = True) -> None: ...
+             container: Optional[str] = None, white: bool = True, ground_truth: bool = True,
+             progress: _Progress = None) -> None: ...

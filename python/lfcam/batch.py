@@ -66,7 +66,9 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
     plan = _lfcam._batch_plan([os.fspath(i) for i in inputs], os.fspath(output), list(steps),
                               os.fspath(white) if white else "", os.fspath(report) if report else "")
     if client is None:
-        text, failure = _lfcam._batch_run_local(plan, jobs or 0, progress)
+        total = len(plan.captures)
+        by_fraction = progress and (lambda fraction: progress(round(fraction * total), total))
+        text, failure = _lfcam._batch_run_local(plan, jobs or 0, by_fraction)
     else:
         text, failure = _run_on_dask(plan, client, progress)
     result = json.loads(text)

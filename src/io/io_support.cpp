@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <cmath>
 #include <system_error>
 
 namespace lfcam::io {
@@ -36,16 +35,6 @@ Status checkSampleCount(const fs::path& path, std::initializer_list<std::uint64_
   std::string what;
   for (std::uint64_t dim : dims) what += (what.empty() ? "" : " x ") + std::to_string(dim);
   return checkMemory(path.string(), samples ? checkedProduct({*samples, sizeof(float)}) : samples, what + " samples");
-}
-
-Status checkFinite(const fs::path& path, std::span<const float> values, std::string_view what) {
-  bool finite = true;
-  for (float value : values) finite &= std::isfinite(value);  // no early exit: vectorises
-  if (finite) return {};
-  const auto bad = std::find_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); });
-  return fileError(ErrorCode::Format, path,
-                   std::string(what) + " " + std::to_string(bad - values.begin()) + " is " +
-                       (std::isnan(*bad) ? "NaN" : "infinite") + "; only finite values are accepted");
 }
 
 Status checkReadableFile(const fs::path& path) {

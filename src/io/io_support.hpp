@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <initializer_list>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,10 +28,6 @@ Error renamedInMessage(Error error, const std::filesystem::path& from, const std
 // Ok when width x height x channels (x views) float samples fit in the memory budget
 // (memory_budget.hpp), else a Resource error naming the file, the bytes needed and the limit.
 Status checkSampleCount(const std::filesystem::path& path, std::initializer_list<std::uint64_t> dims);
-
-// A Format error naming the file when a value is NaN or infinite (light-field samples and weights
-// are radiance and trust: a non-finite one would spread through every photograph made from it).
-Status checkFinite(const std::filesystem::path& path, std::span<const float> values, std::string_view what);
 
 // Existing regular file, else an Io or Usage error naming it.
 Status checkReadableFile(const std::filesystem::path& path);

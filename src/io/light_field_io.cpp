@@ -2,6 +2,8 @@
 // and writer (hdf5_light_field, view_folder, lenslet_image).
 #include "lfcam/light_field_io.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <system_error>
 
 #include "io/hdf5_light_field.hpp"
@@ -87,6 +89,16 @@ Status writeFolder(const fs::path& path, const LightField& lightField, LightFiel
   return {};
 }
 
+Status checkFiniteValues(std::span<const float> values, std::string_view where, std::string_view what) {
+  bool finite = true;
+  for (float value : values) finite &= std::isfinite(value);  // no early exit: vectorises
+  if (finite) return {};
+  const auto bad = std::find_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); });
+  return makeError(ErrorCode::Format,
+                   std::string(where) + ": " + std::string(what) + " " + std::to_string(bad - values.begin()) + " is " +
+                       (std::isnan(*bad) ? "NaN" : "infinite") + "; only finite values are accepted");
+}
+
 }  // namespace
 
 const char* formatName(LightFieldFormat format) {
@@ -129,11 +141,7 @@ Result<LightField> readLightField(const fs::path& path, const LightFieldReadOpti
     return fileError(ErrorCode::Unsupported, path, "unknown light-field format");
   }();
   if (!lightField) return lightField;
-  LFCAM_TRY(io::checkFinite(path, lightField->samples(), "sample"));
-  if (lightField->hasWeight())
-    LFCAM_TRY(io::checkFinite(
-        path, {lightField->weightPlane(0, 0), lightField->shape().views() * lightField->shape().viewPixels()},
-        "weight"));
+  LFCAM_TRY(checkFinite(*lightField, path.string()));
   return lightField;
 }
 
@@ -151,6 +159,11 @@ Status writeLightField(const fs::path& path, const LightField& lightField, const
     case LightFieldFormat::RowColumnFolder: return writeFolder(path, lightField, format, options, progress);
   }
   return fileError(ErrorCode::Usage, path, "unknown light-field format");
+}
+
+Status checkFinite(const LightField& lightField, std::string_view where) {
+  LFCAM_TRY(checkFiniteValues(lightField.samples(), where, "sample"));
+  return checkFiniteValues(lightField.weights(), where, "weight");
 }
 
 }  // namespace lfcam

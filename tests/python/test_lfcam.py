@@ -171,6 +171,53 @@ def test_bad_arrays_and_arguments_raise_one_line_errors():
     assert not isinstance(failed.value, lfcam.UsageError)
 
 
+def test_light_fields_with_non_finite_samples_or_impossible_shapes_are_refused_as_files_are(tmp_path):
+    lf = lfcam.LightField.zeros(3, 3, 8, 8, channels=1)
+    lf.samples[1, 2, 0, 3, 4] = np.inf  # through the view, unchecked: what a file could hold
+    lfcam.write(tmp_path / "inf.lf.h5", lf)
+    with pytest.raises(lfcam.Error) as read:
+        lfcam.read(tmp_path / "inf.lf.h5")
+    with pytest.raises(lfcam.UsageError) as given:
+        lfcam.LightField(lf.samples)
+    assert str(given.value) == str(read.value).replace(str(tmp_path / "inf.lf.h5"), "LightField")
+    assert str(given.value) == f"LightField: sample {5 * 64 + 3 * 8 + 4} is infinite; only finite values are accepted"
+    with pytest.raises(lfcam.UsageError, match="^LightField: sample 0 is NaN; only finite values are accepted$"):
+        lfcam.LightField(np.full((3, 3, 1, 8, 8), np.nan, np.float32))
+    with pytest.raises(lfcam.UsageError, match="^LightField: weight 0 is NaN"):
+        lfcam.LightField(np.ones((3, 3, 1, 8, 8), np.float32), weights=np.full((3, 3, 8, 8), np.nan, np.float32))
+    with pytest.raises(lfcam.UsageError, match=r"^samples: shape \(3, 3, 1, 0, 8\) has an empty or absurd dimension$"):
+        lfcam.LightField(np.zeros((3, 3, 1, 0, 8), np.float32))
+    with pytest.raises(lfcam.UsageError, match=r"^Image: shape \(0, 4\) has an empty or absurd dimension$"):
+        lfcam.Image(np.zeros((0, 4), np.float32))
+    with pytest.raises(lfcam.UsageError, match="every size must be at least 1"):
+        lfcam.LightField.zeros(-1, 3, 8, 8)
+    with pytest.raises(lfcam.Error, match="^LightField.zeros: needs more than 16 EiB of memory for its samples"):
+        lfcam.LightField.zeros(10**5, 10**5, 10**5, 10**5)
+
+
+def png_header(data):
+    """(width, height, bit depth, colour type) of PNG bytes."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[12:16] == b"IHDR"
+    return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big"), data[24], data[25]
+
+
+def test_images_and_light_fields_show_themselves_in_jupyter_as_srgb_png(tmp_path):
+    image = lfcam.Image(np.full((3, 20, 30), 0.5, np.float32))
+    png = image._repr_png_()
+    assert png_header(png) == (30, 20, 8, 2)  # 8-bit RGB
+    (tmp_path / "image.png").write_bytes(png)
+    # An 8-bit PNG holds sRGB codes: read back as such, it is the linear value to 8 bits (0.5 is code 188).
+    np.testing.assert_allclose(lfcam.read_image(tmp_path / "image.png").array, image.array, atol=0.005)
+
+    for views in (5, 4):  # the centre view, or the view left of and above the centre
+        lf = sloped_light_field(views=views)
+        png = lf._repr_png_()
+        assert png_header(png) == (48, 48, 8, 0)  # 8-bit grey: one channel
+        (tmp_path / "lf.png").write_bytes(png)
+        centre = lf.view((views - 1) // 2, (views - 1) // 2).array
+        np.testing.assert_allclose(lfcam.read_image(tmp_path / "lf.png").array, centre, atol=0.01)
+
+
 def test_threads_overlap_calls_with_the_same_results():
     lf = sloped_light_field(size=96)
     alone = lfcam.refocus(lf, 0.5).array.copy()
