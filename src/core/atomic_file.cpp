@@ -30,12 +30,23 @@ Error ioError(const fs::path& path, const std::string& what, const std::error_co
   return makeError(ErrorCode::Io, path.string() + ": " + what + ": " + ec.message());
 }
 
+// Every writer's own message for a missing folder names the temporary file (HDF5's, libpng's):
+// checked first, so that the user reads the name they gave.
+Status checkFolderExists(const fs::path& destination) {
+  const fs::path folder = destination.parent_path();
+  std::error_code ec;
+  if (folder.empty() || fs::is_directory(folder, ec)) return {};
+  return makeError(ErrorCode::Io, destination.string() + ": cannot write: the folder " + folder.string() +
+                                      " does not exist");
+}
+
 }  // namespace
 
 Status writeFileAtomically(const fs::path& destination, const std::function<Status(const fs::path&)>& write) {
   std::error_code ec;
   if (fs::is_directory(destination, ec))
     return makeError(ErrorCode::Usage, destination.string() + ": is a folder, expected a file name");
+  LFCAM_TRY(checkFolderExists(destination));
   const fs::path temporary = temporarySibling(destination);
   Status written = write(temporary);
   if (!written) {
@@ -57,6 +68,7 @@ Status writeFolderAtomically(const fs::path& destination, const std::function<St
     return makeError(ErrorCode::Usage, destination.string() + ": exists and is not a folder");
   fs::path base = destination;
   if (base.filename().empty()) base = base.parent_path();  // "out/" -> "out"
+  LFCAM_TRY(checkFolderExists(base));
   const fs::path temporary = temporarySibling(base);
   fs::create_directories(temporary, ec);
   if (ec) return ioError(temporary, "cannot create folder", ec);

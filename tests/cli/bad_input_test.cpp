@@ -120,6 +120,13 @@ TEST(BadInput, UnwritableOutputLeavesNothing) {
   EXPECT_EQ(result.exitStatus, 1) << result.err;
   EXPECT_EQ(result.errLines(), 1) << result.err;
   EXPECT_NE(result.err.find("no-such-folder"), std::string::npos) << result.err;
+  // The same for a light field written by HDF5, in the name the user gave (not a temporary one).
+  const fs::path missing = dir / "no-such-folder" / "x.lf.h5";
+  result = runLfcam({"synth", "--views", "3", "--size", "16", "-o", missing.string()}, dir.path());
+  EXPECT_EQ(result.exitStatus, 1) << result.err;
+  EXPECT_EQ(result.err, "lfcam: " + missing.string() + ": cannot write: the folder " +
+                            missing.parent_path().string() + " does not exist\n");
+  EXPECT_FALSE(fs::exists(dir / "no-such-folder"));
   // A folder where a file is expected.
   fs::create_directories(dir / "a-folder.png");
   result = runLfcam({"refocus", (dir / "lf.lf.h5").string(), "--slope", "0", "-o", (dir / "a-folder.png").string()},
