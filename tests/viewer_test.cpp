@@ -389,14 +389,49 @@ TEST(LivingPicture, EmbedsTheStackTheIndexAndTheSweep) {
   EXPECT_FALSE(makeLivingPicture(LightField()).ok());
 }
 
+// The JSON in the page's data slot.
+nlohmann::json pageData(const std::string& html) {
+  const std::string open = "<script id=\"lfcam-data\" type=\"application/json\">";
+  const auto begin = html.find(open) + open.size();
+  return nlohmann::json::parse(html.substr(begin, html.find("</script>", begin) - begin));
+}
+
+TEST(LivingPicture, OpensFocusedOnTheSubjectInTheCentre) {
+  // A card over the central half in front of a background that covers more of the picture, and a
+  // nearer card in a corner: the page opens on the card's slice, at either of two depths, neither
+  // the middle nor an end of the stack.
+  for (const double subject : {-0.6, 0.75}) {
+    LayeredPlanesScene scene{.nu = 5, .nv = 5, .ns = 64, .nt = 64};
+    scene.planes.push_back({.disparity = -1.0, .texture = PlaneTexture::Noise, .period = 8});
+    scene.planes.push_back({.disparity = subject,
+                            .texture = PlaneTexture::Checkerboard,
+                            .period = 6,
+                            .x0 = 14,
+                            .y0 = 14,
+                            .x1 = 50,
+                            .y1 = 50});
+    scene.planes.push_back(
+        {.disparity = 1.5, .texture = PlaneTexture::Rings, .period = 6, .x0 = 0, .y0 = 0, .x1 = 12, .y1 = 12});
+    auto html = makeLivingPicture(renderLayeredPlanes(scene).lightField,
+                                  {.maxSlices = 8, .sweepFrames = 1, .smallAperture = false, .rangeEnds = 0});
+    ASSERT_TRUE(html.ok()) << html.error().message;
+    const auto data = pageData(*html);
+    std::vector<double> distance;
+    for (const auto& slice : data["slices"]) distance.push_back(std::abs(slice["slope"].get<double>() - subject));
+    const int nearest = int(std::min_element(distance.begin(), distance.end()) - distance.begin());
+    ASSERT_GT(nearest, 0);
+    ASSERT_LT(nearest, int(distance.size()) - 1);
+    ASSERT_NE(nearest, int(distance.size()) / 2);
+    EXPECT_EQ(data["openingSlice"], nearest) << "subject at slope " << subject;
+  }
+}
+
 TEST(LivingPicture, FocusRangesAreTheLibrarysFocusSpreadOverTheStacksSlopes) {
   auto scene = smallScene();
   const LivingPictureOptions options{.maxSlices = 8, .sweepFrames = 1, .jpegQuality = 70, .rangeEnds = 4};
   auto html = makeLivingPicture(scene.lightField, options);
   ASSERT_TRUE(html.ok()) << html.error().message;
-  const std::string open = "<script id=\"lfcam-data\" type=\"application/json\">";
-  const auto begin = html->find(open) + open.size();
-  const auto data = nlohmann::json::parse(html->substr(begin, html->find("</script>", begin) - begin));
+  const auto data = pageData(*html);
   // Four stops from the farthest slice to the nearest, and one photograph per pair of them.
   const auto stops = data["rangeStops"].get<std::vector<int>>();
   ASSERT_EQ(stops.size(), 4u);

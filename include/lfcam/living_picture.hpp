@@ -3,8 +3,10 @@
 // aperture and one through a small aperture, the index of the sharpest slice of every pixel (from
 // the all-in-focus labelling, all_in_focus.hpp: the focus measure regularised across pixels), the
 // all-in-focus photograph, and a viewpoint sweep
-// (pinhole views around a circle on the lens, observe() of synthetic_camera.hpp). The page is
-// src/viewer/assets/living.html, embedded in the binary; the data replaces its placeholder.
+// (pinhole views around a circle on the lens, observe() of synthetic_camera.hpp). It opens on the
+// slice most pixels of the image's central half find sharpest: the subject, as photographs are
+// framed. The page is src/viewer/assets/living.html, embedded in the binary; the data replaces its
+// placeholder.
 //
 // A focus range (focus_spread.hpp) is precomputed for a two-ended slider: `rangeEnds` slices of
 // the stack (the first, the last, and evenly between) are the ends it stops at, and every pair of
@@ -46,8 +48,9 @@ Status writeLivingPicture(const std::filesystem::path& output, const LightField&
 
 // Lytro's living pictures, back: the page over a processed container's own refocus stack
 // (raw_io.hpp, readLytroRefocusStack), its JPEG slices as stored. A click focuses where the
-// container's depth map says, blending the two slices whose lambdas lie around it; without a depth
-// map, the slider alone. No viewpoints or all-in-focus: the containers hold none as JPEGs. Usage
+// container's depth map says, blending the two slices whose lambdas lie around it; it opens on
+// the slice the depth map puts most of the image's central half at. Without a depth map, the
+// slider alone, from the middle slice. No viewpoints or all-in-focus: the containers hold none as JPEGs. Usage
 // error for fewer than 2 or more than 255 slices.
 Result<std::string> makeLytroLivingPicture(const LytroRefocusStack& stack, const std::string& title);
 Status writeLytroLivingPicture(const std::filesystem::path& output, const LytroRefocusStack& stack,
