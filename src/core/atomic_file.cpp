@@ -36,8 +36,8 @@ Status checkFolderExists(const fs::path& destination) {
   const fs::path folder = destination.parent_path();
   std::error_code ec;
   if (folder.empty() || fs::is_directory(folder, ec)) return {};
-  return makeError(ErrorCode::Io, destination.string() + ": cannot write: the folder " + folder.string() +
-                                      " does not exist");
+  return makeError(ErrorCode::Io,
+                   destination.string() + ": cannot write: the folder " + folder.string() + " does not exist");
 }
 
 }  // namespace

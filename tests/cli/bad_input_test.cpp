@@ -124,8 +124,8 @@ TEST(BadInput, UnwritableOutputLeavesNothing) {
   const fs::path missing = dir / "no-such-folder" / "x.lf.h5";
   result = runLfcam({"synth", "--views", "3", "--size", "16", "-o", missing.string()}, dir.path());
   EXPECT_EQ(result.exitStatus, 1) << result.err;
-  EXPECT_EQ(result.err, "lfcam: " + missing.string() + ": cannot write: the folder " +
-                            missing.parent_path().string() + " does not exist\n");
+  EXPECT_EQ(result.err, "lfcam: " + missing.string() + ": cannot write: the folder " + missing.parent_path().string() +
+                            " does not exist\n");
   EXPECT_FALSE(fs::exists(dir / "no-such-folder"));
   // A folder where a file is expected.
   fs::create_directories(dir / "a-folder.png");
