@@ -68,7 +68,6 @@ Status writeFolderAtomically(const fs::path& destination, const std::function<St
     return makeError(ErrorCode::Usage, destination.string() + ": exists and is not a folder");
   fs::path base = destination;
   if (base.filename().empty()) base = base.parent_path();  // "out/" -> "out"
-  LFCAM_TRY(checkFolderExists(base));
   const fs::path temporary = temporarySibling(base);
   fs::create_directories(temporary, ec);
   if (ec) return ioError(temporary, "cannot create folder", ec);
