@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <cstdio>
 
-#include "lfcam/calibrate.hpp"
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
 
 namespace {
 

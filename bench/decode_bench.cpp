@@ -22,9 +22,9 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/parallel.hpp"
 #include "decode/decode_internal.hpp"
-#include "lfcam/decode.hpp"
-#include "lfcam/parallel.hpp"
+#include "lfcam/decode/decode.hpp"
 
 namespace {
 

@@ -35,12 +35,12 @@
 #include <vector>
 
 #include "experiments/experiment_support.hpp"
-#include "lfcam/analysis.hpp"
-#include "lfcam/denoise.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/analysis/analysis.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/render/denoise.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "people_camera.hpp"
 #include "people_cards.hpp"
 #include "sine_chart.hpp"

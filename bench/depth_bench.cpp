@@ -64,14 +64,14 @@
 
 #include "depth_scenes.hpp"
 #include "edof/depth_experiment.hpp"
-#include "lfcam/all_in_focus.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/depth_knobs.hpp"
-#include "lfcam/disparity_scores.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/edof/all_in_focus.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/edof/depth_knobs.hpp"
+#include "lfcam/edof/disparity_scores.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 namespace {
 

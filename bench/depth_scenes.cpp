@@ -8,10 +8,10 @@
 #include <random>
 #include <stdexcept>
 
-#include "lfcam/depth.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 namespace lfcam::bench {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
 
 namespace lfcam::bench {
 

@@ -15,7 +15,7 @@
 
 #include "io/hdf5_chunk_codec.hpp"
 #include "io/sample_encoding.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 namespace {
 

@@ -35,11 +35,11 @@
 #include <vector>
 
 #include "core/memory_floor.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/parallel.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/upsampled_refocus.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/render/upsampled_refocus.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 #include "render/references.hpp"
 
 namespace {

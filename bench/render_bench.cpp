@@ -9,10 +9,10 @@
 #include <chrono>
 #include <optional>
 
-#include "lfcam/fourier_slice.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/render/fourier_slice.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 namespace {
 

@@ -7,8 +7,8 @@
 
 #include <cstdlib>
 
-#include "lfcam/parallel.hpp"
-#include "lfcam/simulate.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/simulate/simulate.hpp"
 
 namespace {
 

@@ -21,11 +21,11 @@
 #include <thread>
 #include <vector>
 
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/viewer.hpp"
-#include "lfcam/viewer_server.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/synth/layered_planes.hpp"
+#include "lfcam/viewer/viewer.hpp"
+#include "lfcam/viewer/viewer_server.hpp"
 #include "viewer/image_encode.hpp"
 
 namespace {

@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fuzz_support.hpp"
-#include "lfcam/camera_model.hpp"
+#include "lfcam/simulate/camera_model.hpp"
 #include "simulate/camera_json.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }

@@ -3,7 +3,7 @@
 
 #include "calibrate/grid_json.hpp"
 #include "fuzz_support.hpp"
-#include "lfcam/lenslet_grid.hpp"
+#include "lfcam/calibrate/lenslet_grid.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

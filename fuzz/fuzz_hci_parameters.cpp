@@ -2,8 +2,8 @@
 // small valid folder of 2 x 2 views.
 #include "fuzz_support.hpp"
 #include "io/hci_parameters.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 namespace {
 std::filesystem::path viewFolder() {

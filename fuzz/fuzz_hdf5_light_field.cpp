@@ -1,6 +1,6 @@
 // HDF5 light-field reader (.lf.h5): probe, then read.
 #include "fuzz_support.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

@@ -1,7 +1,7 @@
 // Lenslet (macro-pixel) images: the image readers (lfcam's PNG structure check, libpng, libtiff, ...), the
 // description that gives the view count, and the macro-pixel period estimate.
 #include "fuzz_support.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

@@ -1,7 +1,7 @@
 // Lytro containers (.lfp, .lfr): sections, SHA-1 names, the JSON table of contents, its
 // references, the listing, and the raw frame with its metadata and packed samples.
 #include "fuzz_support.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "raw_io/lytro_contents.hpp"
 #include "raw_io/lytro_raw.hpp"
 

@@ -1,6 +1,6 @@
 // PFM reader (header, then pixels).
 #include "fuzz_support.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

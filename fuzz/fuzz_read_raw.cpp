@@ -3,7 +3,7 @@
 #include <cstring>
 
 #include "fuzz_support.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

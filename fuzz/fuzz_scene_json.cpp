@@ -1,7 +1,7 @@
 // Scene JSON (scene.hpp), then every texture evaluated over its plane and the camera checked, as
 // the simulator would.
 #include "fuzz_support.hpp"
-#include "lfcam/scene.hpp"
+#include "lfcam/simulate/scene.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

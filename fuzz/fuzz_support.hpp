@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-#include "lfcam/memory_budget.hpp"
+#include "core/memory_budget.hpp"
 
 namespace lfcam::fuzz {
 

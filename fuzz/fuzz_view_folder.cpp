@@ -1,7 +1,7 @@
 // Sub-aperture view folders (HCI input_CamNNN.png with parameters.cfg, NAME_RR_CC.png): the input
 // is a folder in the format of fuzz_support.hpp.
 #include "fuzz_support.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) { return lfcam::fuzz::initialize(); }
 

@@ -9,9 +9,9 @@
 #include <cstring>
 #include <string>
 
+#include "core/memory_budget.hpp"
 #include "errors.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/memory_budget.hpp"
+#include "lfcam/io/light_field_io.hpp"
 #include "viewer/image_encode.hpp"
 
 namespace py = pybind11;

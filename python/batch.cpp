@@ -8,7 +8,7 @@
 
 #include "errors.hpp"
 #include "interruptible.hpp"
-#include "lfcam/batch_run.hpp"
+#include "lfcam/batch/batch_run.hpp"
 #include "progress.hpp"
 
 namespace py = pybind11;

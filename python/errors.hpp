@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam::python {
 

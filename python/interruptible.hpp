@@ -13,7 +13,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam::python {
 

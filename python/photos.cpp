@@ -14,8 +14,8 @@
 #include "arrays.hpp"
 #include "errors.hpp"
 #include "interruptible.hpp"
-#include "lfcam/photo_request.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/photo/photo_request.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 
 namespace py = pybind11;
 

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "lfcam/progress.hpp"
+#include "lfcam/core/progress.hpp"
 
 namespace lfcam::python {
 

@@ -4,9 +4,9 @@
 
 #include "errors.hpp"
 #include "interruptible.hpp"
-#include "lfcam/raw_io.hpp"
-#include "lfcam/simulate.hpp"
-#include "lfcam/simulate_setup.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
+#include "lfcam/simulate/simulate.hpp"
+#include "lfcam/simulate/simulate_setup.hpp"
 #include "progress.hpp"
 
 namespace py = pybind11;

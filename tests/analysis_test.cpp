@@ -6,7 +6,7 @@
 #include <random>
 
 #include "analysis/references.hpp"
-#include "lfcam/analysis.hpp"
+#include "lfcam/analysis/analysis.hpp"
 
 namespace lfcam {
 namespace {

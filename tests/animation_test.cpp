@@ -1,6 +1,6 @@
 // Animations: MP4 videos decode back to the frames written (count and size, odd sizes grown to
 // even), failures leave no file, and the format follows the extension.
-#include "lfcam/animation.hpp"
+#include "lfcam/render/animation.hpp"
 
 #include <gif_lib.h>
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include <memory>
 #include <vector>
 
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

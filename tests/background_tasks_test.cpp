@@ -5,7 +5,7 @@
 #include <atomic>
 #include <string>
 
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam {
 namespace {

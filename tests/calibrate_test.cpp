@@ -11,11 +11,11 @@
 
 #include "calibrate/calibrate_internal.hpp"
 #include "calibrate/grid_json.hpp"
-#include "lfcam/calibrate.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
-#include "lfcam/simulated_grid.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "simulate/camera_json.hpp"
+#include "simulate/simulated_grid.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

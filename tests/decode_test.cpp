@@ -13,12 +13,12 @@
 #include <cstdint>
 
 #include "decode/decode_internal.hpp"
-#include "lfcam/decode.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
-#include "lfcam/simulated_grid.hpp"
+#include "lfcam/decode/decode.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "sharpness.hpp"
+#include "simulate/simulated_grid.hpp"
 
 namespace lfcam {
 namespace {

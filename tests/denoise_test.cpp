@@ -1,7 +1,7 @@
 // The depth-range passband filter (denoise.hpp): the FFT path against its float64 reference on
 // random light fields, the passband against its definition, a plane at a passband slope kept, and
 // white noise reduced.
-#include "lfcam/denoise.hpp"
+#include "lfcam/render/denoise.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <numbers>
 #include <random>
 
-#include "lfcam/depth.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "people_camera.hpp"
 #include "render/denoise_padding.hpp"
 #include "render/references.hpp"

@@ -12,11 +12,11 @@
 
 #include "depth_scenes.hpp"
 #include "edof/depth_experiment.hpp"
-#include "lfcam/color_map.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/disparity_scores.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/layered_planes.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/edof/disparity_scores.hpp"
+#include "lfcam/io/color_map.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 namespace lfcam {
 namespace {

@@ -6,8 +6,8 @@
 
 #include "depth_scenes.hpp"
 #include "edof/depth_experiment.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/disparity_scores.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/edof/disparity_scores.hpp"
 
 namespace lfcam::edof {
 namespace {

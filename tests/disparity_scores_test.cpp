@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "lfcam/disparity_scores.hpp"
+#include "lfcam/edof/disparity_scores.hpp"
 
 namespace lfcam {
 namespace {

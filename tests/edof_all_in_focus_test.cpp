@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <random>
 
-#include "lfcam/all_in_focus.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/edof/all_in_focus.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 #include "sharpness.hpp"
 
 namespace lfcam {

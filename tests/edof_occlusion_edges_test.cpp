@@ -13,9 +13,9 @@
 #include "depth_scenes.hpp"
 #include "edof/depth_experiment.hpp"
 #include "edof/edof_internal.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/disparity_scores.hpp"
-#include "lfcam/layered_planes.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/edof/disparity_scores.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 namespace lfcam::edof {
 namespace {

@@ -14,14 +14,14 @@
 #include <random>
 
 #include "edof/depth_experiment.hpp"
-#include "lfcam/all_in_focus.hpp"
-#include "lfcam/denoise.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/disparity_scores.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/edof/all_in_focus.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/edof/disparity_scores.hpp"
+#include "lfcam/render/denoise.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 #include "people_camera.hpp"
 #include "people_cards.hpp"
 

@@ -1,7 +1,7 @@
 // Focus spread (focus_spread.hpp): the slope-field kernel with a tap test against the float64
 // oracle; on the layered planes, every surface in the range sharp, the blur outside it a lens's,
 // and no ghost of a sharp near card over the blurred surfaces beside it; bad ranges refused.
-#include "lfcam/focus_spread.hpp"
+#include "lfcam/render/focus_spread.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
-#include "lfcam/depth.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 #include "random_light_field.hpp"
 #include "render/references.hpp"
 #include "render/slope_field_rows.hpp"

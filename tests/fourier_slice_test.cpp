@@ -1,14 +1,14 @@
 // Fourier slice refocusing against the spatial-domain refocus: the same photographs, away from
 // the borders (the Fourier method wraps around), to a PSNR threshold.
-#include "lfcam/fourier_slice.hpp"
+#include "lfcam/render/fourier_slice.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 namespace lfcam {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "io/hci_parameters.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/io/light_field_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

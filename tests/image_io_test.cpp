@@ -1,4 +1,4 @@
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 #include <gtest/gtest.h>
 

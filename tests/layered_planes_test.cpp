@@ -1,7 +1,7 @@
 // The layered-planes light field: deterministic, true to its ground truth, and consistent with
 // refocusing (each card comes into focus at its own disparity, and only there do the views
 // agree on it).
-#include "lfcam/layered_planes.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <set>
 #include <vector>
 
-#include "lfcam/refocus.hpp"
+#include "lfcam/render/refocus.hpp"
 
 namespace lfcam {
 namespace {

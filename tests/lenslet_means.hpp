@@ -7,9 +7,9 @@
 #include <cmath>
 #include <vector>
 
-#include "lfcam/image.hpp"
-#include "lfcam/lenslet_grid.hpp"
-#include "lfcam/raw_image.hpp"
+#include "lfcam/calibrate/lenslet_grid.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/raw_io/raw_image.hpp"
 
 namespace lfcam::test {
 

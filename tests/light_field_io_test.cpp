@@ -1,6 +1,6 @@
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
-#include "lfcam/layered_planes.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>  // to write HDF5 files of other layouts
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

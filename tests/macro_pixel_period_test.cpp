@@ -11,11 +11,11 @@
 
 #include "core/power_spectrum.hpp"
 #include "io/macro_pixel_period.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

@@ -5,7 +5,7 @@
 // pixel per view; at 457 mm they would span -15 to +8).
 #pragma once
 
-#include "lfcam/camera_model.hpp"
+#include "lfcam/simulate/camera_model.hpp"
 
 namespace lfcam::test {
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/depth.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
 
 namespace lfcam::test {
 

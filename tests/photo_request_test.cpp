@@ -2,7 +2,7 @@
 // sampling renders, whichever kernel renderPhoto picks, as the float64 general path does on random
 // light fields; the requests the table of refusals lists are refused with their line by the library
 // and by the viewer (the command line and Python read the same table: tests/cli, tests/python).
-#include "lfcam/photo_request.hpp"
+#include "lfcam/photo/photo_request.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,11 +12,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/focus_spread.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/tilted_focus.hpp"
-#include "lfcam/upsampled_refocus.hpp"
-#include "lfcam/viewer.hpp"
+#include "lfcam/render/focus_spread.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/render/tilted_focus.hpp"
+#include "lfcam/render/upsampled_refocus.hpp"
+#include "lfcam/viewer/viewer.hpp"
 #include "random_light_field.hpp"
 
 namespace lfcam {

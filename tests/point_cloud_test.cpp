@@ -9,10 +9,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "lfcam/depth.hpp"
-#include "lfcam/point_cloud.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/edof/point_cloud.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "people_camera.hpp"
 #include "test_support.hpp"
 

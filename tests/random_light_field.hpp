@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
 
 namespace lfcam::test {
 

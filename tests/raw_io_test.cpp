@@ -8,9 +8,9 @@
 #include <numbers>
 #include <random>
 
-#include "lfcam/image_io.hpp"
-#include "lfcam/raw_io.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "raw_io/lytro_raw.hpp"
 #include "test_support.hpp"
 #include "tiff_with_levels.hpp"

@@ -1,7 +1,7 @@
 // refocus (fast, float32) against refocusReference (float64 oracle), a focal stack against one
 // refocus per slope, and properties that hold for any light field: slope 0 is the mean of the
 // views, a flat field stays flat, an integer slope is an exact shift.
-#include "lfcam/refocus.hpp"
+#include "lfcam/render/refocus.hpp"
 #include "render/references.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The synthetic camera (Equation 5), the moving observer (Equation 7), focal stacks and refocus
 // at a pixel: fast kernels against the float64 reference on random light fields, the geometry
 // against paper-notes.md computed in millimetres, and the properties of synthetic_camera.hpp.
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 #include "render/references.hpp"
 
 #include <gtest/gtest.h>
@@ -12,9 +12,9 @@
 
 #include "random_light_field.hpp"
 
-#include "lfcam/focal_stack.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/render/focal_stack.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 #include "sharpness.hpp"
 
 namespace lfcam {

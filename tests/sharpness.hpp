@@ -1,7 +1,7 @@
 // Focus measures used by tests: how sharp a region of an image is.
 #pragma once
 
-#include "lfcam/image.hpp"
+#include "lfcam/core/image.hpp"
 
 namespace lfcam::test {
 

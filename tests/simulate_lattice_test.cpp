@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "lfcam/simulate.hpp"
+#include "lfcam/simulate/simulate.hpp"
 
 namespace lfcam {
 namespace {

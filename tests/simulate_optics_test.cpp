@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "lfcam/simulate.hpp"
+#include "lfcam/simulate/simulate.hpp"
 
 namespace lfcam {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <fstream>
 
-#include "lfcam/image_io.hpp"
-#include "lfcam/scene.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/simulate/scene.hpp"
 #include "simulate/tracing.hpp"
 #include "test_support.hpp"
 

@@ -7,11 +7,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/parallel.hpp"
-#include "lfcam/simulate.hpp"
-#include "lfcam/simulated_grid.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/simulate/simulate.hpp"
+#include "simulate/simulated_grid.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

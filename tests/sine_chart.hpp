@@ -8,9 +8,9 @@
 #include <memory>
 #include <vector>
 
-#include "lfcam/camera_model.hpp"
-#include "lfcam/image.hpp"
-#include "lfcam/scene.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/simulate/camera_model.hpp"
+#include "lfcam/simulate/scene.hpp"
 
 namespace lfcam::test {
 

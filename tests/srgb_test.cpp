@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::io {
 namespace {

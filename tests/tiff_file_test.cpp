@@ -8,7 +8,7 @@
 #include <functional>
 #include <vector>
 
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

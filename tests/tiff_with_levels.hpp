@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/image.hpp"
+#include "lfcam/core/image.hpp"
 #include "test_support.hpp"
 
 namespace lfcam::test {

@@ -1,7 +1,7 @@
 // refocusTilted (fast, float32) against refocusTiltedReference (float64 oracle); the plane from
 // three points or a tilt; and on a simulated slanted plane, the tilted photograph is sharp along
 // the whole plane where every fronto-parallel refocus blurs part of it.
-#include "lfcam/tilted_focus.hpp"
+#include "lfcam/render/tilted_focus.hpp"
 #include "render/references.hpp"
 
 #include <gtest/gtest.h>
@@ -12,10 +12,10 @@
 #include <random>
 #include <vector>
 
-#include "lfcam/depth.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "people_camera.hpp"
 #include "random_light_field.hpp"
 #include "sharpness.hpp"

@@ -3,7 +3,7 @@
 // draws on views centred on the aperture; and on a simulated
 // chart of sine gratings at several depths, the resolution (MTF50) gained over the plain refocus
 // where the views sample the refocused plane at different sub-pixel phases, none where they do not.
-#include "lfcam/upsampled_refocus.hpp"
+#include "lfcam/render/upsampled_refocus.hpp"
 #include "render/references.hpp"
 
 #include <gtest/gtest.h>
@@ -14,10 +14,10 @@
 #include <random>
 #include <vector>
 
-#include "lfcam/depth.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "people_camera.hpp"
 #include "random_light_field.hpp"
 #include "sine_chart.hpp"

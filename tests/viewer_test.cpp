@@ -14,14 +14,14 @@
 #include <cmath>
 #include <thread>
 
-#include "lfcam/depth.hpp"
-#include "lfcam/focus_spread.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/living_picture.hpp"
-#include "lfcam/upsampled_refocus.hpp"
-#include "lfcam/viewer.hpp"
-#include "lfcam/viewer_server.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/render/focus_spread.hpp"
+#include "lfcam/render/upsampled_refocus.hpp"
+#include "lfcam/synth/layered_planes.hpp"
+#include "lfcam/viewer/living_picture.hpp"
+#include "lfcam/viewer/viewer.hpp"
+#include "lfcam/viewer/viewer_server.hpp"
 #include "test_support.hpp"
 #include "viewer/image_encode.hpp"
 

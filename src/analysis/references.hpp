@@ -1,8 +1,8 @@
 // The oracles the fast analysis kernels are tested against (not public).
 #pragma once
 
-#include "lfcam/image.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam {
 

@@ -1,7 +1,7 @@
 // Averages, signal-to-noise against a noise-free standard, line fits, a focus measure.
 #include <cmath>
 
-#include "lfcam/analysis.hpp"
+#include "lfcam/analysis/analysis.hpp"
 
 namespace lfcam {
 

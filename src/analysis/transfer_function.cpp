@@ -10,7 +10,7 @@
 
 #include "analysis/references.hpp"
 #include "core/fftw_planner.hpp"
-#include "lfcam/analysis.hpp"
+#include "lfcam/analysis/analysis.hpp"
 
 namespace lfcam {
 

@@ -1,4 +1,5 @@
-#include "lfcam/batch_capture.hpp"
+// runBatchCapture (batch_run.hpp): one capture's steps, its outputs and its done-marker.
+#include "lfcam/batch/batch_run.hpp"
 
 #include <chrono>
 #include <fstream>
@@ -6,22 +7,24 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/all_in_focus.hpp"
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/color_map.hpp"
-#include "lfcam/decode_files.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/focal_stack_output.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/living_picture.hpp"
-#include "lfcam/parallel.hpp"
-#include "lfcam/photo_request.hpp"
+#include "core/atomic_file.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/decode/decode_files.hpp"
+#include "lfcam/edof/all_in_focus.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/io/color_map.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/photo/photo_request.hpp"
+#include "lfcam/viewer/living_picture.hpp"
+#include "photo/focal_stack_output.hpp"
 
 namespace lfcam {
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr const char* kBatchDoneMarker = ".batch-done.json";
 
 // Size and latest modification of a file, or of every file in a folder: what says "changed".
 nlohmann::json inputFingerprint(const fs::path& input) {

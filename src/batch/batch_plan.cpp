@@ -1,4 +1,4 @@
-#include "lfcam/batch_plan.hpp"
+#include "lfcam/batch/batch_plan.hpp"
 
 #include <glob.h>
 
@@ -11,9 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/focal_stack.hpp"
-#include "lfcam/focal_stack_output.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/render/focal_stack.hpp"
+#include "photo/focal_stack_output.hpp"
 
 namespace lfcam {
 namespace fs = std::filesystem;

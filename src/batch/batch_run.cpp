@@ -1,4 +1,4 @@
-#include "lfcam/batch_run.hpp"
+#include "lfcam/batch/batch_run.hpp"
 
 #include <algorithm>
 #include <condition_variable>
@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/parallel.hpp"
+#include "core/atomic_file.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam {
 namespace fs = std::filesystem;

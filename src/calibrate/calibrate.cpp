@@ -1,6 +1,6 @@
 // calibrateGrid: preparation of the image, a first lattice, centres grown outwards from the
 // middle with a refit at each step, and the final grid (calibrate.hpp, docs/design.md).
-#include "lfcam/calibrate.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "calibrate/calibrate_internal.hpp"
 #include "core/box_filter.hpp"
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam {
 

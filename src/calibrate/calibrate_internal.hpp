@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/calibrate.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
 
 namespace lfcam::calibrate_detail {
 

@@ -6,9 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/lenslet_grid.hpp"
-#include "lfcam/raw_image.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/calibrate/lenslet_grid.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/raw_io/raw_image.hpp"
 
 namespace lfcam {
 

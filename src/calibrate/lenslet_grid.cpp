@@ -1,5 +1,5 @@
 // LensletGrid: the lattice formula of lenslet_grid.hpp and its grid.json form (docs/formats.md).
-#include "lfcam/lenslet_grid.hpp"
+#include "lfcam/calibrate/lenslet_grid.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -9,8 +9,8 @@
 
 #include "calibrate/calibrate_internal.hpp"
 #include "calibrate/grid_json.hpp"
+#include "core/atomic_file.hpp"
 #include "core/json_reader.hpp"
-#include "lfcam/atomic_file.hpp"
 
 namespace lfcam {
 

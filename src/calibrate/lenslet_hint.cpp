@@ -7,7 +7,7 @@
 
 #include "calibrate/calibrate_internal.hpp"
 #include "calibrate/grid_json.hpp"
-#include "lfcam/calibrate.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
 
 namespace lfcam {
 

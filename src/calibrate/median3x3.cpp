@@ -4,8 +4,8 @@
 #include <utility>
 
 #include "calibrate/calibrate_internal.hpp"
-#include "lfcam/calibrate.hpp"
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
 
 namespace lfcam {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "calibrate/calibrate_internal.hpp"
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam::calibrate_detail {
 

@@ -1,4 +1,4 @@
-#include "lfcam/huge_page_allocator.hpp"
+#include "lfcam/core/detail/huge_page_allocator.hpp"
 
 #include <sys/mman.h>
 
@@ -7,7 +7,7 @@
 #include <new>
 #include <string_view>
 
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam::huge_pages {
 

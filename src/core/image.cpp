@@ -1,4 +1,4 @@
-#include "lfcam/image.hpp"
+#include "lfcam/core/image.hpp"
 
 #include <cassert>
 

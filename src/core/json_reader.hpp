@@ -10,7 +10,7 @@
 #include <set>
 #include <string>
 
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam::json_reader {
 

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam {
 

@@ -1,4 +1,4 @@
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/light_field.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -1,4 +1,4 @@
-#include "lfcam/memory_budget.hpp"
+#include "core/memory_budget.hpp"
 
 #include <unistd.h>
 

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cstring>
 
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam {
 

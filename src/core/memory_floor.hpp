@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "lfcam/huge_page_allocator.hpp"
+#include "lfcam/core/detail/huge_page_allocator.hpp"
 
 namespace lfcam {
 

@@ -1,4 +1,4 @@
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>

@@ -1,4 +1,4 @@
-#include "lfcam/sensor_layout.hpp"
+#include "lfcam/core/sensor_layout.hpp"
 
 namespace lfcam {
 

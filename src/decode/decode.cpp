@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "decode/decode_internal.hpp"
-#include "lfcam/decode.hpp"
-#include "lfcam/parallel.hpp"
+#include "lfcam/decode/decode.hpp"
 
 namespace lfcam {
 

@@ -1,12 +1,12 @@
 // Decoding from files (decode_files.hpp).
-#include "lfcam/decode_files.hpp"
+#include "lfcam/decode/decode_files.hpp"
 
 #include <tuple>
 #include <utility>
 
-#include "lfcam/calibrate.hpp"
-#include "lfcam/lenslet_grid.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
+#include "lfcam/calibrate/lenslet_grid.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 
 namespace lfcam {
 

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <vector>
 
-#include "lfcam/decode.hpp"
-#include "lfcam/image.hpp"
-#include "lfcam/lenslet_grid.hpp"
-#include "lfcam/light_field.hpp"
-#include "lfcam/raw_image.hpp"
-#include "lfcam/result.hpp"
-#include "lfcam/sensor_layout.hpp"
+#include "lfcam/calibrate/lenslet_grid.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/core/sensor_layout.hpp"
+#include "lfcam/decode/decode.hpp"
+#include "lfcam/raw_io/raw_image.hpp"
 
 namespace lfcam::decode_detail {
 

@@ -6,10 +6,10 @@
 #include <array>
 #include <cmath>
 
+#include "core/parallel.hpp"
 #include "decode/decode_internal.hpp"
-#include "lfcam/decode.hpp"
-#include "lfcam/parallel.hpp"
-#include "lfcam/sensor_layout.hpp"
+#include "lfcam/core/sensor_layout.hpp"
+#include "lfcam/decode/decode.hpp"
 
 namespace lfcam {
 

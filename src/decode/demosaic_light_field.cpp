@@ -22,8 +22,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "decode/decode_internal.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::decode_detail {
 

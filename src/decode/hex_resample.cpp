@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "lfcam/decode.hpp"
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/decode/decode.hpp"
 
 namespace lfcam {
 

@@ -11,8 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel.hpp"
 #include "decode/decode_internal.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::decode_detail {
 

@@ -1,14 +1,14 @@
 // Extended depth of field by photomontage of a focal stack (all_in_focus.hpp).
-#include "lfcam/all_in_focus.hpp"
+#include "lfcam/edof/all_in_focus.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "core/parallel.hpp"
 #include "edof/edof_internal.hpp"
-#include "lfcam/parallel.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/render/refocus.hpp"
 
 namespace lfcam {
 

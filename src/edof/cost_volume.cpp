@@ -4,10 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "core/parallel.hpp"
 #include "core/target_clones.hpp"
 #include "edof/depth_stages.hpp"
-#include "lfcam/parallel.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/render/refocus.hpp"
 
 namespace lfcam::edof {
 

@@ -2,7 +2,7 @@
 // below: the cost volume and its aggregation (cost_volume.cpp), semi-global optimisation,
 // sub-label read-out, fine search (fine_search.cpp), cleanup, confidence; before them the views'
 // brightness offsets (view_offsets.cpp) and the automatic prefilter; distances.
-#include "lfcam/depth.hpp"
+#include "lfcam/edof/depth.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,13 +11,13 @@
 #include <string>
 
 #include "core/parabola.hpp"
+#include "core/parallel.hpp"
 #include "core/quadratic_filter.hpp"
 #include "edof/depth_experiment.hpp"
 #include "edof/depth_stages.hpp"
 #include "edof/edof_internal.hpp"
 #include "edof/interpolation_terms.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/parallel.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam {
 

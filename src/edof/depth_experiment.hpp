@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-#include "lfcam/depth.hpp"
+#include "lfcam/edof/depth.hpp"
 
 namespace lfcam::edof {
 

@@ -1,5 +1,5 @@
 // The table of depth settings and the options-file reader (depth_knobs.hpp).
-#include "lfcam/depth_knobs.hpp"
+#include "lfcam/edof/depth_knobs.hpp"
 
 #include <array>
 #include <fstream>

@@ -9,8 +9,8 @@
 
 #include "edof/edof_internal.hpp"
 #include "edof/interpolation_terms.hpp"
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
 
 namespace lfcam::edof {
 

@@ -1,5 +1,5 @@
 // The HCI benchmark's scores of a disparity map (disparity_scores.hpp).
-#include "lfcam/disparity_scores.hpp"
+#include "lfcam/edof/disparity_scores.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,9 +9,9 @@
 
 #include "core/box_filter.hpp"
 #include "core/target_clones.hpp"
-#include "lfcam/huge_page_allocator.hpp"
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/detail/huge_page_allocator.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
 
 namespace lfcam::edof {
 

@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel.hpp"
 #include "core/separable_filter.hpp"
 #include "edof/edof_internal.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

@@ -2,9 +2,9 @@
 #include <algorithm>
 
 #include "core/parabola.hpp"
+#include "core/parallel.hpp"
 #include "edof/depth_stages.hpp"
 #include "edof/fine_cost_row.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel.hpp"
 #include "edof/edof_internal.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

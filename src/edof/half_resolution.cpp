@@ -1,8 +1,8 @@
 // Light fields, images and maps at half the resolution and back (depth_stages.hpp): where the first
 // maps of the view offsets and the coarse cost of noisy views are made.
 #include "core/bilinear.hpp"
+#include "core/parallel.hpp"
 #include "edof/depth_stages.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "core/box_filter.hpp"
+#include "core/parallel.hpp"
 #include "edof/edof_internal.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

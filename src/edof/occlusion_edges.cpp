@@ -19,8 +19,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/parallel.hpp"
 #include "edof/edof_internal.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

@@ -1,4 +1,4 @@
-#include "lfcam/point_cloud.hpp"
+#include "lfcam/edof/point_cloud.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -8,9 +8,9 @@
 #include <fstream>
 #include <string>
 
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/image_io.hpp"
+#include "core/atomic_file.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam {
 

@@ -3,8 +3,8 @@
 // because each band is stored as the difference with the same expand() that collapses it.
 #include <algorithm>
 
+#include "core/parallel.hpp"
 #include "edof/edof_internal.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "core/parabola.hpp"
+#include "core/parallel.hpp"
 #include "edof/edof_internal.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

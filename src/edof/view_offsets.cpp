@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "core/bilinear.hpp"
+#include "core/parallel.hpp"
 #include "edof/depth_stages.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "edof/edof_internal.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::edof {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "experiments/experiment_support.hpp"
-#include "lfcam/analysis.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/analysis/analysis.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 
 namespace lfcam::experiments {
 

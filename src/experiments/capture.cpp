@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "experiments/experiment_support.hpp"
-#include "lfcam/decode.hpp"
-#include "lfcam/simulate.hpp"
-#include "lfcam/simulated_grid.hpp"
+#include "lfcam/decode/decode.hpp"
+#include "lfcam/simulate/simulate.hpp"
+#include "simulate/simulated_grid.hpp"
 
 namespace lfcam::experiments {
 

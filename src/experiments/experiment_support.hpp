@@ -10,12 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/camera_model.hpp"
-#include "lfcam/experiments.hpp"
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
-#include "lfcam/result.hpp"
-#include "lfcam/scene.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/experiments/experiments.hpp"
+#include "lfcam/simulate/camera_model.hpp"
+#include "lfcam/simulate/scene.hpp"
 
 namespace lfcam::experiments {
 

@@ -1,5 +1,5 @@
 // The experiment by name.
-#include "lfcam/experiments.hpp"
+#include "lfcam/experiments/experiments.hpp"
 
 #include "experiments/experiment_support.hpp"
 

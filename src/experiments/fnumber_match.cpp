@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "experiments/experiment_support.hpp"
-#include "lfcam/simulate.hpp"
+#include "lfcam/simulate/simulate.hpp"
 
 namespace lfcam::experiments {
 

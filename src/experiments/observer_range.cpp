@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "experiments/experiment_support.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 
 namespace lfcam::experiments {
 

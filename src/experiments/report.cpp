@@ -8,9 +8,9 @@
 #include <limits>
 #include <sstream>
 
+#include "core/atomic_file.hpp"
 #include "experiments/experiment_support.hpp"
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::experiments {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "experiments/experiment_support.hpp"
-#include "lfcam/analysis.hpp"
+#include "lfcam/analysis/analysis.hpp"
 
 namespace lfcam::experiments {
 

@@ -5,8 +5,8 @@
 #include <functional>
 
 #include "experiments/experiment_support.hpp"
-#include "lfcam/analysis.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/analysis/analysis.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 
 namespace lfcam::experiments {
 

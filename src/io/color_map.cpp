@@ -1,11 +1,11 @@
 // Turbo colour map (color_map.hpp).
-#include "lfcam/color_map.hpp"
+#include "lfcam/io/color_map.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam {
 

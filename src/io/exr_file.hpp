@@ -8,8 +8,8 @@
 #include <functional>
 #include <string>
 
-#include "lfcam/image.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam::io {
 

@@ -24,8 +24,8 @@
 #include <string>
 #include <string_view>
 
-#include "lfcam/light_field.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam {
 

@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "io/hdf5_chunk_codec.hpp"
 #include "io/io_support.hpp"
 #include "io/sample_encoding.hpp"
 #include "io/survives_in_child.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::io {
 

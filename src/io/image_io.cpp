@@ -1,7 +1,7 @@
 // Image files: PNG, JPEG, TIFF and OpenEXR through io/png_file, io/jpeg_file, io/tiff_file and
 // io/exr_file (their own libraries), PFM through io/pfm. Which reader runs is decided by the file's first bytes;
 // which writer runs, by the name's extension.
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,6 +12,7 @@
 #include <system_error>
 #include <vector>
 
+#include "core/atomic_file.hpp"
 #include "io/exr_file.hpp"
 #include "io/io_support.hpp"
 #include "io/jpeg_file.hpp"
@@ -19,7 +20,6 @@
 #include "io/png_file.hpp"
 #include "io/srgb.hpp"
 #include "io/tiff_file.hpp"
-#include "lfcam/atomic_file.hpp"
 
 namespace lfcam {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::io {
 

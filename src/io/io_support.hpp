@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
-#include "lfcam/memory_budget.hpp"
-#include "lfcam/result.hpp"
+#include "core/memory_budget.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam::io {
 

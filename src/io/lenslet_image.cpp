@@ -7,7 +7,7 @@
 
 #include "io/io_support.hpp"
 #include "io/macro_pixel_period.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::io {
 

@@ -1,18 +1,18 @@
 // Light-field inputs and outputs: which kind a path is, and the dispatch to each kind's reader
 // and writer (hdf5_light_field, view_folder, lenslet_image).
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <system_error>
 
+#include "core/atomic_file.hpp"
 #include "io/hdf5_light_field.hpp"
 #include "io/io_support.hpp"
 #include "io/lenslet_image.hpp"
 #include "io/view_folder.hpp"
 #include "io/view_order.hpp"
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam {
 

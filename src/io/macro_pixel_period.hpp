@@ -4,7 +4,7 @@
 #include <optional>
 #include <vector>
 
-#include "lfcam/image.hpp"
+#include "lfcam/core/image.hpp"
 
 namespace lfcam::io {
 

@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <span>
 
-#include "lfcam/image.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::io {
 

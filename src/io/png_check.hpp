@@ -6,7 +6,7 @@
 
 #include <filesystem>
 
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam::io {
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "io/interleaved_codes.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam::io {
 

@@ -8,8 +8,8 @@
 #include <cstring>
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "io/srgb.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam::io {
 

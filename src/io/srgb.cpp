@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam {
 

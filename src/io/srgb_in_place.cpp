@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <span>
 
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "io/srgb_in_place.cpp"

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "io/interleaved_codes.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam::io {
 

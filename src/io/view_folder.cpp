@@ -4,9 +4,9 @@
 #include <fstream>
 #include <system_error>
 
+#include "core/parallel.hpp"
 #include "io/io_support.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/parallel.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::io {
 

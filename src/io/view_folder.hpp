@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/light_field.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/progress.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/progress.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 namespace lfcam::io {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::io {
 

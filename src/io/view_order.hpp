@@ -6,7 +6,7 @@
 #pragma once
 
 #include "io/view_folder.hpp"
-#include "lfcam/image.hpp"
+#include "lfcam/core/image.hpp"
 
 namespace lfcam::io {
 

@@ -1,4 +1,4 @@
-#include "lfcam/focal_stack_output.hpp"
+#include "photo/focal_stack_output.hpp"
 
 #include <cstdio>
 #include <fstream>
@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/parallel.hpp"
+#include "core/atomic_file.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam {
 

@@ -14,9 +14,9 @@
 #include <optional>
 #include <vector>
 
-#include "lfcam/fourier_slice.hpp"
-#include "lfcam/photo_request.hpp"
-#include "lfcam/upsampled_refocus.hpp"
+#include "lfcam/photo/photo_request.hpp"
+#include "lfcam/render/fourier_slice.hpp"
+#include "lfcam/render/upsampled_refocus.hpp"
 #include "render/occluders.hpp"
 #include "render/ray_paths.hpp"
 #include "render/references.hpp"

@@ -1,6 +1,6 @@
 // The photograph request (photo_request.hpp): its fields as every front end names them, the checks
 // that need no light field, and its resolution against one light field.
-#include "lfcam/photo_request.hpp"
+#include "lfcam/photo/photo_request.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,10 +9,10 @@
 #include <memory>
 #include <string>
 
-#include "lfcam/depth.hpp"
-#include "lfcam/focus_spread.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/upsampled_refocus.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/render/focus_spread.hpp"
+#include "lfcam/render/upsampled_refocus.hpp"
 #include "render/ray_paths.hpp"
 
 namespace lfcam {

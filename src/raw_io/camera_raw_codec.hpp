@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/raw_image.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/raw_io/raw_image.hpp"
 
 namespace lfcam {
 

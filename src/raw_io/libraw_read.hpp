@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "lfcam/raw_image.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/raw_io/raw_image.hpp"
 
 namespace lfcam {
 

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <system_error>
 
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/memory_budget.hpp"
+#include "core/atomic_file.hpp"
+#include "core/memory_budget.hpp"
 
 namespace lfcam {
 

@@ -19,7 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam {
 

@@ -8,11 +8,11 @@
 #include <fstream>
 #include <map>
 
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/color_map.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/memory_budget.hpp"
-#include "lfcam/raw_io.hpp"
+#include "core/atomic_file.hpp"
+#include "core/memory_budget.hpp"
+#include "lfcam/io/color_map.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "raw_io/lytro_metadata.hpp"
 #include "raw_io/lytro_raw.hpp"
 

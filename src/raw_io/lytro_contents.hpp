@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/image.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/result.hpp"
 #include "raw_io/lytro_container.hpp"
 
 namespace lfcam {

@@ -16,10 +16,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/raw_image.hpp"
-#include "lfcam/raw_io.hpp"
-#include "lfcam/result.hpp"
-#include "lfcam/sensor_layout.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/core/sensor_layout.hpp"
+#include "lfcam/raw_io/raw_image.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "raw_io/raw_packing.hpp"
 
 namespace lfcam {

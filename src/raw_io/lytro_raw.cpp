@@ -4,8 +4,8 @@
 #include <limits>
 #include <numbers>
 
-#include "lfcam/memory_budget.hpp"
-#include "lfcam/raw_io.hpp"
+#include "core/memory_budget.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "raw_io/lytro_metadata.hpp"
 #include "raw_io/lytro_raw.hpp"
 

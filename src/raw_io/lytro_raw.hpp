@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "lfcam/raw_image.hpp"
-#include "lfcam/raw_io.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/raw_io/raw_image.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "raw_io/lytro_container.hpp"
 
 namespace lfcam {

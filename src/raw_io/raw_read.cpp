@@ -9,8 +9,8 @@
 
 #include "io/io_support.hpp"
 #include "io/tiff_file.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "raw_io/libraw_read.hpp"
 #include "raw_io/lytro_container.hpp"
 #include "raw_io/lytro_raw.hpp"

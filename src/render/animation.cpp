@@ -1,5 +1,5 @@
 // Animated GIFs through giflib, and the choice of format by extension: animation.hpp.
-#include "lfcam/animation.hpp"
+#include "lfcam/render/animation.hpp"
 
 #include <fcntl.h>
 #include <gif_lib.h>
@@ -14,9 +14,9 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/atomic_file.hpp"
 #include "io/io_support.hpp"
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 #include "render/animation_frames.hpp"
 
 namespace lfcam {

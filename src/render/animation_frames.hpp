@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "lfcam/image.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam {
 

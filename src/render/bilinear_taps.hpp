@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/light_field.hpp"
 
 namespace lfcam {
 

@@ -1,8 +1,8 @@
-#include "lfcam/contact_sheet.hpp"
+#include "lfcam/render/contact_sheet.hpp"
 
 #include <algorithm>
 
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam {
 

@@ -1,6 +1,6 @@
 // The depth-range passband filter of denoise.hpp: one in-place 4D real FFT per channel over the
 // padded light field, the passband, the inverse, and the division by the filtered view indicator.
-#include "lfcam/denoise.hpp"
+#include "lfcam/render/denoise.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/fftw_planner.hpp"
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 #include "render/denoise_padding.hpp"
 #include "render/references.hpp"
 

@@ -4,8 +4,8 @@
 // angularly to twice their count.
 #pragma once
 
-#include "lfcam/denoise.hpp"
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/render/denoise.hpp"
 
 namespace lfcam::denoise_detail {
 

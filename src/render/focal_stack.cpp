@@ -1,5 +1,5 @@
 // Focal stacks, refocus at a pixel, and focus conversions: focal_stack.hpp.
-#include "lfcam/focal_stack.hpp"
+#include "lfcam/render/focal_stack.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Focus spread (focus_spread.hpp): a slope per pixel from the disparity map, clamped into the range,
 // rendered by the slope-field kernel (slope_field_rows.hpp) without the rays of nearer surfaces
 // (occluders.hpp).
-#include "lfcam/focus_spread.hpp"
+#include "lfcam/render/focus_spread.hpp"
 
 #include <cmath>
 #include <string>

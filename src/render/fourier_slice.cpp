@@ -1,5 +1,5 @@
 // Fourier slice refocusing: fourier_slice.hpp.
-#include "lfcam/fourier_slice.hpp"
+#include "lfcam/render/fourier_slice.hpp"
 
 #include <algorithm>
 #include <cmath>

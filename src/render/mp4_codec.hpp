@@ -10,8 +10,8 @@
 #include <functional>
 #include <vector>
 
-#include "lfcam/animation.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/render/animation.hpp"
 
 namespace lfcam {
 

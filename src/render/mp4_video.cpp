@@ -4,10 +4,10 @@
 #include <cstdint>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "core/lazy_module.hpp"
 #include "io/io_support.hpp"
-#include "lfcam/animation.hpp"
-#include "lfcam/atomic_file.hpp"
+#include "lfcam/render/animation.hpp"
 #include "render/animation_frames.hpp"
 #include "render/mp4_codec.hpp"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam {
 

@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "lfcam/focus_spread.hpp"
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/render/focus_spread.hpp"
 
 namespace lfcam {
 

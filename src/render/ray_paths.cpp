@@ -5,7 +5,7 @@
 #include <cmath>
 #include <type_traits>
 
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 #include "render/shift_and_add.hpp"
 
 namespace lfcam {

@@ -8,11 +8,11 @@
 
 #include <vector>
 
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
-#include "lfcam/result.hpp"
-#include "lfcam/synthetic_camera.hpp"
-#include "lfcam/tilted_focus.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
+#include "lfcam/render/tilted_focus.hpp"
 #include "render/occluders.hpp"
 
 namespace lfcam {

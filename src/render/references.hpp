@@ -4,12 +4,12 @@
 
 #include <functional>
 
-#include "lfcam/denoise.hpp"
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
-#include "lfcam/result.hpp"
-#include "lfcam/synthetic_camera.hpp"
-#include "lfcam/tilted_focus.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/render/denoise.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
+#include "lfcam/render/tilted_focus.hpp"
 
 namespace lfcam {
 

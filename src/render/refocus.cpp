@@ -4,7 +4,7 @@
 //   refocus           the same sums reordered for speed: float32, one view at a time over whole
 //                     rows, threaded over blocks of output rows; for a focal stack, each block at
 //                     every slope in turn.
-#include "lfcam/refocus.hpp"
+#include "lfcam/render/refocus.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam {
 

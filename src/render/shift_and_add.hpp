@@ -10,8 +10,8 @@
 
 #include <vector>
 
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
 
 namespace lfcam {
 

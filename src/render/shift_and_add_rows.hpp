@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "lfcam/image.hpp"
+#include "lfcam/core/image.hpp"
 
 namespace lfcam {
 

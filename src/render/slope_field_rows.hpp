@@ -8,8 +8,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "lfcam/image.hpp"
-#include "lfcam/light_field.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/light_field.hpp"
 #include "render/bilinear_taps.hpp"
 #include "render/occluders.hpp"
 #include "render/ray_paths.hpp"

@@ -7,14 +7,14 @@
 //   - beta != 1: u varies across the image, so each ray is interpolated quadrilinearly in
 //     (u, v, s, t), per output pixel: renderRays (ray_paths.hpp), in float32 and threaded.
 //   - the reference: renderRays in float64, single-threaded, for every case.
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "lfcam/refocus.hpp"
+#include "lfcam/render/refocus.hpp"
 #include "render/ray_paths.hpp"
 #include "render/references.hpp"
 

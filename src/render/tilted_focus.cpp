@@ -1,6 +1,6 @@
 // Tilted focus (tilted_focus.hpp): the plane from three points or a tilt, rendered by the slope-field
 // kernel (slope_field_rows.hpp), and its float64 oracle.
-#include "lfcam/tilted_focus.hpp"
+#include "lfcam/render/tilted_focus.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 //                              the test oracle, literally the header's formula.
 //   refocusUpsampled           the same sums gathered per fine pixel: float32, views outer,
 //                              threaded over blocks of fine rows.
-#include "lfcam/upsampled_refocus.hpp"
+#include "lfcam/render/upsampled_refocus.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/target_clones.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/render/refocus.hpp"
 #include "render/references.hpp"
 #include "render/row_blocks.hpp"
 #include "render/shift_and_add_rows.hpp"

@@ -5,8 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/camera_model.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/simulate/camera_model.hpp"
 
 namespace lfcam {
 

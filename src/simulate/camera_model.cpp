@@ -1,13 +1,13 @@
 // The camera model: derived geometry, validation, and its JSON form.
-#include "lfcam/camera_model.hpp"
+#include "lfcam/simulate/camera_model.hpp"
 
 #include <cmath>
 #include <limits>
 
 #include "core/json_reader.hpp"
-#include "lfcam/memory_budget.hpp"
-#include "lfcam/simulated_grid.hpp"
+#include "core/memory_budget.hpp"
 #include "simulate/camera_json.hpp"
+#include "simulate/simulated_grid.hpp"
 
 namespace lfcam {
 

@@ -8,12 +8,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/memory_budget.hpp"
-#include "lfcam/parallel.hpp"
-#include "lfcam/simulate.hpp"
+#include "core/atomic_file.hpp"
+#include "core/memory_budget.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "simulate/camera_json.hpp"
 #include "simulate/tracing.hpp"
 

@@ -1,5 +1,5 @@
 // Scenes: procedural textures, the built-in scenes, and the scene file (docs/formats.md).
-#include "lfcam/scene.hpp"
+#include "lfcam/simulate/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/json_reader.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 #include "simulate/camera_json.hpp"
 
 namespace lfcam {

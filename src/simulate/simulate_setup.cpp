@@ -1,8 +1,8 @@
-#include "lfcam/simulate_setup.hpp"
+#include "lfcam/simulate/simulate_setup.hpp"
 
 #include <filesystem>
 
-#include "lfcam/camera_model.hpp"
+#include "lfcam/simulate/camera_model.hpp"
 
 namespace lfcam {
 

@@ -1,5 +1,5 @@
 // The simulator's lattice (camera_model.hpp) restated in LensletGrid's terms.
-#include "lfcam/simulated_grid.hpp"
+#include "simulate/simulated_grid.hpp"
 
 #include <cmath>
 

@@ -4,8 +4,8 @@
 #include <limits>
 #include <numeric>
 
-#include "lfcam/parallel.hpp"
-#include "lfcam/simulate.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/simulate/simulate.hpp"
 #include "simulate/tracing.hpp"
 
 namespace lfcam {

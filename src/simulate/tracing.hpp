@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "lfcam/camera_model.hpp"
-#include "lfcam/scene.hpp"
+#include "lfcam/simulate/camera_model.hpp"
+#include "lfcam/simulate/scene.hpp"
 
 namespace lfcam::simulate_detail {
 

@@ -1,6 +1,6 @@
 // The layered-planes light field: fronto-parallel textured planes rendered straight into
 // (u, v, s, t), so that every pixel's true disparity is known exactly (layered_planes.hpp).
-#include "lfcam/layered_planes.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <numeric>
 #include <string>
 
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace lfcam {
 

@@ -3,10 +3,10 @@
 
 #include <vector>
 
+#include "core/parallel.hpp"
 #include "io/jpeg_file.hpp"
 #include "io/png_file.hpp"
 #include "io/srgb.hpp"
-#include "lfcam/parallel.hpp"
 
 namespace lfcam {
 

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "lfcam/image.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam {
 

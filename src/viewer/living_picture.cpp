@@ -1,6 +1,6 @@
 // makeLivingPicture: focal stack, per-pixel sharpest slice and viewpoint sweep in one HTML page;
 // makeLytroLivingPicture: the same page over a Lytro container's own stored slices and depth map.
-#include "lfcam/living_picture.hpp"
+#include "lfcam/viewer/living_picture.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,12 +12,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/all_in_focus.hpp"
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/focal_stack.hpp"
-#include "lfcam/focus_spread.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "core/atomic_file.hpp"
+#include "lfcam/edof/all_in_focus.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/render/focal_stack.hpp"
+#include "lfcam/render/focus_spread.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 #include "viewer/image_encode.hpp"
 #include "viewer/viewer_assets.hpp"
 

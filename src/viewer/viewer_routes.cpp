@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/photo_request.hpp"
-#include "lfcam/viewer.hpp"
+#include "lfcam/photo/photo_request.hpp"
+#include "lfcam/viewer/viewer.hpp"
 #include "viewer/viewer_assets.hpp"
 
 namespace lfcam {

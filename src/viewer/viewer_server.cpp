@@ -6,7 +6,7 @@
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 
-#include "lfcam/viewer_server.hpp"
+#include "lfcam/viewer/viewer_server.hpp"
 
 namespace lfcam {
 

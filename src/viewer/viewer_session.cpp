@@ -10,13 +10,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lfcam/all_in_focus.hpp"
-#include "lfcam/color_map.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/focal_stack.hpp"
-#include "lfcam/photo_request.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/viewer.hpp"
+#include "lfcam/edof/all_in_focus.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/io/color_map.hpp"
+#include "lfcam/photo/photo_request.hpp"
+#include "lfcam/render/focal_stack.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/viewer/viewer.hpp"
 #include "viewer/image_encode.hpp"
 
 namespace lfcam {

@@ -14,7 +14,7 @@
 #include <map>
 
 #include "cli_support.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam {
 namespace {

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam {
 namespace {

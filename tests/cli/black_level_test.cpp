@@ -7,8 +7,8 @@
 #include <cstdio>
 
 #include "cli_support.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 #include "test_support.hpp"
 #include "tiff_with_levels.hpp"
 

@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "cli_support.hpp"
-#include "lfcam/calibrate.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
-#include "lfcam/simulated_grid.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
+#include "simulate/simulated_grid.hpp"
 
 namespace lfcam::test {
 namespace {

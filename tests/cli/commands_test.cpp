@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 namespace lfcam {
 namespace {

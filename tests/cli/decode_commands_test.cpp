@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_support.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam::test {

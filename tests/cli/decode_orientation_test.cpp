@@ -10,9 +10,9 @@
 
 #include "cli_support.hpp"
 #include "lenslet_means.hpp"
-#include "lfcam/calibrate.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam::test {

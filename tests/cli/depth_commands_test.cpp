@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "cli_support.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam {
 namespace {

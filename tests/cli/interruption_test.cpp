@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "cli_support.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 namespace lfcam {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/cli_support.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "raw_io/lytro_container.hpp"
 
 namespace lfcam {

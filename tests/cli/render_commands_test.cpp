@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
-#include "lfcam/animation.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/render/animation.hpp"
 #include "random_light_field.hpp"
 
 namespace lfcam {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/animation.hpp"
-#include "lfcam/layered_planes.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/render/animation.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 
 int main() {
   const auto planes = lfcam::renderLayeredPlanes(lfcam::defaultLayeredPlanesScene(5, 32));

@@ -5,7 +5,7 @@ Usage: check_module_includes.py MODULES_TXT SOURCE_ROOT [--pretend FILE=MODULE .
 
 MODULES_TXT is written by CMakeLists.txt (lfcam_module): one line per module, bottom first,
 "name: dependencies | public headers". A file in src/<module>/ belongs to that module, and so
-does a public header include/lfcam/<name>.hpp the module names. Tests, benches, fuzz targets and
+does a public header include/lfcam/<module>/<name>.hpp the module names. Tests, benches, fuzz targets and
 tools sit above every module and are not checked. --pretend checks one more file as if it
 belonged to MODULE (the suite uses it to show that a leak is caught).
 """
@@ -13,6 +13,7 @@ import pathlib
 import re
 import sys
 
+UMBRELLA = "lfcam/lfcam.hpp"  # every public header, for users: above every module, not checked
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
@@ -29,13 +30,15 @@ def read_modules(path):
                 problems.append(f"module {name} depends on {dependency}, which is not below it")
         modules[name] = set(dependencies)
         for header in headers.split():
-            header_module[f"lfcam/{header}.hpp"] = name
+            header_module[f"lfcam/{name}/{header}.hpp"] = name
     return modules, header_module, problems
 
 
 def module_of_include(include, modules, header_module):
     if include in header_module:
         return header_module[include]
+    if include == UMBRELLA:
+        return None
     first = include.split("/", 1)[0]
     return first if first in modules and "/" in include else None
 
@@ -44,7 +47,7 @@ def check_file(path, module, modules, header_module, root):
     problems = []
     for include in INCLUDE.findall(path.read_text(errors="replace")):
         owner = module_of_include(include, modules, header_module)
-        if owner is None and include.startswith("lfcam/"):
+        if owner is None and include.startswith("lfcam/") and include != UMBRELLA:
             problems.append(f"{path.relative_to(root)}: includes {include}, which no module names")
         elif owner is not None and owner != module and owner not in modules[module]:
             allowed = " ".join(sorted(modules[module])) or "nothing"
@@ -62,11 +65,12 @@ def main(argv):
     files = []
     for module in modules:
         files += [(p, module) for p in sorted((root / "src" / module).glob("*.[ch]pp"))]
-    for header in sorted((root / "include" / "lfcam").glob("*.hpp")):
-        key = f"lfcam/{header.name}"
+    public = root / "include" / "lfcam"
+    for header in sorted(public.rglob("*.hpp")):
+        key = "lfcam/" + header.relative_to(public).as_posix()
         if key in header_module:
             files.append((header, header_module[key]))
-        else:
+        elif key != UMBRELLA:
             problems.append(f"include/{key}: a public header that no module names (CMakeLists.txt)")
     for pretend in argv[3:]:
         if pretend == "--pretend":

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "lfcam/decode.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/decode/decode.hpp"
+#include "lfcam/io/light_field_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

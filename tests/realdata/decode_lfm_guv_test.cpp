@@ -7,9 +7,9 @@
 #include <filesystem>
 
 #include "lenslet_means.hpp"
-#include "lfcam/calibrate.hpp"
-#include "lfcam/decode.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
+#include "lfcam/decode/decode.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

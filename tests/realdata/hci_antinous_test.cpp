@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "lfcam/focal_stack.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/render/focal_stack.hpp"
+#include "lfcam/render/refocus.hpp"
 #include "sharpness.hpp"
 #include "test_support.hpp"
 

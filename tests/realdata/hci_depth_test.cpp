@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "io/hci_parameters.hpp"
-#include "lfcam/all_in_focus.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/disparity_scores.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/point_cloud.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/edof/all_in_focus.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/edof/disparity_scores.hpp"
+#include "lfcam/edof/point_cloud.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/render/refocus.hpp"
 #include "sharpness.hpp"
 #include "test_support.hpp"
 

@@ -9,11 +9,11 @@
 #include <cstdio>
 #include <random>
 
-#include "lfcam/calibrate.hpp"
-#include "lfcam/decode.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
+#include "lfcam/decode/decode.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

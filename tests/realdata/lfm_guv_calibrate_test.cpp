@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "lfcam/calibrate.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
+#include "lfcam/io/image_io.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <utility>
 
-#include "lfcam/focal_stack.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/refocus.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/render/focal_stack.hpp"
+#include "lfcam/render/refocus.hpp"
 #include "sharpness.hpp"
 #include "test_support.hpp"
 

@@ -14,9 +14,9 @@
 #include <utility>
 
 #include "core/fftw_planner.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/upsampled_refocus.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/render/upsampled_refocus.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {

@@ -5,8 +5,8 @@
 
 #include <fstream>
 
-#include "lfcam/living_picture.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
+#include "lfcam/viewer/living_picture.hpp"
 #include "raw_io/lytro_contents.hpp"
 #include "raw_io/lytro_metadata.hpp"
 #include "test_support.hpp"

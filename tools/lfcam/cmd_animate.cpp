@@ -8,11 +8,11 @@
 #include <numbers>
 
 #include "commands.hpp"
+#include "core/atomic_file.hpp"
 #include "image_output.hpp"
-#include "lfcam/animation.hpp"
-#include "lfcam/atomic_file.hpp"
-#include "lfcam/focal_stack.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/render/animation.hpp"
+#include "lfcam/render/focal_stack.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {

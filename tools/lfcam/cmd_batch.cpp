@@ -8,7 +8,7 @@
 
 #include "commands.hpp"
 #include "dask_handover.hpp"
-#include "lfcam/batch_run.hpp"
+#include "lfcam/batch/batch_run.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {

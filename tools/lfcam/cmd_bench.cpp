@@ -20,11 +20,11 @@
 
 #include "commands.hpp"
 #include "core/memory_floor.hpp"
-#include "lfcam/focal_stack.hpp"
-#include "lfcam/fourier_slice.hpp"
-#include "lfcam/parallel.hpp"
-#include "lfcam/refocus.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/render/focal_stack.hpp"
+#include "lfcam/render/fourier_slice.hpp"
+#include "lfcam/render/refocus.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 
 namespace lfcam::cli {
 

@@ -7,8 +7,8 @@
 #include <optional>
 
 #include "commands.hpp"
-#include "lfcam/calibrate.hpp"
-#include "lfcam/raw_io.hpp"
+#include "lfcam/calibrate/calibrate.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "raw_input.hpp"
 
 namespace lfcam::cli {

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "lfcam/light_field_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
 #include "raw_input.hpp"
 
 namespace lfcam::cli {

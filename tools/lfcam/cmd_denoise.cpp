@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "lfcam/denoise.hpp"
+#include "lfcam/render/denoise.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {

@@ -10,11 +10,11 @@
 #include <variant>
 
 #include "commands.hpp"
-#include "lfcam/color_map.hpp"
-#include "lfcam/depth.hpp"
-#include "lfcam/depth_knobs.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/point_cloud.hpp"
+#include "lfcam/edof/depth.hpp"
+#include "lfcam/edof/depth_knobs.hpp"
+#include "lfcam/edof/point_cloud.hpp"
+#include "lfcam/io/color_map.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::cli {
 

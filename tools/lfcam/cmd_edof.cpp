@@ -7,9 +7,9 @@
 
 #include "commands.hpp"
 #include "image_output.hpp"
-#include "lfcam/all_in_focus.hpp"
-#include "lfcam/color_map.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/edof/all_in_focus.hpp"
+#include "lfcam/io/color_map.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::cli {
 

@@ -2,7 +2,7 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "lfcam/experiments.hpp"
+#include "lfcam/experiments/experiments.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {

@@ -6,7 +6,7 @@
 #include "raw_io/lytro_container.hpp"
 
 #include "commands.hpp"
-#include "lfcam/living_picture.hpp"
+#include "lfcam/viewer/living_picture.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {

@@ -4,7 +4,7 @@
 
 #include "commands.hpp"
 #include "image_output.hpp"
-#include "lfcam/synthetic_camera.hpp"
+#include "lfcam/render/synthetic_camera.hpp"
 
 namespace lfcam::cli {
 

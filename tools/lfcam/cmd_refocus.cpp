@@ -9,8 +9,8 @@
 
 #include "commands.hpp"
 #include "image_output.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/photo_request.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/photo/photo_request.hpp"
 #include "photo_options.hpp"
 
 namespace lfcam::cli {

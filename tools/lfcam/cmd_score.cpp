@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "lfcam/disparity_scores.hpp"
-#include "lfcam/image_io.hpp"
+#include "lfcam/edof/disparity_scores.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::cli {
 namespace {

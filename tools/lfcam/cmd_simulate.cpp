@@ -3,10 +3,10 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "lfcam/raw_io.hpp"
-#include "lfcam/scene.hpp"
-#include "lfcam/simulate.hpp"
-#include "lfcam/simulate_setup.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
+#include "lfcam/simulate/simulate_setup.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {

@@ -4,9 +4,9 @@
 
 #include "commands.hpp"
 #include "image_output.hpp"
-#include "lfcam/focal_stack.hpp"
-#include "lfcam/focal_stack_output.hpp"
-#include "lfcam/photo_request.hpp"
+#include "lfcam/photo/photo_request.hpp"
+#include "lfcam/render/focal_stack.hpp"
+#include "photo/focal_stack_output.hpp"
 #include "photo_options.hpp"
 #include "progress_bar.hpp"
 

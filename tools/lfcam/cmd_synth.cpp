@@ -3,8 +3,8 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "lfcam/image_io.hpp"
-#include "lfcam/layered_planes.hpp"
+#include "lfcam/io/image_io.hpp"
+#include "lfcam/synth/layered_planes.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {

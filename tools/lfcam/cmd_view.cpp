@@ -5,9 +5,9 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "lfcam/living_picture.hpp"
-#include "lfcam/viewer.hpp"
-#include "lfcam/viewer_server.hpp"
+#include "lfcam/viewer/living_picture.hpp"
+#include "lfcam/viewer/viewer.hpp"
+#include "lfcam/viewer/viewer_server.hpp"
 #include "raw_io/lytro_container.hpp"
 
 namespace lfcam::cli {

@@ -6,7 +6,7 @@
 
 #include "commands.hpp"
 #include "image_output.hpp"
-#include "lfcam/contact_sheet.hpp"
+#include "lfcam/render/contact_sheet.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {

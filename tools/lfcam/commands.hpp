@@ -10,10 +10,10 @@
 #include <optional>
 #include <string>
 
-#include "lfcam/decode.hpp"
-#include "lfcam/light_field.hpp"
-#include "lfcam/light_field_io.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/decode/decode.hpp"
+#include "lfcam/io/light_field_io.hpp"
 
 namespace lfcam::cli {
 

@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "lfcam/batch_plan.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/batch/batch_plan.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam::cli {
 

@@ -13,8 +13,8 @@
 #include <filesystem>
 #include <string>
 
-#include "lfcam/image_io.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam::cli {
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
 
 namespace lfcam::cli {
 

@@ -6,7 +6,7 @@
 
 #include "command_help.hpp"
 #include "commands.hpp"
-#include "lfcam/parallel.hpp"
+#include "core/parallel.hpp"
 
 int main(int argc, char** argv) {
   using namespace lfcam;

@@ -1,7 +1,7 @@
 // --memory-limit (or LFCAM_MEMORY_LIMIT): the budget every reader checks before allocating
 // (lfcam/memory_budget.hpp). A bad value is a usage error (exit 2).
 #include "commands.hpp"
-#include "lfcam/memory_budget.hpp"
+#include "core/memory_budget.hpp"
 
 namespace lfcam::cli {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "lfcam/photo_request.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/photo/photo_request.hpp"
 
 namespace lfcam::cli {
 

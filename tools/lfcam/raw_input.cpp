@@ -5,7 +5,7 @@
 #include <map>
 #include <utility>
 
-#include "lfcam/raw_io.hpp"
+#include "lfcam/raw_io/raw_io.hpp"
 #include "progress_bar.hpp"
 
 namespace lfcam::cli {

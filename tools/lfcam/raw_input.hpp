@@ -6,11 +6,11 @@
 #include <optional>
 #include <string>
 
-#include "lfcam/camera_model.hpp"
-#include "lfcam/decode.hpp"
-#include "lfcam/decode_files.hpp"
-#include "lfcam/light_field.hpp"
-#include "lfcam/result.hpp"
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/decode/decode.hpp"
+#include "lfcam/decode/decode_files.hpp"
+#include "lfcam/simulate/camera_model.hpp"
 
 namespace lfcam::cli {
 

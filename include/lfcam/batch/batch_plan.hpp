@@ -1,0 +1,61 @@
+// What a batch (`lfcam batch`, lfcam.batch in Python) is asked to do, checked before any work: the
+// steps applied to every capture, the captures the INPUT arguments stand for (globs expanded,
+// folders of inputs listed), and the spec file that may stand for the flags.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lfcam/core/result.hpp"
+
+namespace lfcam {
+
+// One step and the files it writes under the capture's output folder.
+struct BatchStep {
+  enum class Kind { Refocus, Stack, Edof, Depth, Page } kind;
+  std::string text;            // as given, e.g. "refocus:0.5"; recorded in the done-marker
+  double slope = 0;            // refocus
+  std::vector<double> slopes;  // stack
+  std::vector<std::string> outputs() const;
+};
+
+// "refocus:SLOPE,stack:FROM:TO:N,edof,depth,page" -> steps; a Usage error naming the bad one.
+Result<std::vector<BatchStep>> parseBatchSteps(const std::vector<std::string>& texts);
+
+struct BatchCapture {
+  std::filesystem::path input;
+  std::string name;  // its output folder under OUTDIR: the input's name without extensions
+};
+
+// Each INPUT: a light-field file or folder, a raw, a glob (expanded here; matching nothing is a
+// Usage error), or a folder of inputs (its entries that are files or light-field folders, the
+// `excluded` ones — the white and dark images — left out). Two captures of one name are a Usage error.
+Result<std::vector<BatchCapture>> expandBatchInputs(const std::vector<std::string>& inputs,
+                                                    const std::vector<std::filesystem::path>& excluded);
+
+// The flags a spec file may stand for; those absent stay empty.
+struct BatchSpec {
+  std::vector<std::string> inputs, steps;
+  std::optional<std::string> output, white, report, dask;
+  std::optional<int> jobs;
+};
+// A JSON object of those keys; an unknown key or wrong type is a Usage error naming the file and the key.
+Result<BatchSpec> readBatchSpec(const std::filesystem::path& file);
+
+// A whole batch as given (flags or spec already merged), and as checked and expanded.
+struct BatchRequest {
+  std::vector<std::string> inputs, steps;
+  std::string output, white, report;  // report empty: OUTDIR/batch-report.json
+};
+struct BatchPlan {
+  std::vector<BatchCapture> captures;
+  std::vector<BatchStep> steps;
+  std::filesystem::path output, white, report;
+};
+// Usage errors for a missing output, input or step, an unknown step, a white image that is not a
+// file, a glob that matches nothing; the white image and OUTDIR are never taken as captures.
+Result<BatchPlan> planBatch(const BatchRequest& request);
+
+}  // namespace lfcam

@@ -1,0 +1,28 @@
+// Decoding from files: a raw lenslet image with its white image, dark frame and grid as files, the
+// way `lfcam decode`, every command that decodes a raw on the way, and the Python package take
+// them. Reads each file (raw_io.hpp), checks that the frames match the raw's size, calibrates the
+// grid from the white image when no grid file is given (calibrate.hpp), then decodes (decode.hpp).
+// Errors name the file that is wrong.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/progress.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/core/sensor_layout.hpp"
+#include "lfcam/decode/decode.hpp"
+
+namespace lfcam {
+
+struct RawFiles {
+  std::string raw, white, dark, grid;  // grid: a grid.json; empty: calibrated from the white image
+  std::optional<ColorFilter> bayer;    // overrides what the raw says
+  std::optional<double> blackLevel;    // DN, overrides what the raw and white say; a dark frame wins
+  DecodeOptions decode;                // its white and dark are filled from the files; optics from the raw
+};
+
+Result<LightField> decodeRawFiles(RawFiles files, const ProgressCallback& progress = {});
+
+}  // namespace lfcam
