@@ -64,6 +64,7 @@ void bindBatch(py::module_& m) {
       .def_property_readonly("output", [](const BatchPlan& plan) { return plan.output.string(); })
       .def_property_readonly("white", [](const BatchPlan& plan) { return plan.white.string(); })
       .def_property_readonly("report", [](const BatchPlan& plan) { return plan.report.string(); });
+  m.def("_split_batch_steps", &splitBatchSteps, "Steps from a comma-separated string (splitBatchSteps).");
   m.def(
       "_batch_plan",
       [](std::vector<std::string> inputs, std::string output, std::vector<std::string> steps, std::string white,

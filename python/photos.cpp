@@ -141,6 +141,17 @@ void bindPhotos(py::module_& m) {
       ("A focal stack: one photograph per slope (or alpha), through the same aperture. Keywords:" +
        fieldsHelp(stackGroups))
           .c_str());
+  m.def(
+      "observer",
+      [](const LightField& lf, double u, double v, double beta, bool clamp) {
+        const PhotoRequest request{
+            .slope = 0.0, .aperture = 0.0, .apertureCentre = std::array<double, 2>{u, v}, .clamp = clamp, .beta = beta};
+        return interruptible([&] { return valueOrThrow(renderPhoto(lf, request)); });
+      },
+      py::arg("light_field"), py::arg("u"), py::arg("v"), py::kw_only(), py::arg("beta") = 1.0,
+      py::arg("clamp") = false,
+      "The view of a pinhole at (u, v) view steps from the centre, moved along the axis by beta (Equation 7): "
+      "refocus(light_field, 0, aperture=0, aperture_centre=(u, v), beta=beta, clamp=clamp).");
 }
 
 }  // namespace lfcam::python

@@ -164,22 +164,6 @@ void bindPipeline(py::module_& m) {
       "Decodes a raw lenslet image into a light field; the grid is calibrated from the white image when no grid "
       "file is given. progress: as read's.");
 
-  m.def(
-      "observer",
-      [](const LightField& lf, double u, double v, double beta, bool clamp) {
-        Observer observer{.u = u, .v = v, .beta = beta, .clampToLens = clamp};
-        if (beta != 1) {
-          if (!lf.metadata.optics)
-            throw LibraryError(ErrorCode::Usage,
-                               "observer: the light field has no optics metadata, so beta must stay 1");
-          observer.parallax = lf.metadata.optics->lensStepMm / lf.metadata.optics->spatialStepMm;
-        }
-        return interruptible([&] { return valueOrThrow(observe(lf, observer)); });
-      },
-      py::arg("light_field"), py::arg("u"), py::arg("v"), py::kw_only(), py::arg("beta") = 1.0,
-      py::arg("clamp") = false,
-      "The view of a pinhole at (u, v) view steps from the centre, moved along the axis by beta (Equation 7).");
-
   py::class_<DepthMap>(m, "DepthMap", "A disparity map of the centre view and its confidence.")
       .def_readonly("disparity", &DepthMap::disparity)  // a view: kept alive by its DepthMap
       .def_readonly("confidence", &DepthMap::confidence)

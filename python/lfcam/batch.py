@@ -48,7 +48,8 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
     inputs: a path or a list of them: light-field files or folders, raws (with `white`), folders of
         inputs, or globs (expanded here; one matching nothing is a UsageError).
     output: OUTDIR; each capture writes under OUTDIR/<input's name>/.
-    steps: a list, or a comma-separated string, of refocus:SLOPE, stack:FROM:TO:N, edof, depth, page.
+    steps: a list, or a comma-separated string, of refocus:SLOPE, stack:FROM:TO:N, edof, depth, page,
+        photo:NAME?FIELD=TEXT&... (any photograph: lfcam.photo_fields()).
     white: the inputs are raw lenslet images of this white image, decoded on the way.
     jobs: captures at once on this machine (default: half the cores, 1 to 4); not used with `client`.
     report: the report's file (default: OUTDIR/batch-report.json).
@@ -62,7 +63,7 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
     if isinstance(inputs, (str, os.PathLike)):
         inputs = [inputs]
     if isinstance(steps, str):
-        steps = steps.split(",")
+        steps = _lfcam._split_batch_steps(steps)
     plan = _lfcam._batch_plan([os.fspath(i) for i in inputs], os.fspath(output), list(steps),
                               os.fspath(white) if white else "", os.fspath(report) if report else "")
     if client is None:

@@ -70,6 +70,10 @@ Status runStep(const BatchStep& step, const LightField& lightField, const fs::pa
                              renderPhoto(lightField, PhotoRequest{.slope = step.slope}, {.inputName = input.string()}));
       return writeImage(folder / step.outputs().front(), photo);
     }
+    case BatchStep::Kind::Photo: {
+      LFCAM_ASSIGN_OR_RETURN(auto photo, renderPhoto(lightField, step.photo, {.inputName = input.string()}));
+      return writeImage(folder / step.outputs().front(), photo);
+    }
     case BatchStep::Kind::Stack: {
       LFCAM_ASSIGN_OR_RETURN(auto camera,
                              resolvePhoto(PhotoRequest{.slope = 0.0}, lightField, {.inputName = input.string()}));

@@ -3,8 +3,10 @@
 #include <glob.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <set>
@@ -20,6 +22,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr std::array<const char*, 6> kStepNames{"refocus", "stack", "edof", "depth", "page", "photo"};
+
 Result<BatchStep> parseBatchStep(const std::string& text) {
   const std::string name = text.substr(0, text.find(':'));
   const std::string argument = text.find(':') == std::string::npos ? "" : text.substr(text.find(':') + 1);
@@ -33,6 +37,28 @@ Result<BatchStep> parseBatchStep(const std::string& text) {
       return usage("refocus:SLOPE");
     return BatchStep{.kind = BatchStep::Kind::Refocus, .text = text, .slope = slope};
   }
+  if (name == "photo") {
+    const std::string form = "photo:NAME?FIELD=TEXT&... (NAME of letters, digits, - and _)";
+    const auto question = argument.find('?');
+    BatchStep step{.kind = BatchStep::Kind::Photo, .text = text, .name = argument.substr(0, question)};
+    if (step.name.empty() || question == std::string::npos ||
+        step.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_") !=
+            std::string::npos)
+      return usage(form);
+    std::string fields = argument.substr(question + 1);
+    for (std::size_t start = 0; start <= fields.size();) {
+      const std::size_t end = std::min(fields.find('&', start), fields.size());
+      const std::string field = fields.substr(start, end - start);
+      const auto equals = field.find('=');
+      if (equals == std::string::npos) return usage(form);
+      if (Status set = setPhotoField(step.photo, field.substr(0, equals), field.substr(equals + 1)); !set)
+        return makeError(set.error().code, "--steps: '" + text + "': " + set.error().message);
+      start = end + 1;
+    }
+    if (Status checked = checkPhotoRequest(step.photo); !checked)
+      return makeError(ErrorCode::Usage, "--steps: '" + text + "': " + checked.error().message);
+    return step;
+  }
   if (name == "stack") {
     auto slopes = parseEvenlySpaced(argument, "--steps stack");
     if (!slopes) return usage("stack:FROM:TO:N (N 1 to 100000)");
@@ -43,7 +69,8 @@ Result<BatchStep> parseBatchStep(const std::string& text) {
   const auto found = plain.find(name);
   if (found == plain.end())
     return makeError(ErrorCode::Usage,
-                     "--steps: unknown step '" + text + "' (refocus:SLOPE, stack:FROM:TO:N, edof, depth, page)");
+                     "--steps: unknown step '" + text +
+                         "' (refocus:SLOPE, stack:FROM:TO:N, edof, depth, page, photo:NAME?FIELD=TEXT&...)");
   if (!argument.empty() || text.find(':') != std::string::npos) return usage(name + " without an argument");
   return BatchStep{.kind = found->second, .text = text};
 }
@@ -82,8 +109,28 @@ std::vector<std::string> BatchStep::outputs() const {
     case Kind::Edof: return {"all-in-focus.png"};
     case Kind::Depth: return {"depth.pfm", "depth.png"};
     case Kind::Page: return {"page.html"};
+    case Kind::Photo: return {"photo_" + name + ".png"};
   }
   return {};
+}
+
+std::vector<std::string> splitBatchSteps(const std::string& text) {
+  std::vector<std::string> steps;
+  std::size_t start = 0;
+  for (std::size_t comma = text.find(','); comma != std::string::npos; comma = text.find(',', comma + 1)) {
+    // Inside a photograph's fields, only a comma that a step's name follows ends it.
+    const std::string next = text.substr(comma + 1);
+    const bool startsAStep = std::any_of(kStepNames.begin(), kStepNames.end(), [&](const char* name) {
+      const std::size_t length = std::strlen(name);
+      return next.compare(0, length, name) == 0 &&
+             (next.size() == length || next[length] == ':' || next[length] == ',');
+    });
+    if (text.compare(start, 6, "photo:") == 0 && !startsAStep) continue;
+    steps.push_back(text.substr(start, comma - start));
+    start = comma + 1;
+  }
+  steps.push_back(text.substr(start));
+  return steps;
 }
 
 Result<std::vector<BatchStep>> parseBatchSteps(const std::vector<std::string>& texts) {

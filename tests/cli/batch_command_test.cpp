@@ -144,6 +144,10 @@ TEST(CliBatch, BadArgumentsAreOneLineUsageErrors) {
       {{"batch", inputs.string(), "-o", out.string(), "--steps", "edof,sharpen"}, "unknown step 'sharpen'"},
       {{"batch", inputs.string(), "-o", out.string(), "--steps", "refocus:near"}, "refocus:SLOPE"},
       {{"batch", inputs.string(), "-o", out.string(), "--steps", "stack:0:1"}, "stack:FROM:TO:N"},
+      {{"batch", inputs.string(), "-o", out.string(), "--steps", "photo:p?slope=1&f-number=0.5"},
+       "'photo:p?slope=1&f-number=0.5': f-number: must be 1 (the whole lens) or more"},
+      {{"batch", inputs.string(), "-o", out.string(), "--steps", "photo:p?tilt=1"}, "give the focus"},
+      {{"batch", inputs.string(), "-o", out.string(), "--steps", "photo:a/b?slope=1"}, "photo:NAME?FIELD=TEXT"},
       {{"batch", (dir / "*.lfp").string(), "-o", out.string(), "--steps", "edof"},
        (dir / "*.lfp").string() + ": no file matches"},
       {{"batch", "--spec", (dir / "spec.json").string()}, (dir / "spec.json").string() + ": unknown key 'stpes'"},
@@ -155,6 +159,24 @@ TEST(CliBatch, BadArgumentsAreOneLineUsageErrors) {
     EXPECT_NE(result.err.find(message), std::string::npos) << result.err;
     EXPECT_FALSE(fs::exists(out)) << args.back();
   }
+}
+
+// A photograph step is any photograph request, named: its fields' commas do not split --steps, and
+// the file is the one lfcam refocus writes with the same flags.
+TEST(CliBatch, APhotoStepIsAnyPhotographRequest) {
+  test::TempDir dir;
+  const fs::path inputs = makeTwoCaptures(dir), out = dir / "out";
+  const auto result = runLfcam({"batch", inputs.string(), "-o", out.string(), "--steps",
+                                "edof,photo:plane?focus-plane=5,5:30,8:20,30&f-number=2,refocus:0.5", "--jobs", "1"},
+                               dir.path());
+  ASSERT_EQ(result.exitStatus, 0) << result.err;
+  const auto single = runLfcam({"refocus", (inputs / "a.lf.h5").string(), "--focus-plane", "5,5:30,8:20,30",
+                                "--f-number", "2", "-o", (dir / "single.png").string()},
+                               dir.path());
+  ASSERT_EQ(single.exitStatus, 0) << single.err;
+  EXPECT_EQ(test::readBytes(out / "a" / "photo_plane.png"), test::readBytes(dir / "single.png"));
+  EXPECT_TRUE(fs::exists(out / "a" / "refocus_0.5.png"));
+  EXPECT_TRUE(fs::exists(out / "a" / "all-in-focus.png"));
 }
 
 }  // namespace

@@ -132,3 +132,9 @@ def test_simulate_writes_the_commands_capture(tmp_path):
     with pytest.raises(lfcam.Error, match="no-such-scene"):
         lfcam.simulate("no-such-scene.json", tmp_path / "bad")
     assert not (tmp_path / "bad").exists()
+
+
+def test_a_string_of_steps_splits_where_a_step_starts_not_inside_a_photographs_fields():
+    from lfcam import _lfcam
+    assert _lfcam._split_batch_steps("edof,photo:p?focus-plane=1,2:3,4:5,6&f-number=2,refocus:0.5,page") == [
+        "edof", "photo:p?focus-plane=1,2:3,4:5,6&f-number=2", "refocus:0.5", "page"]

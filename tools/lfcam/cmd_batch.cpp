@@ -25,12 +25,11 @@ void addBatchCommand(CLI::App& app, Job& job) {
   command->add_option("INPUT", options->inputs,
                       "light-field files or folders, raws (with --white), folders of them, or globs (quoted)");
   command->add_option("-o,--output", options->output, "output folder: OUTDIR/<input's name>/ per capture");
-  command
-      ->add_option("--steps", options->steps,
-                   "comma-separated: refocus:SLOPE (refocus_SLOPE.png), stack:FROM:TO:N (stack/slice_NNN.png, "
-                   "stack/stack.json), edof (all-in-focus.png), depth (depth.pfm, depth.png), page (page.html, the "
-                   "living picture of export-html)")
-      ->delimiter(',');
+  command->add_option("--steps", options->steps,
+                      "comma-separated: refocus:SLOPE (refocus_SLOPE.png), stack:FROM:TO:N (stack/slice_NNN.png, "
+                      "stack/stack.json), edof (all-in-focus.png), depth (depth.pfm, depth.png), page (page.html, the "
+                      "living picture of export-html), photo:NAME?FIELD=TEXT&... (photo_NAME.png: any photograph, "
+                      "its fields lfcam refocus's flags without the dashes, e.g. photo:tilt?slope=0.5&tilt=1)");
   command->add_option("--white", options->white, "the inputs are raw lenslet images of this white image");
   command->add_option("--jobs", options->jobs, "captures at once on this machine (default: half the cores, 1 to 4)")
       ->check(CLI::Range(1, 256));
@@ -51,8 +50,11 @@ void addBatchCommand(CLI::App& app, Job& job) {
                               const std::optional<std::string>& fromSpec) {
         return command->count(flag) > 0 || !fromSpec ? value : *fromSpec;
       };
+      std::vector<std::string> steps;  // each --steps split at the commas that start a step
+      for (const std::string& text : options->steps)
+        for (std::string& step : splitBatchSteps(text)) steps.push_back(std::move(step));
       const BatchRequest request{.inputs = options->inputs.empty() ? spec.inputs : options->inputs,
-                                 .steps = options->steps.empty() ? spec.steps : options->steps,
+                                 .steps = options->steps.empty() ? spec.steps : steps,
                                  .output = flagOr("--output", options->output, spec.output),
                                  .white = flagOr("--white", options->white, spec.white),
                                  .report = flagOr("--report", options->report, spec.report)};

@@ -1,10 +1,12 @@
 // lfcam observer INPUT --u U --v V [--beta B] [--clamp] -o OUT: the photograph of a pinhole moved
-// within the lens plane (parallax) and along the axis (beta, perspective): Equation 7.
+// within the lens plane (parallax) and along the axis (beta, perspective): Equation 7, the
+// photograph request (photo_request.hpp) of a pinhole aperture at (U, V) on the real film plane.
+#include <array>
 #include <memory>
 
 #include "commands.hpp"
 #include "image_output.hpp"
-#include "lfcam/render/synthetic_camera.hpp"
+#include "lfcam/photo/photo_request.hpp"
 
 namespace lfcam::cli {
 
@@ -28,18 +30,15 @@ void addObserverCommand(CLI::App& app, Job& job) {
   addBitDepthOption(*command, options->depth);
   command->callback([options, &job] {
     job = [options]() -> Status {
+      const PhotoRequest request{.slope = 0.0,
+                                 .aperture = 0.0,
+                                 .apertureCentre = std::array<double, 2>{options->u, options->v},
+                                 .clamp = options->clamp,
+                                 .beta = options->beta};
+      LFCAM_TRY(checkPhotoRequest(request));
       LFCAM_ASSIGN_OR_RETURN(auto writeOptions, imageWriteOptionsFor(options->output, options->depth));
       LFCAM_ASSIGN_OR_RETURN(auto lightField, loadInput(options->input));
-      Observer observer{.u = options->u, .v = options->v, .beta = options->beta, .clampToLens = options->clamp};
-      if (options->beta != 1) {
-        const auto& optics = lightField.metadata.optics;
-        if (!optics)
-          return makeError(
-              ErrorCode::Usage,
-              options->input.path + ": no optics metadata, so the observer cannot move along the axis (--beta)");
-        observer.parallax = optics->lensStepMm / optics->spatialStepMm;
-      }
-      LFCAM_ASSIGN_OR_RETURN(auto photo, observe(lightField, observer));
+      LFCAM_ASSIGN_OR_RETURN(auto photo, renderPhoto(lightField, request, {.inputName = options->input.path}));
       return writeImage(options->output, photo, writeOptions);
     };
   });

@@ -9,20 +9,31 @@
 #include <vector>
 
 #include "lfcam/core/result.hpp"
+#include "lfcam/photo/photo_request.hpp"
 
 namespace lfcam {
 
 // One step and the files it writes under the capture's output folder.
 struct BatchStep {
-  enum class Kind { Refocus, Stack, Edof, Depth, Page } kind;
+  enum class Kind { Refocus, Stack, Edof, Depth, Page, Photo } kind;
   std::string text;            // as given, e.g. "refocus:0.5"; recorded in the done-marker
   double slope = 0;            // refocus
   std::vector<double> slopes;  // stack
+  std::string name;            // photo: its output is photo_NAME.png
+  PhotoRequest photo;          // photo
   std::vector<std::string> outputs() const;
 };
 
-// "refocus:SLOPE,stack:FROM:TO:N,edof,depth,page" -> steps; a Usage error naming the bad one.
+// "refocus:SLOPE", "stack:FROM:TO:N", "edof", "depth", "page", or "photo:NAME?FIELD=TEXT&FIELD=TEXT..."
+// (any photograph, its fields those of photo_request.hpp, as the viewer's query takes them, e.g.
+// photo:tilted?slope=0.5&tilt=1&f-number=2) -> steps; a Usage error naming the bad one, in the
+// request's own words for a photograph it refuses.
 Result<std::vector<BatchStep>> parseBatchSteps(const std::vector<std::string>& texts);
+
+// "refocus:0.5,photo:p?focus-plane=1,2:3,4:5,6,edof" -> its steps: split at every comma but those
+// inside a photograph's fields, where only a comma followed by a step's name ends the step (the
+// command line's --steps, Python's string).
+std::vector<std::string> splitBatchSteps(const std::string& text);
 
 struct BatchCapture {
   std::filesystem::path input;
