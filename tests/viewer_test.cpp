@@ -16,6 +16,7 @@
 
 #include "lfcam/edof/depth.hpp"
 #include "lfcam/io/image_io.hpp"
+#include "lfcam/photo/photo_request.hpp"
 #include "lfcam/render/focus_spread.hpp"
 #include "lfcam/render/upsampled_refocus.hpp"
 #include "lfcam/synth/layered_planes.hpp"
@@ -424,6 +425,37 @@ TEST(LivingPicture, OpensFocusedOnTheSubjectInTheCentre) {
     ASSERT_NE(nearest, int(distance.size()) / 2);
     EXPECT_EQ(data["openingSlice"], nearest) << "subject at slope " << subject;
   }
+}
+
+// Every photograph of the page carries its request in the table's words (photo_request.hpp), and is
+// that request's photograph: the page's controls show requests the CLI, Python and the viewer take.
+TEST(LivingPicture, EveryPhotographIsItsRequestsPhotograph) {
+  auto scene = smallScene();
+  auto html =
+      makeLivingPicture(scene.lightField, {.maxSlices = 5, .sweepFrames = 3, .jpegQuality = 70, .rangeEnds = 0});
+  ASSERT_TRUE(html.ok()) << html.error().message;
+  const auto data = pageData(*html);
+  int checked = 0;
+  for (const char* list : {"slices", "smallApertureSlices", "sweep"})
+    for (const auto& photo : data[list]) {
+      const std::string text = photo["request"];
+      PhotoRequest request;
+      for (std::size_t start = 0; start <= text.size();) {
+        const std::size_t end = std::min(text.find('&', start), text.size());
+        const std::string field = text.substr(start, end - start);
+        ASSERT_TRUE(setPhotoField(request, field.substr(0, field.find('=')), field.substr(field.find('=') + 1)).ok())
+            << text;
+        start = end + 1;
+      }
+      auto rendered = renderPhoto(scene.lightField, request);
+      ASSERT_TRUE(rendered.ok()) << text;
+      auto jpeg = encodeImage(*rendered, {.format = EncodedFormat::Jpeg, .jpegQuality = 70});
+      ASSERT_TRUE(jpeg.ok());
+      EXPECT_EQ(photo["image"].get<std::string>(), "data:image/jpeg;base64," + base64Encode(*jpeg)) << text;
+      ++checked;
+    }
+  EXPECT_EQ(checked, 5 + 5 + 3);
+  EXPECT_NE(data["sweep"][0]["request"].get<std::string>().find("clamp=true"), std::string::npos);
 }
 
 TEST(LivingPicture, FocusRangesAreTheLibrarysFocusSpreadOverTheStacksSlopes) {

@@ -7,7 +7,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -15,9 +18,7 @@
 #include "core/atomic_file.hpp"
 #include "lfcam/edof/all_in_focus.hpp"
 #include "lfcam/edof/depth.hpp"
-#include "lfcam/render/focal_stack.hpp"
-#include "lfcam/render/focus_spread.hpp"
-#include "lfcam/render/synthetic_camera.hpp"
+#include "lfcam/photo/photo_request.hpp"
 #include "viewer/image_encode.hpp"
 #include "viewer/viewer_assets.hpp"
 
@@ -30,6 +31,32 @@ constexpr std::string_view placeholder = "{{LFCAM_DATA}}", stylePlaceholder = "{
 Result<std::string> dataUrl(const Image& image, int quality) {
   LFCAM_ASSIGN_OR_RETURN(auto jpeg, encodeImage(image, {.format = EncodedFormat::Jpeg, .jpegQuality = quality}));
   return "data:image/jpeg;base64," + base64Encode(jpeg);
+}
+
+// A number as text that reads back to the same double.
+std::string exact(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+// One photograph of the page rendered from its photograph request (photo_request.hpp), given as
+// the fields' name=text pairs; the request's text is kept beside the image (as the viewer's query:
+// lfcam view answers /api/image?TEXT with the same photograph), so that every control of the page
+// shows a request of the one table. `depth`: a focus range's map.
+Result<nlohmann::json> requestedPhoto(const LightField& lightField,
+                                      const std::vector<std::pair<std::string, std::string>>& fields,
+                                      const std::shared_ptr<const Image>& depth, int quality) {
+  PhotoRequest request;
+  std::string text;
+  for (const auto& [name, value] : fields) {
+    LFCAM_TRY(setPhotoField(request, name, value));
+    text += (text.empty() ? "" : "&") + name + "=" + value;
+  }
+  request.depth = depth;
+  LFCAM_ASSIGN_OR_RETURN(auto photo, renderPhoto(lightField, request));
+  LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(photo, quality));
+  return nlohmann::json{{"request", text}, {"image", url}};
 }
 
 // The page template with `data` in its slot: JSON inside a <script> element, '<' escaped so that
@@ -99,16 +126,20 @@ Status addFocusRanges(const LightField& lightField, const std::vector<double>& s
   DepthOptions depthOptions;
   depthOptions.disparityMin = slopes.front();
   depthOptions.disparityMax = slopes.back();
-  LFCAM_ASSIGN_OR_RETURN(auto depth, estimateDepth(lightField, depthOptions));
+  LFCAM_ASSIGN_OR_RETURN(auto estimated, estimateDepth(lightField, depthOptions));
+  const auto depth = std::make_shared<const Image>(std::move(estimated.disparity));
   report(0.5);
   nlohmann::json stops = nlohmann::json::array(), ranges = nlohmann::json::array();
   for (int i = 0; i < ends; ++i) stops.push_back(int(std::lround(double(i) * (slices - 1) / (ends - 1))));
   for (int far = 0; far < ends; ++far)
     for (int near = far + 1; near < ends; ++near) {
       const double farSlope = slopes[stops[far].get<int>()], nearSlope = slopes[stops[near].get<int>()];
-      LFCAM_ASSIGN_OR_RETURN(auto photo, refocusSpread(lightField, depth.disparity, farSlope, nearSlope));
-      LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(photo, options.jpegQuality));
-      ranges.push_back({{"far", far}, {"near", near}, {"image", url}});
+      LFCAM_ASSIGN_OR_RETURN(
+          auto range, requestedPhoto(lightField, {{"focus-range", exact(nearSlope) + ":" + exact(farSlope)}}, depth,
+                                     options.jpegQuality));
+      range["far"] = far;
+      range["near"] = near;
+      ranges.push_back(std::move(range));
       report(0.5 + 0.5 * double(ranges.size()) / (ends * (ends - 1) / 2));
     }
   data["rangeStops"] = std::move(stops);
@@ -158,16 +189,15 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   // field, as stopping a lens down gives).
   const int stacks = options.smallAperture ? 2 : 1;
   for (int stack = 0; stack < stacks; ++stack) {
-    SyntheticCamera camera;
-    if (stack == 1) camera.aperture = Aperture::circle(smallApertureRadius(lightField));
     nlohmann::json slices = nlohmann::json::array();
-    LFCAM_TRY(renderFocalStack(lightField, slopes, camera, RenderOptions{},
-                               [&](int i, double slope, Image&& photo) -> Status {
-                                 LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(photo, options.jpegQuality));
-                                 slices.push_back({{"slope", slope}, {"image", url}});
-                                 report(0.4 + 0.4 * (stack * slopes.size() + i + 1) / double(stacks * slopes.size()));
-                                 return {};
-                               }));
+    for (std::size_t i = 0; i < slopes.size(); ++i) {
+      std::vector<std::pair<std::string, std::string>> fields{{"slope", exact(slopes[i])}};
+      if (stack == 1) fields.emplace_back("aperture", exact(smallApertureRadius(lightField)));
+      LFCAM_ASSIGN_OR_RETURN(auto slice, requestedPhoto(lightField, fields, nullptr, options.jpegQuality));
+      slice["slope"] = slopes[i];
+      slices.push_back(std::move(slice));
+      report(0.4 + 0.4 * (stack * slopes.size() + i + 1) / double(stacks * slopes.size()));
+    }
     data[stack == 0 ? "slices" : "smallApertureSlices"] = std::move(slices);
   }
   if (options.smallAperture) data["smallApertureRadius"] = smallApertureRadius(lightField);
@@ -178,10 +208,16 @@ Result<std::string> makeLivingPicture(const LightField& lightField, const Living
   const double ru = 0.4 * (lightField.nu() - 1), rv = 0.4 * (lightField.nv() - 1);
   for (int k = 0; k < options.sweepFrames; ++k) {
     const double angle = 2 * std::numbers::pi * k / options.sweepFrames;
-    Observer observer{.u = ru * std::cos(angle), .v = rv * std::sin(angle), .clampToLens = true};
-    LFCAM_ASSIGN_OR_RETURN(auto view, observe(lightField, observer));
-    LFCAM_ASSIGN_OR_RETURN(auto url, dataUrl(view, options.jpegQuality));
-    sweep.push_back({{"u", observer.u}, {"v", observer.v}, {"image", url}});
+    const double u = ru * std::cos(angle), v = rv * std::sin(angle);
+    LFCAM_ASSIGN_OR_RETURN(
+        auto view,
+        requestedPhoto(
+            lightField,
+            {{"slope", "0"}, {"aperture", "0"}, {"aperture-centre", exact(u) + "," + exact(v)}, {"clamp", "true"}},
+            nullptr, options.jpegQuality));
+    view["u"] = u;
+    view["v"] = v;
+    sweep.push_back(std::move(view));
     report(0.8 + 0.1 * (k + 1) / options.sweepFrames);
   }
   data["sweep"] = std::move(sweep);
