@@ -275,6 +275,24 @@ TEST(CliRender, TheTableOfRefusalsIsRefusedWithItsLine) {
     EXPECT_NE(result.err.find(entry.at("message").get<std::string>()), std::string::npos) << result.err;
   }
   EXPECT_FALSE(fs::exists(out));
+  // The refusals that need a file (not viewer parameters): a mask of other proportions than the
+  // lens, a depth map of another size; Python's test gives its arrays the same lines.
+  ASSERT_TRUE(writeImage(dir / "mask.png", Image(64, 32, 1)).ok());
+  ASSERT_TRUE(writeImage(dir / "depth.pfm", Image(10, 10, 1)).ok());
+  const std::vector<std::pair<std::vector<std::string>, std::string>> files = {
+      {{"--slope", "1", "--aperture-mask", (dir / "mask.png").string()},
+       "aperture-mask: the mask is 64x32 pixels, the lens 5x5 views: it must have the lens's proportions"},
+      {{"--focus-range", "1:0", "--depth", (dir / "depth.pfm").string()},
+       "depth: focus spread: the disparity map is 10x10x1, the views 40x40 (one channel needed)"},
+  };
+  for (const auto& [extra, message] : files) {
+    std::vector<std::string> args{"refocus", input, "-o", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto result = runLfcam(args, dir.path());
+    EXPECT_EQ(result.exitStatus, 2) << result.err;
+    EXPECT_EQ(result.err, "lfcam: " + message + "\n");
+  }
+  EXPECT_FALSE(fs::exists(out));
 }
 
 // Combinations the command once refused render now: a tilt or a range through a stopped-down

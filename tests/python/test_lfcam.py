@@ -283,6 +283,14 @@ def test_the_table_of_refusals_is_refused_with_the_command_lines_line():
             lfcam.refocus(lf, **keywords)
         assert case["message"] in str(refused.value), (keywords, str(refused.value))
         assert "\n" not in str(refused.value)
+    # The refusals the command line gives for files (tests/cli/render_commands_test.cpp), for arrays.
+    with pytest.raises(lfcam.UsageError) as refused:
+        lfcam.refocus(lf, 1, aperture_mask=np.ones((32, 64), np.float32))
+    assert str(refused.value) == ("aperture-mask: the mask is 64x32 pixels, the lens 5x5 views: "
+                                  "it must have the lens's proportions")
+    with pytest.raises(lfcam.UsageError) as refused:
+        lfcam.refocus(lf, focus_range=(1, 0), depth=np.zeros((10, 10), np.float32))
+    assert str(refused.value) == "depth: focus spread: the disparity map is 10x10x1, the views 40x40 (one channel needed)"
 
 
 def test_every_combination_renders_from_python_values():
