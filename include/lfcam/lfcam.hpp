@@ -26,6 +26,7 @@
 #include "lfcam/io/color_map.hpp"
 #include "lfcam/io/image_io.hpp"
 #include "lfcam/io/light_field_io.hpp"
+#include "lfcam/lfm/optics.hpp"
 #include "lfcam/photo/photo_request.hpp"
 #include "lfcam/raw_io/raw_image.hpp"
 #include "lfcam/raw_io/raw_io.hpp"

@@ -1,0 +1,91 @@
+#include "lfcam/lfm/optics.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+namespace lfcam {
+
+namespace {
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+Error usage(std::string message) { return makeError(ErrorCode::Usage, std::move(message)); }
+
+}  // namespace
+
+Status validateLfmOptics(const LfmOptics& o) {
+  // Each length and ratio finite and positive; NaN fails every comparison, so `!(x > 0)`.
+  const std::pair<double, const char*> positives[] = {
+      {o.magnification, "magnification"},      {o.numericalAperture, "NA"},
+      {o.wavelengthNm, "wavelength"},          {o.tubeFocalLengthMm, "tube lens focal length"},
+      {o.microlensPitchUm, "microlens pitch"}, {o.microlensFocalLengthUm, "microlens focal length"},
+      {o.pixelSizeUm, "pixel size"},
+  };
+  for (const auto& [value, name] : positives)
+    if (!(value > 0) || !std::isfinite(value))
+      return usage(std::string(name) + " must be positive, got " + number(value));
+  if (!(o.immersionIndex >= 1) || !std::isfinite(o.immersionIndex))
+    return usage("immersion index " + number(o.immersionIndex) + " below 1: no medium is less dense than vacuum");
+  if (!(o.numericalAperture < o.immersionIndex))
+    return usage("NA " + number(o.numericalAperture) + " above the immersion index " + number(o.immersionIndex) +
+                 ": no light reaches the objective");
+  if (!(o.microlensFillFactor > 0 && o.microlensFillFactor <= 1))
+    return usage("microlens fill factor " + number(o.microlensFillFactor) + " outside (0, 1]");
+  if (o.supersample < 1 || o.supersample > 64)
+    return usage("supersample " + std::to_string(o.supersample) + " outside [1, 64]");
+  return {};
+}
+
+Result<LfmOptics> parseNapariLfOptics(const std::string& text, const std::string& where, const LfmOptics& defaults) {
+  nlohmann::json json = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded()) return makeError(ErrorCode::Format, where + ": not JSON");
+  if (!json.is_object() || !json.contains("calibrate") || !json["calibrate"].is_object())
+    return makeError(ErrorCode::Format, where + ": no \"calibrate\" section");
+  const nlohmann::json& section = json["calibrate"];
+  LfmOptics optics = defaults;
+  const std::pair<const char*, double*> keys[] = {
+      {"objective_magnification", &optics.magnification},
+      {"objective_na", &optics.numericalAperture},
+      {"medium_index", &optics.immersionIndex},
+      {"center_wavelength", &optics.wavelengthNm},
+      {"tubelens_focal_length", &optics.tubeFocalLengthMm},
+      {"ulens_pitch", &optics.microlensPitchUm},
+      {"ulens_focal_length", &optics.microlensFocalLengthUm},
+      {"ulens_fill_factor", &optics.microlensFillFactor},
+      {"pixel_size", &optics.pixelSizeUm},
+  };
+  for (const auto& [key, out] : keys) {
+    if (!section.contains(key)) continue;
+    if (!section[key].is_number())
+      return makeError(ErrorCode::Format, where + ": calibrate." + key + ": expected a number");
+    *out = section[key].get<double>();
+  }
+  if (section.contains("supersample")) {
+    if (!section["supersample"].is_number_integer())
+      return makeError(ErrorCode::Format, where + ": calibrate.supersample: expected an integer");
+    optics.supersample = section["supersample"].get<int>();
+  }
+  if (section.contains("ulens_profile") &&
+      !(section["ulens_profile"].is_string() && section["ulens_profile"].get<std::string>() == "rect"))
+    return makeError(ErrorCode::Unsupported,
+                     where + ": calibrate.ulens_profile: only \"rect\" (square microlenses) is modelled");
+  // The sensor at the microlens focal plane is the model's; another distance is not.
+  if (section.contains("ulens_focal_distance") && section["ulens_focal_distance"].is_number() &&
+      section["ulens_focal_distance"].get<double>() != optics.microlensFocalLengthUm)
+    return makeError(ErrorCode::Unsupported,
+                     where + ": calibrate.ulens_focal_distance " +
+                         number(section["ulens_focal_distance"].get<double>()) +
+                         " differs from ulens_focal_length: only a sensor at the microlens focal plane is modelled");
+  if (Status valid = validateLfmOptics(optics); !valid)
+    return makeError(ErrorCode::Usage, where + ": " + valid.error().message);
+  return optics;
+}
+
+}  // namespace lfcam
