@@ -27,6 +27,7 @@
 #include "lfcam/io/image_io.hpp"
 #include "lfcam/io/light_field_io.hpp"
 #include "lfcam/lfm/optics.hpp"
+#include "lfcam/lfm/psf.hpp"
 #include "lfcam/photo/photo_request.hpp"
 #include "lfcam/raw_io/raw_image.hpp"
 #include "lfcam/raw_io/raw_io.hpp"

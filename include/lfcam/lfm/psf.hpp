@@ -1,0 +1,85 @@
+// The wave-optics point-spread function of a light-field microscope (Broxton et al. 2013,
+// section 3): a point source in the specimen, its field at the native image plane by the Debye
+// integral of the objective (Equation 3), times the microlens array's phase mask (Equation 6),
+// carried to the sensor by Fresnel propagation over the microlens focal length (Equation 7), its
+// intensity integrated over the sensor pixels (Equation 8). LfmOptics (optics.hpp) describes the
+// microscope.
+//
+// Frames. A point at (x, y, z) micrometres in the specimen: z along the optical axis from the
+// native object plane (z = 0 is in focus), its image centred at (M x, M y) on the native image
+// plane, which is the microlens plane (the image is not inverted: the sensor's readout is assumed
+// to turn it upright). One lenslet is centred on the optical axis. The sensor's pixels form an
+// odd square whose centre pixel is centred on the axis.
+//
+// Normalisation. The field at the native image plane carries unit energy: the integral of
+// |U|^2 over that plane (square micrometres) is 1 at every depth. A PSF pixel holds the energy
+// landing on it, so a PSF sums to the part of that unit energy falling within its window (less the
+// light an opaque fill-factor border stops).
+#pragma once
+
+#include <complex>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "lfcam/core/image.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/lfm/optics.hpp"
+
+namespace lfcam {
+
+// The objective's pupil (the amplitude over the exit pupil, rho = sin(theta) / sin(alpha)):
+// AbbeSine is Broxton's Equation 3, an aplanatic objective's sqrt(cos theta) apodization and the
+// exact defocus phase k z (1 - cos theta); Paraxial is the textbook low-NA limit (uniform pupil,
+// defocus k z sin^2(alpha) rho^2 / 2), whose in-focus intensity is exactly the Airy pattern.
+enum class PupilModel { AbbeSine, Paraxial };
+
+// The field at the native image plane, at image-side distances `radiiUm` from the image of a point
+// at depth `depthUm` (object side): the radial Debye integral over rho in [0, 1] by Gauss-Legendre
+// quadrature, in float64, with nodes enough for the fastest oscillation (J0(v rho) and the defocus
+// phase). v = 2 pi r NA / (lambda M). Usage error when the optics are invalid.
+Result<std::vector<std::complex<double>>> debyeField(const LfmOptics& optics, double depthUm,
+                                                     std::span<const double> radiiUm,
+                                                     PupilModel pupil = PupilModel::AbbeSine);
+
+struct LfmPoint {
+  double xUm = 0, yUm = 0, zUm = 0;  // in the specimen (see Frames)
+};
+
+// PSFs of points on a window of `lensletsAcross` x `lensletsAcross` lenslets (odd) around the
+// optical axis: the window's sensor pixels, pixelsAcross() square. Plans its FFT once; psf() may
+// be called from several threads at once. A point's native image larger than the window wraps
+// around it (the propagation is periodic): choose the window by lensletsFor().
+class LfmPsf {
+ public:
+  // Usage error for invalid optics, an even or non-positive lensletsAcross, or a sample spacing
+  // that aliases the native image or the microlenses' phase (raise supersample).
+  static Result<LfmPsf> create(const LfmOptics& optics, int lensletsAcross, PupilModel pupil = PupilModel::AbbeSine);
+  // The odd number of lenslets across a window holding the geometric blur of points at depths up
+  // to |maxDepthUm|: its radius M |z| tan(alpha), one lenslet of margin on each side.
+  static int lensletsFor(const LfmOptics& optics, double maxDepthUm);
+
+  LfmPsf(LfmPsf&&) noexcept;
+  LfmPsf& operator=(LfmPsf&&) noexcept;
+  ~LfmPsf();
+
+  const LfmOptics& optics() const;
+  int pixelsAcross() const;   // sensor pixels across the window (odd)
+  int samplesAcross() const;  // field samples across: pixelsAcross() * supersample
+
+  // The sensor image of one point: pixelsAcross() square, one channel, energy per pixel.
+  Image psf(const LfmPoint& point) const;
+
+  // The stages, for tests and for callers wanting fields: the field at the native image plane
+  // on the samplesAcross() square grid (sample i at (i - (n - 1) / 2) * sampleSpacingUm()), the
+  // same after the microlens mask, and at the sensor.
+  std::vector<std::complex<double>> nativeField(const LfmPoint& point) const;
+  std::vector<std::complex<float>> sensorField(const LfmPoint& point) const;
+
+ private:
+  struct State;
+  explicit LfmPsf(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace lfcam

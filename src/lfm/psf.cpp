@@ -1,0 +1,345 @@
+#include "lfcam/lfm/psf.hpp"
+
+#include <fftw3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <numbers>
+
+#include "core/fftw_planner.hpp"
+#include "core/parallel.hpp"
+#include "lfm/psf_stages.hpp"
+
+namespace lfcam {
+
+namespace lfm {
+
+constexpr double kPi = std::numbers::pi;
+
+void gaussLegendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
+  nodes.assign(n, 0.0);
+  weights.assign(n, 0.0);
+  for (int i = 0; i < (n + 1) / 2; ++i) {
+    // Newton from the Chebyshev-like guess; P_n and its derivative by the three-term recurrence.
+    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
+    double derivative = 1;
+    for (int iteration = 0; iteration < 100; ++iteration) {
+      double p0 = 1, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      derivative = n * (x * p1 - p0) / (x * x - 1);
+      const double step = p1 / derivative;
+      x -= step;
+      if (std::abs(step) < 1e-16) break;
+    }
+    nodes[i] = -x;
+    nodes[n - 1 - i] = x;
+    weights[i] = weights[n - 1 - i] = 2 / ((1 - x * x) * derivative * derivative);
+  }
+}
+
+DebyeIntegral::DebyeIntegral(const LfmOptics& optics, double depthUm, double maxRadiusUm, PupilModel pupil) {
+  const double kappa = optics.imageCutoffPerUm();  // pupil radius in image-side spatial frequency
+  beta_ = 2 * kPi * kappa;
+  const double sinAlpha = optics.sinAlpha();
+  const double k = 2 * kPi * optics.immersionIndex / optics.wavelengthUm();  // wavenumber in the medium
+  const double cosAlpha = std::sqrt(1 - sinAlpha * sinAlpha);
+  // Nodes: J0(v rho) turns through about v radians over rho in [0, 1], the defocus phase through
+  // k |z| (1 - cos alpha); Gauss-Legendre needs about half a node a radian, given twice that.
+  const double phaseRange =
+      std::abs(k * depthUm) * (pupil == PupilModel::AbbeSine ? 1 - cosAlpha : 0.5 * sinAlpha * sinAlpha);
+  const int n = std::clamp(int(64 + std::ceil(beta_ * maxRadiusUm + phaseRange)), 64, 40000);
+  std::vector<double> x, w;
+  gaussLegendre(n, x, w);
+  rho_.resize(n);
+  weight_.resize(n);
+  double energy = 0;  // integral of A(rho)^2 rho d rho
+  for (int j = 0; j < n; ++j) {
+    const double rho = 0.5 * (x[j] + 1), weight = 0.5 * w[j];
+    double amplitude = 1, phase = 0;
+    if (pupil == PupilModel::AbbeSine) {
+      // Equation 3 in rho = sin(theta) / sin(alpha): sqrt(cos theta) sin(theta) d theta =
+      // sin^2(alpha) rho d rho / sqrt(cos theta); the constant sin^2(alpha) goes into C.
+      const double cosTheta = std::sqrt(1 - sinAlpha * sinAlpha * rho * rho);
+      amplitude = 1 / std::sqrt(cosTheta);
+      phase = -k * depthUm * (1 - cosTheta);
+    } else {
+      phase = -k * depthUm * 0.5 * sinAlpha * sinAlpha * rho * rho;
+    }
+    rho_[j] = rho;
+    weight_[j] = weight * amplitude * rho * std::polar(1.0, phase);
+    energy += weight * amplitude * amplitude * rho;
+  }
+  // U(r) = 2 pi kappa^2 P0 integral A e^{i phi} J0(v rho) rho d rho, the pupil's amplitude P0 such that
+  // the plane's energy (Parseval: 2 pi kappa^2 P0^2 integral A^2 rho d rho) is 1.
+  const double scale = 2 * kPi * kappa * kappa / std::sqrt(2 * kPi * kappa * kappa * energy);
+  for (auto& value : weight_) value *= scale;
+}
+
+std::complex<double> DebyeIntegral::field(double radiusUm) const {
+  const double v = beta_ * radiusUm;
+  std::complex<double> sum = 0;
+  for (std::size_t j = 0; j < rho_.size(); ++j) sum += weight_[j] * std::cyl_bessel_j(0.0, v * rho_[j]);
+  return sum;
+}
+
+namespace {
+
+double maxRadiusOnGrid(const LfmOptics& optics, const LfmPoint& point, int n) {
+  const double half = sampleCoordinate(n - 1, n, optics.sampleSpacingUm());
+  const double cx = optics.magnification * point.xUm, cy = optics.magnification * point.yUm;
+  return std::hypot(half + std::abs(cx), half + std::abs(cy));
+}
+
+}  // namespace
+
+std::vector<std::complex<double>> nativeFieldDirect(const LfmOptics& optics, PupilModel pupil, const LfmPoint& point,
+                                                    int n) {
+  const double dx = optics.sampleSpacingUm();
+  const DebyeIntegral debye(optics, point.zUm, maxRadiusOnGrid(optics, point, n), pupil);
+  const double cx = optics.magnification * point.xUm, cy = optics.magnification * point.yUm;
+  std::vector<std::complex<double>> field(std::size_t(n) * n);
+  parallelFor(0, n, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t y = begin; y < end; ++y)
+      for (int x = 0; x < n; ++x)
+        field[y * n + x] =
+            debye.field(std::hypot(sampleCoordinate(x, n, dx) - cx, sampleCoordinate(int(y), n, dx) - cy));
+  });
+  return field;
+}
+
+std::vector<std::complex<double>> nativeFieldFromProfile(const LfmOptics& optics, PupilModel pupil,
+                                                         const LfmPoint& point, int n) {
+  const double dx = optics.sampleSpacingUm();
+  const double maxRadius = maxRadiusOnGrid(optics, point, n);
+  const DebyeIntegral debye(optics, point.zUm, maxRadius, pupil);
+  // The radial profile every dx / 16: linear interpolation's error is (h^2 / 8) |U''|, with
+  // |U''| <= (2 pi kappa)^2 |U| and 2 kappa dx < 1, so below 1e-3 of the field's magnitude.
+  const double step = dx / 16;
+  const int count = int(std::ceil(maxRadius / step)) + 2;
+  std::vector<std::complex<double>> profile(count);
+  parallelFor(0, count, 16, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) profile[i] = debye.field(double(i) * step);
+  });
+  const double cx = optics.magnification * point.xUm, cy = optics.magnification * point.yUm;
+  std::vector<std::complex<double>> field(std::size_t(n) * n);
+  parallelFor(0, n, 8, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t y = begin; y < end; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double r = std::hypot(sampleCoordinate(x, n, dx) - cx, sampleCoordinate(int(y), n, dx) - cy) / step;
+        const int i = std::min(int(r), count - 2);
+        const double t = r - i;
+        field[y * n + x] = (1 - t) * profile[i] + t * profile[i + 1];
+      }
+  });
+  return field;
+}
+
+template <class T>
+void applyMicrolenses(const LfmOptics& optics, int n, std::complex<T>* field) {
+  const double dx = optics.sampleSpacingUm(), pitch = optics.microlensPitchUm;
+  const double halfAperture = 0.5 * std::sqrt(optics.microlensFillFactor) * pitch;
+  const double chirp = kPi / (optics.wavelengthUm() * optics.microlensFocalLengthUm);  // image side: air
+  // Equation 6: each lenslet a thin lens, its centre on the nearest multiple of the pitch.
+  std::vector<double> local(n);
+  std::vector<bool> inside(n);
+  for (int i = 0; i < n; ++i) {
+    const double x = sampleCoordinate(i, n, dx);
+    local[i] = x - std::round(x / pitch) * pitch;
+    inside[i] = std::abs(local[i]) <= halfAperture;
+  }
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      std::complex<T>& value = field[std::size_t(y) * n + x];
+      if (!inside[x] || !inside[y]) {
+        value = 0;
+        continue;
+      }
+      const double phase = -chirp * (local[x] * local[x] + local[y] * local[y]);
+      value *= std::complex<T>(std::polar(1.0, phase));
+    }
+}
+template void applyMicrolenses(const LfmOptics&, int, std::complex<float>*);
+template void applyMicrolenses(const LfmOptics&, int, std::complex<double>*);
+
+FresnelTransfer::FresnelTransfer(int n, double spacingUm, double wavelengthUm, double distanceUm) : n_(n) {
+  const std::size_t size = std::size_t(n) * n;
+  transfer_.resize(size);
+  const double scale = 1.0 / double(size);  // FFTW's inverse is unnormalised
+  for (int y = 0; y < n; ++y) {
+    const double fy = (y <= (n - 1) / 2 ? y : y - n) / (n * spacingUm);
+    for (int x = 0; x < n; ++x) {
+      const double fx = (x <= (n - 1) / 2 ? x : x - n) / (n * spacingUm);
+      const double phase = -kPi * wavelengthUm * distanceUm * (fx * fx + fy * fy);
+      transfer_[std::size_t(y) * n + x] = std::complex<float>(std::polar(scale, phase));
+    }
+  }
+  // Plans for an in-place transform of an fftwf_malloc'ed buffer: propagate() executes them on a
+  // buffer of its own, of the same alignment.
+  std::unique_ptr<fftwf_complex, fftw::Free> buffer(fftwf_alloc_complex(size));
+  std::lock_guard lock(fftw::plannerMutex());
+  forward_ = fftwf_plan_dft_2d(n, n, buffer.get(), buffer.get(), FFTW_FORWARD, FFTW_ESTIMATE);
+  inverse_ = fftwf_plan_dft_2d(n, n, buffer.get(), buffer.get(), FFTW_BACKWARD, FFTW_ESTIMATE);
+}
+
+FresnelTransfer::~FresnelTransfer() {
+  std::lock_guard lock(fftw::plannerMutex());
+  if (forward_) fftwf_destroy_plan(static_cast<fftwf_plan>(forward_));
+  if (inverse_) fftwf_destroy_plan(static_cast<fftwf_plan>(inverse_));
+}
+
+void FresnelTransfer::propagate(std::complex<float>* field) const {
+  const std::size_t size = std::size_t(n_) * n_;
+  std::unique_ptr<fftwf_complex, fftw::Free> buffer(fftwf_alloc_complex(size));
+  auto* data = reinterpret_cast<std::complex<float>*>(buffer.get());
+  std::copy(field, field + size, data);
+  fftwf_execute_dft(static_cast<fftwf_plan>(forward_), buffer.get(), buffer.get());
+  for (std::size_t i = 0; i < size; ++i) data[i] *= transfer_[i];
+  fftwf_execute_dft(static_cast<fftwf_plan>(inverse_), buffer.get(), buffer.get());
+  std::copy(data, data + size, field);
+}
+
+std::vector<std::complex<double>> fresnelDirect(const std::vector<std::complex<double>>& field, int n, double spacingUm,
+                                                double wavelengthUm, double distanceUm) {
+  const double chirp = kPi / (wavelengthUm * distanceUm);
+  const std::complex<double> scale = spacingUm * spacingUm / std::complex<double>(0, wavelengthUm * distanceUm);
+  // exp(i chirp d^2) for every separation d = k * spacing along one axis: the kernel separates.
+  std::vector<std::complex<double>> kernel(2 * n - 1);
+  for (int k = -(n - 1); k <= n - 1; ++k)
+    kernel[k + n - 1] = std::polar(1.0, chirp * (k * spacingUm) * (k * spacingUm));
+  std::vector<std::complex<double>> out(std::size_t(n) * n);
+  parallelFor(0, n, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t y = begin; y < end; ++y)
+      for (int x = 0; x < n; ++x) {
+        std::complex<double> sum = 0;
+        for (int y1 = 0; y1 < n; ++y1) {
+          const std::complex<double> ky = kernel[int(y) - y1 + n - 1];
+          for (int x1 = 0; x1 < n; ++x1) sum += field[std::size_t(y1) * n + x1] * ky * kernel[x - x1 + n - 1];
+        }
+        out[y * n + x] = scale * sum;
+      }
+  });
+  return out;
+}
+
+Image integratePixels(const std::complex<float>* field, int n, int supersample, double spacingUm) {
+  const int pixels = n / supersample;
+  Image image(pixels, pixels, 1);
+  const double area = spacingUm * spacingUm;
+  for (int py = 0; py < pixels; ++py)
+    for (int px = 0; px < pixels; ++px) {
+      double sum = 0;
+      for (int sy = 0; sy < supersample; ++sy)
+        for (int sx = 0; sx < supersample; ++sx)
+          sum += std::norm(std::complex<double>(field[std::size_t(py * supersample + sy) * n + px * supersample + sx]));
+      image.at(px, py, 0) = float(sum * area);
+    }
+  return image;
+}
+
+}  // namespace lfm
+
+namespace {
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", x);
+  return text;
+}
+
+}  // namespace
+
+Result<std::vector<std::complex<double>>> debyeField(const LfmOptics& optics, double depthUm,
+                                                     std::span<const double> radiiUm, PupilModel pupil) {
+  LFCAM_TRY(validateLfmOptics(optics));
+  double maxRadius = 0;
+  for (double r : radiiUm) {
+    if (!(r >= 0) || !std::isfinite(r)) return makeError(ErrorCode::Usage, "radius " + number(r) + " must be >= 0");
+    maxRadius = std::max(maxRadius, r);
+  }
+  if (!std::isfinite(depthUm)) return makeError(ErrorCode::Usage, "depth must be finite");
+  const lfm::DebyeIntegral debye(optics, depthUm, maxRadius, pupil);
+  std::vector<std::complex<double>> field(radiiUm.size());
+  parallelFor(0, field.size(), 16, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) field[i] = debye.field(radiiUm[i]);
+  });
+  return field;
+}
+
+struct LfmPsf::State {
+  LfmOptics optics;
+  PupilModel pupil;
+  int pixels = 0, samples = 0;
+  lfm::FresnelTransfer transfer;
+
+  State(const LfmOptics& o, PupilModel p, int pixelsAcross)
+      : optics(o),
+        pupil(p),
+        pixels(pixelsAcross),
+        samples(pixelsAcross * o.supersample),
+        transfer(samples, o.sampleSpacingUm(), o.wavelengthUm(), o.microlensFocalLengthUm) {}
+};
+
+Result<LfmPsf> LfmPsf::create(const LfmOptics& optics, int lensletsAcross, PupilModel pupil) {
+  LFCAM_TRY(validateLfmOptics(optics));
+  if (lensletsAcross < 1 || lensletsAcross % 2 == 0 || lensletsAcross > 201)
+    return makeError(ErrorCode::Usage,
+                     "lenslets across " + std::to_string(lensletsAcross) + " must be odd, in [1, 201]");
+  // The field after the mask holds frequencies up to the native image's cutoff plus the lenslets'
+  // phase slope at their edge, along each axis; the samples must hold them without aliasing.
+  const double dx = optics.sampleSpacingUm();
+  const double slope = 0.5 * std::sqrt(optics.microlensFillFactor) * optics.microlensPitchUm /
+                       (optics.wavelengthUm() * optics.microlensFocalLengthUm);
+  const double bandwidth = optics.imageCutoffPerUm() + slope;
+  if (!(2 * bandwidth * dx < 1))
+    return makeError(ErrorCode::Usage, "sample spacing " + number(dx) +
+                                           " um aliases the field after the microlenses (up to " + number(bandwidth) +
+                                           " cycles/um): raise supersample to at least " +
+                                           std::to_string(int(std::floor(2 * bandwidth * optics.pixelSizeUm)) + 1));
+  int pixels = int(std::ceil(lensletsAcross * optics.microlensPitchUm / optics.pixelSizeUm - 1e-9));
+  if (pixels % 2 == 0) ++pixels;
+  if (std::size_t(pixels) * optics.supersample > 8192)
+    return makeError(ErrorCode::Resource, "a window of " + std::to_string(pixels * optics.supersample) +
+                                              " samples across is above 8192: fewer lenslets or less supersampling");
+  return LfmPsf(std::make_unique<State>(optics, pupil, pixels));
+}
+
+int LfmPsf::lensletsFor(const LfmOptics& optics, double maxDepthUm) {
+  const double sinAlpha = std::min(optics.sinAlpha(), 0.999999);
+  const double radius = optics.magnification * std::abs(maxDepthUm) * sinAlpha / std::sqrt(1 - sinAlpha * sinAlpha);
+  return 2 * (int(std::ceil(radius / optics.microlensPitchUm)) + 1) + 1;
+}
+
+LfmPsf::LfmPsf(std::unique_ptr<State> state) : state_(std::move(state)) {}
+LfmPsf::LfmPsf(LfmPsf&&) noexcept = default;
+LfmPsf& LfmPsf::operator=(LfmPsf&&) noexcept = default;
+LfmPsf::~LfmPsf() = default;
+
+const LfmOptics& LfmPsf::optics() const { return state_->optics; }
+int LfmPsf::pixelsAcross() const { return state_->pixels; }
+int LfmPsf::samplesAcross() const { return state_->samples; }
+
+std::vector<std::complex<double>> LfmPsf::nativeField(const LfmPoint& point) const {
+  return lfm::nativeFieldFromProfile(state_->optics, state_->pupil, point, state_->samples);
+}
+
+std::vector<std::complex<float>> LfmPsf::sensorField(const LfmPoint& point) const {
+  const std::vector<std::complex<double>> native = nativeField(point);
+  std::vector<std::complex<float>> field(native.begin(), native.end());
+  lfm::applyMicrolenses(state_->optics, state_->samples, field.data());
+  state_->transfer.propagate(field.data());
+  return field;
+}
+
+Image LfmPsf::psf(const LfmPoint& point) const {
+  const std::vector<std::complex<float>> field = sensorField(point);
+  return lfm::integratePixels(field.data(), state_->samples, state_->optics.supersample,
+                              state_->optics.sampleSpacingUm());
+}
+
+}  // namespace lfcam

@@ -1,0 +1,73 @@
+// The PSF's stages one by one (psf.hpp gives the contract), with their float64 references: the
+// tests hold each fast stage against its reference.
+#pragma once
+
+#include <complex>
+#include <memory>
+#include <vector>
+
+#include "lfcam/lfm/optics.hpp"
+#include "lfcam/lfm/psf.hpp"
+
+namespace lfcam::lfm {
+
+// Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n; exact for polynomials of degree
+// 2n - 1).
+void gaussLegendre(int n, std::vector<double>& nodes, std::vector<double>& weights);
+
+// The Debye integral of psf.hpp's debyeField for one depth, its quadrature chosen once for radii
+// up to maxRadiusUm; field(r) for any r in [0, maxRadiusUm].
+class DebyeIntegral {
+ public:
+  DebyeIntegral(const LfmOptics& optics, double depthUm, double maxRadiusUm, PupilModel pupil);
+  std::complex<double> field(double radiusUm) const;
+  int nodeCount() const { return int(rho_.size()); }
+
+ private:
+  double beta_ = 0;  // v = beta r
+  std::vector<double> rho_;
+  std::vector<std::complex<double>> weight_;  // quadrature weight * C * A(rho) e^{i phi(rho)} * rho
+};
+
+// Sample i of an n-sample axis sits at (i - (n - 1) / 2) * spacing.
+inline double sampleCoordinate(int i, int n, double spacing) { return (i - 0.5 * (n - 1)) * spacing; }
+
+// The native image field on the n x n grid: the radial profile sampled every spacing / 16 and
+// interpolated linearly (fast), or the Debye integral at every sample (reference).
+std::vector<std::complex<double>> nativeFieldFromProfile(const LfmOptics& optics, PupilModel pupil,
+                                                         const LfmPoint& point, int n);
+std::vector<std::complex<double>> nativeFieldDirect(const LfmOptics& optics, PupilModel pupil, const LfmPoint& point,
+                                                    int n);
+
+// Multiplies the n x n field by the microlens array's transmission: exp(-i pi d^2 / (lambda f))
+// within each lenslet's square aperture (d: distance to its centre), 0 in the opaque border.
+template <class T>
+void applyMicrolenses(const LfmOptics& optics, int n, std::complex<T>* field);
+
+// Fresnel propagation over `distanceUm` of an n x n field sampled every `spacingUm` by its
+// transfer function exp(-i pi lambda z (fx^2 + fy^2)) (the constant exp(ikz) dropped), on FFTW
+// float plans made once; periodic. propagate() may run on several threads at once.
+class FresnelTransfer {
+ public:
+  FresnelTransfer(int n, double spacingUm, double wavelengthUm, double distanceUm);
+  ~FresnelTransfer();
+  FresnelTransfer(const FresnelTransfer&) = delete;
+  FresnelTransfer& operator=(const FresnelTransfer&) = delete;
+  void propagate(std::complex<float>* field) const;  // in place, n * n
+
+ private:
+  int n_;
+  std::vector<std::complex<float>> transfer_;  // H / n^2, FFT order
+  void* forward_ = nullptr;
+  void* inverse_ = nullptr;
+};
+
+// The reference: the Fresnel diffraction integral summed directly, in float64, aperiodic:
+// U2(x) = dx^2 / (i lambda z) sum U1(x') exp(i pi |x - x'|^2 / (lambda z)). O(n^4).
+std::vector<std::complex<double>> fresnelDirect(const std::vector<std::complex<double>>& field, int n, double spacingUm,
+                                                double wavelengthUm, double distanceUm);
+
+// |U|^2 dx^2 summed over each supersample x supersample block: the pixels' energies.
+Image integratePixels(const std::complex<float>* field, int n, int supersample, double spacingUm);
+
+}  // namespace lfcam::lfm

@@ -1,0 +1,259 @@
+// The light-field microscope's PSF, stage by stage: the Debye integral against the Airy pattern
+// and Parseval, the Fresnel propagation against its direct float64 sum, the whole PSF's geometry.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <vector>
+
+#include "lfcam/lfm/psf.hpp"
+#include "lfm/psf_stages.hpp"
+
+namespace lfcam {
+namespace lfm_psf_test {
+
+constexpr double kPi = std::numbers::pi;
+
+// Encircled energy of the native image out to v = vMax: Simpson's rule over 2 pi r I(r) dr.
+double encircledEnergy(const LfmOptics& optics, double depthUm, double vMax, PupilModel pupil) {
+  const double beta = 2 * kPi * optics.imageCutoffPerUm();
+  const int intervals = int(vMax / 0.15) / 2 * 2;  // 20 a period of the rings
+  const double h = vMax / beta / intervals;
+  std::vector<double> radii(intervals + 1);
+  for (int i = 0; i <= intervals; ++i) radii[i] = i * h;
+  const auto field = debyeField(optics, depthUm, radii, pupil);
+  EXPECT_TRUE(field);
+  double sum = 0;
+  for (int i = 0; i <= intervals; ++i) {
+    const double weight = (i == 0 || i == intervals) ? 1 : (i % 2 ? 4 : 2);
+    sum += weight * 2 * kPi * radii[i] * std::norm(field->at(i));
+  }
+  return sum * h / 3;
+}
+
+// The small microscope of the direct Fresnel test: 20x / 0.5, matched 40 um lenslets at f/20.
+LfmOptics smallMicroscope() {
+  return LfmOptics{.magnification = 20,
+                   .numericalAperture = 0.5,
+                   .immersionIndex = 1.33,
+                   .wavelengthNm = 500,
+                   .tubeFocalLengthMm = 200,
+                   .microlensPitchUm = 40,
+                   .microlensFocalLengthUm = 800,
+                   .microlensFillFactor = 1,
+                   .pixelSizeUm = 4,
+                   .supersample = 2};
+}
+
+}  // namespace lfm_psf_test
+
+using namespace lfm_psf_test;
+
+TEST(LfmDebye, GaussLegendreIsExactForPolynomials) {
+  std::vector<double> x, w;
+  for (int n : {1, 2, 5, 64, 301}) {
+    lfm::gaussLegendre(n, x, w);
+    double sum = 0, even = 0;
+    for (int i = 0; i < n; ++i) sum += w[i], even += w[i] * std::pow(x[i], 2 * n - 2);
+    EXPECT_NEAR(sum, 2, 1e-13) << n;
+    EXPECT_NEAR(even, 2.0 / (2 * n - 1), 1e-13) << n;
+  }
+}
+
+TEST(LfmDebye, InFocusParaxialIsTheAiryPattern) {
+  // I(r) = pi kappa^2 [2 J1(v) / v]^2, v = 2 pi r NA / (lambda M): unit energy, its peak pi kappa^2.
+  const LfmOptics optics;
+  const double kappa = optics.imageCutoffPerUm(), beta = 2 * kPi * kappa;
+  std::vector<double> radii;
+  for (double v = 0; v <= 30; v += 0.05) radii.push_back(v / beta);
+  const auto field = debyeField(optics, 0, radii, PupilModel::Paraxial);
+  ASSERT_TRUE(field);
+  const double peak = kPi * kappa * kappa;
+  double worst = 0;
+  for (std::size_t i = 0; i < radii.size(); ++i) {
+    const double v = beta * radii[i];
+    const double airy = v == 0 ? 1 : std::pow(2 * std::cyl_bessel_j(1.0, v) / v, 2);
+    worst = std::max(worst, std::abs(std::norm(field->at(i)) / peak - airy));
+  }
+  EXPECT_LT(worst, 1e-12);  // measured 2.2e-15
+  RecordProperty("max_deviation_from_airy", std::to_string(worst));
+}
+
+TEST(LfmDebye, InFocusAbbeSineIsNearTheAiryPattern) {
+  // The aplanatic apodization 1 / sqrt(cos theta) in rho brightens the pupil's rim: the high-NA
+  // pattern departs from Airy by a few per cent of its peak at NA 1.2 / 1.35, by far less at low NA.
+  for (const auto& [na, tolerance] : {std::pair{1.2, 0.05}, std::pair{0.1, 1e-3}}) {
+    LfmOptics optics{.numericalAperture = na};
+    const double kappa = optics.imageCutoffPerUm(), beta = 2 * kPi * kappa;
+    std::vector<double> radii;
+    for (double v = 0; v <= 30; v += 0.05) radii.push_back(v / beta);
+    const auto field = debyeField(optics, 0, radii, PupilModel::AbbeSine);
+    ASSERT_TRUE(field);
+    const double peak = std::norm(field->at(0));
+    double worst = 0;
+    for (std::size_t i = 0; i < radii.size(); ++i) {
+      const double v = beta * radii[i];
+      const double airy = v == 0 ? 1 : std::pow(2 * std::cyl_bessel_j(1.0, v) / v, 2);
+      worst = std::max(worst, std::abs(std::norm(field->at(i)) / peak - airy));
+    }
+    EXPECT_LT(worst, tolerance) << "NA " << na;
+    std::printf("NA %g: max |I/I0 - Airy| = %.3g\n", na, worst);
+  }
+}
+
+TEST(LfmDebye, EnergyIsTheSameAtEveryDepth) {
+  // Unit energy by construction (Parseval over the pupil); what the quadrature yields out to
+  // v = 150, where the rings left out hold about 2 / (pi v) ~ 0.4 % in focus (more with the Abbe
+  // sine pupil's brighter rim).
+  const LfmOptics optics;
+  for (PupilModel pupil : {PupilModel::AbbeSine, PupilModel::Paraxial}) {
+    const double inFocus = encircledEnergy(optics, 0, 150, pupil);
+    EXPECT_NEAR(inFocus, 1, 1e-2);  // measured 0.99325 (Abbe sine), 0.99576 (paraxial)
+    for (double depth : pupil == PupilModel::AbbeSine ? std::vector{-2.0, 1.0} : std::vector{1.0}) {
+      const double energy = encircledEnergy(optics, depth, 150, pupil);
+      EXPECT_NEAR(energy, inFocus, 1.5e-3) << "depth " << depth;  // measured 8.1e-4 at -2 um
+      std::printf("pupil %d depth %g: energy %.6f (in focus %.6f)\n", int(pupil), depth, energy, inFocus);
+    }
+  }
+}
+
+TEST(LfmDebye, NativeFieldOnTheGridIsRadialAndMatchesTheDirectIntegral) {
+  const LfmOptics optics;
+  const LfmPoint point{0, 0, 1.5};
+  const int n = 51;  // one lenslet's window: 17 pixels x 3
+  const auto fast = lfm::nativeFieldFromProfile(optics, PupilModel::AbbeSine, point, n);
+  const auto direct = lfm::nativeFieldDirect(optics, PupilModel::AbbeSine, point, n);
+  double peak = 0, worst = 0, asymmetry = 0;
+  for (const auto& value : direct) peak = std::max(peak, std::abs(value));
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const auto value = direct[y * n + x];
+      worst = std::max(worst, std::abs(fast[y * n + x] - value) / peak);
+      // Mirrored in x, in y, and about the diagonal: the same radius, the same field.
+      for (auto other : {direct[y * n + (n - 1 - x)], direct[(n - 1 - y) * n + x], direct[x * n + y]})
+        asymmetry = std::max(asymmetry, std::abs(other - value) / peak);
+    }
+  EXPECT_LT(asymmetry, 1e-12);
+  EXPECT_LT(worst, 1e-3);
+  std::printf("profile vs direct: %.3g of the peak; asymmetry %.3g\n", worst, asymmetry);
+}
+
+TEST(LfmPsf, FresnelPropagationConservesEnergy) {
+  // Parseval: |H| = 1, so the propagation only moves energy.
+  const LfmOptics optics;
+  const auto model = LfmPsf::create(optics, 3);
+  ASSERT_TRUE(model) << model.error().message;
+  const int n = model->samplesAcross();
+  const auto native = model->nativeField({5, -3, 2});
+  std::vector<std::complex<float>> field(native.begin(), native.end());
+  lfm::applyMicrolenses(optics, n, field.data());
+  double before = 0, after = 0;
+  for (auto value : field) before += std::norm(std::complex<double>(value));
+  lfm::FresnelTransfer transfer(n, optics.sampleSpacingUm(), optics.wavelengthUm(), optics.microlensFocalLengthUm);
+  transfer.propagate(field.data());
+  for (auto value : field) after += std::norm(std::complex<double>(value));
+  EXPECT_NEAR(after / before, 1, 1e-5);
+  std::printf("energy after / before: 1 %+.3g\n", after / before - 1);
+}
+
+TEST(LfmPsf, DirectFresnelSumMatchesTheFft) {
+  // On a 62-sample window of 3 x 3 lenslets, an in-focus point on the axis: its light stays
+  // under the centre lenslet, so the FFT's periodic window and the direct sum's open plane agree.
+  const LfmOptics optics = smallMicroscope();
+  const auto model = LfmPsf::create(optics, 3, PupilModel::AbbeSine);
+  ASSERT_TRUE(model) << model.error().message;
+  const int n = model->samplesAcross();
+  ASSERT_EQ(n, 62);
+  const LfmPoint point{0.3, 0, 0};
+  std::vector<std::complex<double>> masked = model->nativeField(point);
+  lfm::applyMicrolenses(optics, n, masked.data());
+  const auto direct =
+      lfm::fresnelDirect(masked, n, optics.sampleSpacingUm(), optics.wavelengthUm(), optics.microlensFocalLengthUm);
+  const auto fft = model->sensorField(point);
+  // Compared under the centre lenslet, where 92 % of the light lands: the rest, spread by the
+  // lenslets' edges, leaves the window and comes back in on the FFT's periodic one alone.
+  double difference = 0, norm = 0;
+  const double dx = optics.sampleSpacingUm(), half = 0.5 * optics.microlensPitchUm;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      if (std::abs(lfm::sampleCoordinate(x, n, dx)) > half || std::abs(lfm::sampleCoordinate(y, n, dx)) > half)
+        continue;
+      const std::size_t i = std::size_t(y) * n + x;
+      difference += std::norm(std::complex<double>(fft[i]) - direct[i]);
+      norm += std::norm(direct[i]);
+    }
+  const double relative = std::sqrt(difference / norm);
+  EXPECT_LT(relative, 0.02);
+  std::printf("FFT vs direct Fresnel under the centre lenslet: relative L2 %.3g\n", relative);
+}
+
+TEST(LfmPsf, InFocusPointOnTheAxisLightsTheCentreLensletSymmetrically) {
+  const LfmOptics optics;
+  const auto model = LfmPsf::create(optics, 3);
+  ASSERT_TRUE(model) << model.error().message;
+  const Image psf = model->psf({0, 0, 0});
+  const int n = psf.width();
+  ASSERT_EQ(n, 47);
+  double total = 0, peak = 0, cx = 0, cy = 0, asymmetry = 0, centre = 0;
+  const double half = 0.5 * optics.microlensPitchUm / optics.pixelSizeUm;  // 7.7 pixels
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const double value = psf.at(x, y, 0);
+      total += value, cx += value * (x - n / 2), cy += value * (y - n / 2);
+      peak = std::max(peak, value);
+      if (std::abs(x - n / 2) < half && std::abs(y - n / 2) < half) centre += value;
+    }
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      for (float other : {psf.at(n - 1 - x, y, 0), psf.at(x, n - 1 - y, 0), psf.at(y, x, 0)})
+        asymmetry = std::max(asymmetry, std::abs(other - psf.at(x, y, 0)) / peak);
+  EXPECT_LT(std::abs(cx / total), 1e-3);
+  EXPECT_LT(std::abs(cy / total), 1e-3);
+  EXPECT_LT(asymmetry, 1e-4);
+  EXPECT_GT(centre / total, 0.9);
+  EXPECT_GT(total, 0.95);
+  EXPECT_LE(total, 1.0 + 1e-4);
+  std::printf("total %.4f, centre lenslet %.4f, centroid (%.2g, %.2g) px, asymmetry %.3g\n", total, centre / total,
+              cx / total, cy / total, asymmetry);
+}
+
+TEST(LfmPsf, PointOneLensletAsideLightsTheNextLenslet) {
+  // In focus, a point imaged on the next lenslet's centre (pitch / M in the specimen) moves the
+  // pattern by one pitch, 100 / 6.5 pixels: its centroid under that lenslet's cell.
+  const LfmOptics optics;
+  const auto model = LfmPsf::create(optics, 3);
+  ASSERT_TRUE(model);
+  const Image psf = model->psf({optics.microlensPitchUm / optics.magnification, 0, 0});
+  const int n = psf.width();
+  const double pitch = optics.microlensPitchUm / optics.pixelSizeUm;
+  double total = 0, cell = 0, cx = 0, cy = 0;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const double value = psf.at(x, y, 0);
+      total += value;
+      if (std::abs(x - n / 2 - pitch) > pitch / 2 || std::abs(y - n / 2) > pitch / 2) continue;
+      cell += value, cx += value * (x - n / 2), cy += value * (y - n / 2);
+    }
+  EXPECT_GT(cell / total, 0.85);
+  EXPECT_NEAR(cx / cell, pitch, 0.1);
+  EXPECT_NEAR(cy / cell, 0, 1e-3);
+  std::printf("next lenslet: %.3f of the light, centroid %.3f px (pitch %.3f)\n", cell / total, cx / cell, pitch);
+}
+
+TEST(LfmPsf, RefusesWindowsAndSamplingItCannotModel) {
+  auto refusal = [](const LfmOptics& optics, int lenslets) {
+    const auto model = LfmPsf::create(optics, lenslets);
+    return model ? std::string() : model.error().message;
+  };
+  EXPECT_EQ(refusal(LfmOptics{}, 4), "lenslets across 4 must be odd, in [1, 201]");
+  EXPECT_EQ(refusal(LfmOptics{.numericalAperture = 1.4, .immersionIndex = 1.33}, 3),
+            "NA 1.4 above the immersion index 1.33: no light reaches the objective");
+  EXPECT_EQ(refusal(LfmOptics{.pixelSizeUm = 10, .supersample = 1}, 3),
+            "sample spacing 10 um aliases the field after the microlenses (up to 0.0675 cycles/um): raise "
+            "supersample to at least 2");
+  EXPECT_EQ(LfmPsf::lensletsFor(LfmOptics{}, 0), 3);
+  EXPECT_EQ(LfmPsf::lensletsFor(LfmOptics{}, 2), 9);  // blur radius 60 * 2 * tan(alpha) = 233 um: 3 + 1 a side
+}
+
+}  // namespace lfcam
