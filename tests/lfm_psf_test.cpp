@@ -256,4 +256,44 @@ TEST(LfmPsf, RefusesWindowsAndSamplingItCannotModel) {
   EXPECT_EQ(LfmPsf::lensletsFor(LfmOptics{}, 2), 9);  // blur radius 60 * 2 * tan(alpha) = 233 um: 3 + 1 a side
 }
 
+TEST(LfmPsfSet, HoldsEveryDepthAndLensletPhase) {
+  const LfmOptics optics;
+  const std::vector<double> depths{0, 0.5};
+  const auto set = computePsfSet(optics, depths, 3, 3);
+  ASSERT_TRUE(set) << set.error().message;
+  const int n = set->pixelsAcross;
+  ASSERT_EQ(n, 47);
+  ASSERT_EQ(set->values.size(), std::size_t(2 * 3 * 3) * n * n);
+  // The centre phase in focus is the on-axis point's PSF.
+  const auto model = LfmPsf::create(optics, 3);
+  ASSERT_TRUE(model);
+  const Image onAxis = model->psf({0, 0, 0});
+  for (int k = 0; k < n * n; ++k) ASSERT_FLOAT_EQ(set->psf(0, 1, 1)[k], onAxis.pixels()[k]);
+  // Phases either side of the centre are mirror images, at every depth; a phase one sample over
+  // is a different PSF.
+  for (int depth = 0; depth < 2; ++depth) {
+    const float *left = set->psf(depth, 0, 1), *right = set->psf(depth, 2, 1), *centre = set->psf(depth, 1, 1);
+    double peak = 0, mirror = 0, change = 0;
+    for (int k = 0; k < n * n; ++k) peak = std::max(peak, double(left[k]));
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        mirror = std::max(mirror, std::abs(double(left[y * n + x]) - right[y * n + (n - 1 - x)]) / peak);
+        change = std::max(change, std::abs(double(left[y * n + x]) - centre[y * n + x]) / peak);
+      }
+    EXPECT_LT(mirror, 1e-4) << depth;
+    EXPECT_GT(change, 1e-3) << depth;
+  }
+  EXPECT_NEAR(set->point(1, 2, 0).xUm, optics.sampleSpacingUm() / optics.magnification, 1e-12);
+  EXPECT_NEAR(set->point(1, 2, 0).yUm, -optics.sampleSpacingUm() / optics.magnification, 1e-12);
+  EXPECT_EQ(set->point(1, 2, 0).zUm, 0.5);
+}
+
+TEST(LfmPsfSet, RefusesPhasesItCannotPlace) {
+  const std::vector<double> depths{0};
+  const auto even = computePsfSet(LfmOptics{}, depths, 2, 3);
+  ASSERT_FALSE(even);
+  EXPECT_EQ(even.error().message, "lenslet phases across 2 must be odd, in [1, 46] (samples across one pitch)");
+  EXPECT_FALSE(computePsfSet(LfmOptics{}, {}, 1, 3));
+}
+
 }  // namespace lfcam

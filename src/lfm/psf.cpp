@@ -342,4 +342,51 @@ Image LfmPsf::psf(const LfmPoint& point) const {
                               state_->optics.sampleSpacingUm());
 }
 
+LfmPoint LfmPsfSet::point(int depth, int i, int j) const {
+  const double dx = optics.sampleSpacingUm() / optics.magnification;  // in the specimen
+  return {lfm::sampleCoordinate(i, phasesAcross, dx), lfm::sampleCoordinate(j, phasesAcross, dx), depthsUm[depth]};
+}
+
+const float* LfmPsfSet::psf(int depth, int i, int j) const {
+  const std::size_t index = (std::size_t(depth) * phasesAcross + j) * phasesAcross + i;
+  return values.data() + index * pixelsAcross * pixelsAcross;
+}
+
+Result<LfmPsfSet> computePsfSet(const LfmOptics& optics, std::span<const double> depthsUm, int phasesAcross,
+                                int lensletsAcross, PupilModel pupil) {
+  LFCAM_TRY(validateLfmOptics(optics));
+  if (depthsUm.empty()) return makeError(ErrorCode::Usage, "no depths to compute PSFs at");
+  double deepest = 0;
+  for (double z : depthsUm) {
+    if (!std::isfinite(z)) return makeError(ErrorCode::Usage, "depth " + number(z) + " must be finite");
+    deepest = std::max(deepest, std::abs(z));
+  }
+  const int samplesPerPitch = int(std::floor(optics.microlensPitchUm / optics.sampleSpacingUm()));
+  if (phasesAcross < 1 || phasesAcross % 2 == 0 || phasesAcross > samplesPerPitch)
+    return makeError(ErrorCode::Usage, "lenslet phases across " + std::to_string(phasesAcross) +
+                                           " must be odd, in [1, " + std::to_string(samplesPerPitch) +
+                                           "] (samples across one pitch)");
+  if (lensletsAcross == 0) lensletsAcross = LfmPsf::lensletsFor(optics, deepest);
+  LFCAM_ASSIGN_OR_RETURN(LfmPsf model, LfmPsf::create(optics, lensletsAcross, pupil));
+  LfmPsfSet set{.optics = optics,
+                .pupil = pupil,
+                .lensletsAcross = lensletsAcross,
+                .phasesAcross = phasesAcross,
+                .pixelsAcross = model.pixelsAcross(),
+                .depthsUm = std::vector<double>(depthsUm.begin(), depthsUm.end())};
+  const std::size_t count = depthsUm.size() * phasesAcross * phasesAcross;
+  const std::size_t size = std::size_t(set.pixelsAcross) * set.pixelsAcross;
+  set.values.resize(count * size);
+  // One PSF a task: each one's own stages thread within it too.
+  parallelFor(0, count, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t index = begin; index < end; ++index) {
+      const int i = int(index % phasesAcross), j = int(index / phasesAcross % phasesAcross);
+      const int depth = int(index / (std::size_t(phasesAcross) * phasesAcross));
+      const Image image = model.psf(set.point(depth, i, j));
+      std::copy(image.pixels().begin(), image.pixels().end(), set.values.begin() + index * size);
+    }
+  });
+  return set;
+}
+
 }  // namespace lfcam

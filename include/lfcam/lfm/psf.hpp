@@ -82,4 +82,24 @@ class LfmPsf {
   std::unique_ptr<State> state_;
 };
 
+// The PSFs Broxton's forward operator H needs (section 4): every depth, and every lenslet phase, the
+// points whose images fall on phasesAcross x phasesAcross field samples about the centre
+// lenslet's centre, phase (i, j) at image-side offset ((i - (P - 1) / 2) dx, (j - (P - 1) / 2) dx),
+// dx = sampleSpacingUm(). Values: [depth][j][i][y][x], pixelsAcross square each.
+struct LfmPsfSet {
+  LfmOptics optics;
+  PupilModel pupil = PupilModel::AbbeSine;
+  int lensletsAcross = 0, phasesAcross = 0, pixelsAcross = 0;
+  std::vector<double> depthsUm;
+  std::vector<float> values;
+
+  LfmPoint point(int depth, int i, int j) const;
+  const float* psf(int depth, int i, int j) const;
+};
+
+// phasesAcross: odd, in [1, samples across one pitch]; the window: LfmPsf::create's refusals, and
+// lensletsAcross 0 picks LfmPsf::lensletsFor the deepest point.
+Result<LfmPsfSet> computePsfSet(const LfmOptics& optics, std::span<const double> depthsUm, int phasesAcross,
+                                int lensletsAcross = 0, PupilModel pupil = PupilModel::AbbeSine);
+
 }  // namespace lfcam
