@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/hdf5_lock.hpp"
 #include "core/parallel.hpp"
 #include "io/hdf5_chunk_codec.hpp"
 #include "io/io_support.hpp"
@@ -33,10 +34,8 @@ constexpr const char* kAxes = "v,u,c,t,s";
 constexpr int kDeflateLevel = 1;              // higher levels gain little on samples (docs/design.md), and cost time
 constexpr unsigned kSzipPixelsPerBlock = 32;  // szip's largest block: the fastest, as small as 16 here
 
-std::mutex& hdf5Mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
+// The library's one HDF5 lock, shared with the other modules that write HDF5 (lfm's PSF cache).
+std::mutex& hdf5Mutex() { return hdf5::libraryMutex(); }
 
 // Holds the lock and keeps HDF5 from printing its error stack to stderr.
 class Hdf5Session {
