@@ -9,6 +9,7 @@
 
 #include "lfcam/lfm/psf.hpp"
 #include "lfm/psf_stages.hpp"
+#include "test_support.hpp"
 
 namespace lfcam {
 namespace lfm_psf_test {
@@ -294,6 +295,41 @@ TEST(LfmPsfSet, RefusesPhasesItCannotPlace) {
   ASSERT_FALSE(even);
   EXPECT_EQ(even.error().message, "lenslet phases across 2 must be odd, in [1, 46] (samples across one pitch)");
   EXPECT_FALSE(computePsfSet(LfmOptics{}, {}, 1, 3));
+}
+
+TEST(LfmPsfCache, KeepsTheSetAndRefusesOtherOptics) {
+  test::TempDir dir;
+  const LfmOptics optics;
+  const std::vector<double> depths{0.25};
+  const auto set = computePsfSet(optics, depths, 1, 3);
+  ASSERT_TRUE(set) << set.error().message;
+  const std::string path = (dir.path() / "psf.h5").string();
+  const Status written = writePsfCache(set.value(), path);
+  ASSERT_TRUE(written) << written.error().message;
+
+  const auto read = readPsfCache(path, optics);
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->depthsUm, set->depthsUm);
+  EXPECT_EQ(read->lensletsAcross, 3);
+  EXPECT_EQ(read->phasesAcross, 1);
+  EXPECT_EQ(read->pixelsAcross, set->pixelsAcross);
+  EXPECT_EQ(read->values, set->values);
+
+  auto refusal = [&](const LfmOptics& other, PupilModel pupil) {
+    const auto result = readPsfCache(path, other, pupil);
+    return result ? std::string() : result.error().message;
+  };
+  EXPECT_EQ(refusal(LfmOptics{.numericalAperture = 1.1}, PupilModel::AbbeSine),
+            path + ": made for NA 1.2, not 1.1: compute the PSFs again for these optics");
+  EXPECT_EQ(refusal(LfmOptics{.supersample = 5}, PupilModel::AbbeSine),
+            path + ": made for supersample 3, not 5: compute the PSFs again for these optics");
+  EXPECT_EQ(refusal(optics, PupilModel::Paraxial),
+            path + ": made for pupil (0 Abbe sine, 1 paraxial) 0, not 1: compute the PSFs again for these optics");
+
+  test::writeBytes(dir.path() / "other.h5", "not HDF5");
+  const auto other = readPsfCache((dir.path() / "other.h5").string(), optics);
+  ASSERT_FALSE(other);
+  EXPECT_EQ(other.error().code, ErrorCode::Io);
 }
 
 }  // namespace lfcam

@@ -43,6 +43,11 @@ void gaussLegendre(int n, std::vector<double>& nodes, std::vector<double>& weigh
   }
 }
 
+int windowPixels(const LfmOptics& optics, int lensletsAcross) {
+  const int pixels = int(std::ceil(lensletsAcross * optics.microlensPitchUm / optics.pixelSizeUm - 1e-9));
+  return pixels % 2 == 0 ? pixels + 1 : pixels;
+}
+
 DebyeIntegral::DebyeIntegral(const LfmOptics& optics, double depthUm, double maxRadiusUm, PupilModel pupil) {
   const double kappa = optics.imageCutoffPerUm();  // pupil radius in image-side spatial frequency
   beta_ = 2 * kPi * kappa;
@@ -301,8 +306,7 @@ Result<LfmPsf> LfmPsf::create(const LfmOptics& optics, int lensletsAcross, Pupil
                                            " um aliases the field after the microlenses (up to " + number(bandwidth) +
                                            " cycles/um): raise supersample to at least " +
                                            std::to_string(int(std::floor(2 * bandwidth * optics.pixelSizeUm)) + 1));
-  int pixels = int(std::ceil(lensletsAcross * optics.microlensPitchUm / optics.pixelSizeUm - 1e-9));
-  if (pixels % 2 == 0) ++pixels;
+  const int pixels = lfm::windowPixels(optics, lensletsAcross);
   if (std::size_t(pixels) * optics.supersample > 8192)
     return makeError(ErrorCode::Resource, "a window of " + std::to_string(pixels * optics.supersample) +
                                               " samples across is above 8192: fewer lenslets or less supersampling");

@@ -29,6 +29,9 @@ class DebyeIntegral {
   std::vector<std::complex<double>> weight_;  // quadrature weight * C * A(rho) e^{i phi(rho)} * rho
 };
 
+// The sensor pixels across a window of lensletsAcross lenslets: the odd count covering them.
+int windowPixels(const LfmOptics& optics, int lensletsAcross);
+
 // Sample i of an n-sample axis sits at (i - (n - 1) / 2) * spacing.
 inline double sampleCoordinate(int i, int n, double spacing) { return (i - 0.5 * (n - 1)) * spacing; }
 

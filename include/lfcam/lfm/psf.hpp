@@ -102,4 +102,12 @@ struct LfmPsfSet {
 Result<LfmPsfSet> computePsfSet(const LfmOptics& optics, std::span<const double> depthsUm, int phasesAcross,
                                 int lensletsAcross = 0, PupilModel pupil = PupilModel::AbbeSine);
 
+// The PSF cache: an HDF5 file holding a set and the optics, pupil, window and phases it was made
+// for (datasets "psf", float32 [depth][j][i][y][x], and "depths_um"; the rest as attributes).
+// readPsfCache refuses, in one line naming the first difference, a file made for other optics or
+// another pupil (ErrorCode::Usage), or one that is not such a file (ErrorCode::Format).
+Status writePsfCache(const LfmPsfSet& set, const std::string& path);
+Result<LfmPsfSet> readPsfCache(const std::string& path, const LfmOptics& optics,
+                               PupilModel pupil = PupilModel::AbbeSine);
+
 }  // namespace lfcam
