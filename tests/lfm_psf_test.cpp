@@ -326,6 +326,12 @@ TEST(LfmPsfCache, KeepsTheSetAndRefusesOtherOptics) {
   EXPECT_EQ(refusal(optics, PupilModel::Paraxial),
             path + ": made for pupil (0 Abbe sine, 1 paraxial) 0, not 1: compute the PSFs again for these optics");
 
+  const Status unwritable = writePsfCache(set.value(), (dir.path() / "missing" / "psf.h5").string());
+  ASSERT_FALSE(unwritable);
+  EXPECT_EQ(unwritable.error().message, (dir.path() / "missing" / "psf.h5").string() + ": cannot write: the folder " +
+                                            (dir.path() / "missing").string() + " does not exist");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "missing"));
+
   test::writeBytes(dir.path() / "other.h5", "not HDF5");
   const auto other = readPsfCache((dir.path() / "other.h5").string(), optics);
   ASSERT_FALSE(other);

@@ -5,6 +5,7 @@
 #include <mutex>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "core/hdf5_lock.hpp"
 #include "lfcam/lfm/psf.hpp"
 #include "lfm/psf_stages.hpp"
@@ -27,6 +28,7 @@ class Handle {
   }
   hid_t get() const { return id_; }
   bool valid() const { return id_ >= 0; }
+  void release() { id_ = -1; }
 
  private:
   hid_t id_;
@@ -95,10 +97,13 @@ bool readDataset(hid_t file, const char* name, hid_t memoryType, const std::vect
 
 }  // namespace
 
-Status writePsfCache(const LfmPsfSet& set, const std::string& path) {
+namespace {
+
+// Writes to `file`, naming `path` (the destination) in errors.
+Status writeCacheFile(const LfmPsfSet& set, const std::string& fileName, const std::string& path) {
   std::lock_guard lock(hdf5::libraryMutex());
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  Handle file(H5Fcreate(fileName.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
   if (!file.valid()) return makeError(ErrorCode::Io, path + ": cannot create the PSF cache");
   bool ok = true;
   {
@@ -118,8 +123,20 @@ Status writePsfCache(const LfmPsfSet& set, const std::string& path) {
   ok = ok && writeDataset(file.get(), "psf", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT,
                           {hsize_t(set.depthsUm.size()), p, p, n, n}, set.values.data());
   if (!ok) return makeError(ErrorCode::Io, path + ": cannot write the PSF cache");
-  if (H5Fflush(file.get(), H5F_SCOPE_LOCAL) < 0) return makeError(ErrorCode::Io, path + ": cannot write the PSF cache");
+  // The file's last metadata is written as it closes: its failure is the write's.
+  const hid_t id = file.get();
+  file.release();
+  if (H5Fclose(id) < 0) return makeError(ErrorCode::Io, path + ": cannot write the PSF cache");
   return {};
+}
+
+}  // namespace
+
+Status writePsfCache(const LfmPsfSet& set, const std::string& path) {
+  // Whole or not at all: a cache cut short by a failure or a kill would be refused as not one, but
+  // it would also have replaced a good one.
+  return writeFileAtomically(
+      path, [&](const std::filesystem::path& temporary) { return writeCacheFile(set, temporary.string(), path); });
 }
 
 Result<LfmPsfSet> readPsfCache(const std::string& path, const LfmOptics& optics, PupilModel pupil) {
