@@ -284,7 +284,7 @@ Result<Calibration> calibrateFrom(const Image& image, const calibrate_detail::Ph
   }
   grid.columns = k1 - k0 + 1;
   grid.rows = n1 - n0 + 1;
-  grid.fit = {found, fit.used, fit.rms, fit.max};
+  grid.fit = {found, fit.used, fit.rms, fit.max, scene};
   result.centres.reserve(samples.size());
   for (std::size_t m = 0; m < samples.size(); ++m)
     result.centres.push_back(
