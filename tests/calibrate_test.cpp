@@ -252,6 +252,60 @@ TEST(Calibrate, HintGivesTheSameGrid) {
 }
 
 // A tiny image (about 12 x 13 microlenses) without a hint: found, or refused with a clear message.
+// A sparse, dark scene by hand: discs of radius 5 on a rotated square lattice of pitch 12.3, lit
+// only inside a vignetted circle (elsewhere at 1/500 under noise), each with a bright specimen spot
+// off its centre, the same way over whole regions, then quantised to 8 bits like a JPEG frame.
+TEST(Calibrate, SparseDarkSceneWithoutWhiteImage) {
+  LensletGrid truth;
+  truth.pitchX = truth.pitchY = 12.3;
+  truth.rotationRad = 0.5 * kDeg;
+  truth.origin = {7.1, 5.4};
+  truth.columns = truth.rows = 34;
+  const int size = 420;
+  Image image(size, size, 1);
+  std::mt19937 random(13);
+  std::uniform_real_distribution<float> noise(-0.004f, 0.004f);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      double value = 0;
+      for (int sy = 0; sy < 4; ++sy)
+        for (int sx = 0; sx < 4; ++sx) {
+          const double px = x + (sx + 0.5) / 4, py = y + (sy + 0.5) / 4;
+          // The nearest microlens: the lattice coordinates rounded.
+          const double c = std::cos(truth.rotationRad), s = std::sin(truth.rotationRad);
+          const double dx = px - truth.origin[0], dy = py - truth.origin[1];
+          const auto o = truth.centre(int(std::lround((c * dx + s * dy) / truth.pitchX)),
+                                      int(std::lround((-s * dx + c * dy) / truth.pitchY)));
+          const double r = std::hypot(px - o[0], py - o[1]);
+          if (r > 5) continue;
+          const double fromAxis = std::hypot(o[0] - 230, o[1] - 190) / 150;
+          const double lit = fromAxis < 1 ? std::pow(std::cos(0.5 * M_PI * fromAxis), 2) : 0.002;
+          // The specimen: a spot 2.5 px off centre, towards +x left of x = 210, towards +y right of it.
+          const double ox = o[0] < 210 ? 2.5 : 0, oy = o[0] < 210 ? 0 : 2.5;
+          const double spot = 3 * std::exp(-(std::pow(px - o[0] - ox, 2) + std::pow(py - o[1] - oy, 2)) / 2);
+          value += lit * (0.3 + spot) / 16;
+        }
+      image.at(x, y, 0) = std::round(255 * std::clamp(float(value) + noise(random), 0.0f, 1.0f)) / 255;
+    }
+  CalibrationOptions options;
+  options.target = CalibrationTarget::Scene;
+  auto found = calibrateGridDetailed(image, options, "sparse.png");
+  ASSERT_TRUE(found.ok()) << found.error().message;
+  const LensletGrid& grid = found->grid;
+  const GridErrors e = compare(grid, truth);
+  std::printf("sparse scene: pitch %.4f x %.4f, fit %d found, %d used, RMS %.4f px; centres off by %.4f px RMS\n",
+              grid.pitchX, grid.pitchY, grid.fit.lensletsFound, grid.fit.lensletsUsed, grid.fit.rmsResidualPx,
+              e.centreRms);
+  EXPECT_TRUE(grid.fit.selfCalibrated);
+  EXPECT_LT(e.pitchX, 1e-3);
+  EXPECT_LT(e.pitchY, 1e-3);
+  EXPECT_LT(e.centreRms, 0.15);
+  EXPECT_LT(grid.fit.rmsResidualPx, 0.15);
+  // The dark microlenses are left out of the fit; the grid still spans the lit circle.
+  EXPECT_LT(grid.fit.lensletsFound, grid.columns * grid.rows / 2);
+  EXPECT_GE(grid.columns, 24);
+}
+
 TEST(Calibrate, TinyHexagonalImageWithoutHint) {
   CameraModel camera = testCamera(Packing::Hexagonal, 13.37, 0.5, {1.1, -0.7}, ColorFilter::Mono);
   camera.sensor.width = camera.sensor.height = 160;

@@ -41,7 +41,8 @@ nlohmann::json gridToJson(const LensletGrid& grid) {
            {{"lenslets_found", grid.fit.lensletsFound},
             {"lenslets_used", grid.fit.lensletsUsed},
             {"rms_residual_px", grid.fit.rmsResidualPx},
-            {"max_residual_px", grid.fit.maxResidualPx}}}};
+            {"max_residual_px", grid.fit.maxResidualPx},
+            {"self_calibrated", grid.fit.selfCalibrated}}}};
 }
 
 Result<LensletGrid> gridFromJson(const nlohmann::json& json, const std::string& where) {
@@ -81,6 +82,8 @@ Result<LensletGrid> gridFromJson(const nlohmann::json& json, const std::string& 
     LFCAM_TRY(fit.integer("lenslets_used", grid.fit.lensletsUsed, 0, 2000000000));
     LFCAM_TRY(fit.number("rms_residual_px", grid.fit.rmsResidualPx, 0, 1e9));
     LFCAM_TRY(fit.number("max_residual_px", grid.fit.maxResidualPx, 0, 1e9));
+    // Optional: grids written before it were calibrated from white or pinhole images.
+    LFCAM_TRY(fit.boolean("self_calibrated", grid.fit.selfCalibrated));
     LFCAM_TRY(fit.noUnknownKeys());
   }
   root.markSeen("fit");

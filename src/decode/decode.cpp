@@ -257,7 +257,11 @@ Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& 
   lf.metadata.optics = options.optics;
   lf.metadata.source = "lfcam decode" + (raw.source.empty() ? std::string() : " of a " + raw.source + " raw") + ": " +
                        std::to_string(grid.columns) + "x" + std::to_string(grid.rows) + " " +
-                       packingName(grid.packing) + " microlenses, pitch " + std::to_string(grid.pitchX) + " px";
+                       packingName(grid.packing) + " microlenses, pitch " + std::to_string(grid.pitchX) + " px" +
+                       (grid.fit.selfCalibrated ? ", grid self-calibrated from the raw (residual RMS " +
+                                                      std::to_string(grid.fit.rmsResidualPx) + " px over " +
+                                                      std::to_string(grid.fit.lensletsUsed) + " microlenses)"
+                                                : std::string());
   return lf;
 }
 

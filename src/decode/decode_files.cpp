@@ -46,10 +46,12 @@ Result<LightField> decodeRawFiles(RawFiles input, const ProgressCallback& progre
   if (!input.grid.empty()) {
     LFCAM_ASSIGN_OR_RETURN(auto read, readGrid(input.grid));
     grid = read;
-  } else {
-    if (input.white.empty())
-      return makeError(ErrorCode::Usage, input.raw + ": decoding needs a grid file or a white image to calibrate from");
+  } else if (!input.white.empty()) {
     LFCAM_ASSIGN_OR_RETURN(auto calibrated, calibrateGrid(white, CalibrationOptions{}, input.white));
+    grid = calibrated;
+  } else {
+    // No white image: the grid from the capture itself (grid.fit says so).
+    LFCAM_ASSIGN_OR_RETURN(auto calibrated, calibrateGrid(raw, {.target = CalibrationTarget::Scene}, input.raw));
     grid = calibrated;
   }
   bar(0.4);

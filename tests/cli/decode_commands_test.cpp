@@ -67,18 +67,28 @@ TEST(DecodeCommand, NamesAWhiteImageOfAnotherSize) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out.lf.h5"));
 }
 
-TEST(DecodeCommand, NeedsAGridOrAWhiteImage) {
+// Neither grid nor white image: the grid comes from the raw itself, and the light field says so;
+// a raw too small to hold a lattice fails in one line naming it.
+TEST(DecodeCommand, WithoutGridOrWhiteImageCalibratesFromTheRaw) {
   TempDir dir;
-  const std::string sim = (dir / "sim").string();
-  ASSERT_EQ(
-      runLfcam({"simulate", "white", "--size", "64", "--samples", "1", "--no-white", "-o", sim}, dir.path()).exitStatus,
-      0);
-  auto decode = runLfcam({"decode", sim + "/raw.png", "-o", (dir / "out.lf.h5").string()}, dir.path());
-  EXPECT_EQ(decode.exitStatus, 2);
-  EXPECT_NE(decode.err.find("lfcam: " + sim + "/raw.png: decoding needs a grid file or a white image"),
-            std::string::npos)
-      << decode.err;
-  EXPECT_FALSE(std::filesystem::exists(dir / "out.lf.h5"));
+  const std::string sim = (dir / "sim").string(), tiny = (dir / "tiny").string();
+  ASSERT_EQ(runLfcam({"simulate", "white", "--size", "160", "--samples", "1", "--no-white", "-o", sim}, dir.path())
+                .exitStatus,
+            0);
+  const std::string out = (dir / "out.lf.h5").string();
+  auto decode = runLfcam({"decode", sim + "/raw.png", "-o", out}, dir.path());
+  ASSERT_EQ(decode.exitStatus, 0) << decode.err;
+  auto info = runLfcam({"info", out}, dir.path());
+  ASSERT_EQ(info.exitStatus, 0) << info.err;
+  EXPECT_NE(info.out.find("grid self-calibrated from the raw (residual RMS 0.0"), std::string::npos) << info.out;
+
+  ASSERT_EQ(runLfcam({"simulate", "white", "--size", "64", "--samples", "1", "--no-white", "-o", tiny}, dir.path())
+                .exitStatus,
+            0);
+  decode = runLfcam({"decode", tiny + "/raw.png", "-o", (dir / "tiny.lf.h5").string()}, dir.path());
+  EXPECT_EQ(decode.exitStatus, 1);
+  EXPECT_EQ(decode.err, "lfcam: " + tiny + "/raw.png: too few microlens images found (4) to fit a lattice\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "tiny.lf.h5"));
 }
 
 }  // namespace

@@ -57,8 +57,9 @@ void addCalibrateCommand(CLI::App& app, Job& job) {
                   packingName(g.packing), g.columns, g.rows, g.pitchX, g.pitchY, g.rotationRad * 180.0 / M_PI,
                   g.origin[0], g.origin[1],
                   g.packing == Packing::Hexagonal ? (g.hexParity ? ", row 0 shifted" : ", row 1 shifted") : "");
-      std::printf("fit: %d centres found, %d used; residual RMS %.4f px, max %.4f px\n", g.fit.lensletsFound,
-                  g.fit.lensletsUsed, g.fit.rmsResidualPx, g.fit.maxResidualPx);
+      std::printf("fit%s: %d centres found, %d used; residual RMS %.4f px, max %.4f px\n",
+                  g.fit.selfCalibrated ? " (self-calibrated from the scene, microlenses with signal)" : "",
+                  g.fit.lensletsFound, g.fit.lensletsUsed, g.fit.rmsResidualPx, g.fit.maxResidualPx);
       return {};
     };
   });

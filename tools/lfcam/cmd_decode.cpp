@@ -21,7 +21,7 @@ void addDecodeCommand(CLI::App& app, Job& job) {
   command->add_option("--dark", options->input.dark, "dark frame, subtracted instead of the black level");
   addBlackLevelOption(*command, options->input.blackLevel);
   command->add_option("--grid", options->input.grid,
-                      "grid.json from lfcam calibrate (default: calibrate the white image)");
+                      "grid.json from lfcam calibrate (default: calibrate the white image, without one the raw)");
   command->add_option("--bayer", options->bayer, "colour filter of a PNG/TIFF raw: RGGB, BGGR, GRBG, GBRG or mono");
   addDecodeMethodOptions(*command, options->input.decode);
   command->add_option("--views", options->input.decode.views, "views across (default: the microlens pitch, rounded)")

@@ -23,6 +23,9 @@ struct GridFitReport {
   int lensletsUsed = 0;      // inliers of the lattice fit
   double rmsResidualPx = 0;  // of the inliers' detected centres against the lattice
   double maxResidualPx = 0;
+  // Estimated from a scene (CalibrationTarget::Scene): no white image; residuals of the
+  // microlenses with signal only.
+  bool selfCalibrated = false;
 };
 
 struct LensletGrid {

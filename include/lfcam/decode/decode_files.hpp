@@ -17,10 +17,11 @@
 namespace lfcam {
 
 struct RawFiles {
-  std::string raw, white, dark, grid;  // grid: a grid.json; empty: calibrated from the white image
-  std::optional<ColorFilter> bayer;    // overrides what the raw says
-  std::optional<double> blackLevel;    // DN, overrides what the raw and white say; a dark frame wins
-  DecodeOptions decode;                // its white and dark are filled from the files; optics from the raw
+  // grid: a grid.json; empty: calibrated from the white image, or without one from the raw itself
+  std::string raw, white, dark, grid;
+  std::optional<ColorFilter> bayer;  // overrides what the raw says
+  std::optional<double> blackLevel;  // DN, overrides what the raw and white say; a dark frame wins
+  DecodeOptions decode;              // its white and dark are filled from the files; optics from the raw
 };
 
 Result<LightField> decodeRawFiles(RawFiles files, const ProgressCallback& progress = {});
