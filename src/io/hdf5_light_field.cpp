@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/hdf5_handle.hpp"
 #include "core/hdf5_lock.hpp"
 #include "core/parallel.hpp"
 #include "io/hdf5_chunk_codec.hpp"
@@ -27,6 +28,8 @@ namespace lfcam::io {
 namespace fs = std::filesystem;
 
 namespace {
+
+using hdf5::Handle;
 
 constexpr const char* kFormatTag = "lfcam-lightfield";
 constexpr int kFormatVersion = 2;  // 2: samples in their own precision (sample_encoding.hpp)
@@ -60,30 +63,6 @@ class Hdf5Session {
 
  private:
   std::unique_lock<std::mutex> lock_;
-};
-
-// An HDF5 identifier closed by the matching function when it goes out of scope.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  Handle(Handle&& other) noexcept : id_(other.id_), close_(other.close_) { other.id_ = -1; }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  // Closes now, reporting failure (a file's last metadata is written when it closes).
-  bool close() {
-    const bool ok = id_ < 0 || close_(id_) >= 0;
-    id_ = -1;
-    return ok;
-  }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
 };
 
 // The innermost message on HDF5's error stack: the actual reason ("file signature not found").

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/atomic_file.hpp"
+#include "core/hdf5_handle.hpp"
 #include "core/hdf5_lock.hpp"
 #include "lfcam/lfm/psf.hpp"
 #include "lfm/psf_stages.hpp"
@@ -14,26 +15,10 @@ namespace lfcam {
 
 namespace {
 
+using hdf5::Handle;
+
 constexpr const char* kFormatTag = "lfcam-lfm-psf";
 constexpr int kFormatVersion = 1;
-
-// An HDF5 identifier closed when it goes out of scope.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  void release() { id_ = -1; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
 
 // Every number the cache is keyed by, with the name a refusal shows.
 struct Key {
@@ -124,9 +109,7 @@ Status writeCacheFile(const LfmPsfSet& set, const std::string& fileName, const s
                           {hsize_t(set.depthsUm.size()), p, p, n, n}, set.values.data());
   if (!ok) return makeError(ErrorCode::Io, path + ": cannot write the PSF cache");
   // The file's last metadata is written as it closes: its failure is the write's.
-  const hid_t id = file.get();
-  file.release();
-  if (H5Fclose(id) < 0) return makeError(ErrorCode::Io, path + ": cannot write the PSF cache");
+  if (!file.close()) return makeError(ErrorCode::Io, path + ": cannot write the PSF cache");
   return {};
 }
 
