@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lfcam/lfm/psf.hpp"
+#include "lfcam/lfm/sparse_psf.hpp"
 #include "lfm/psf_stages.hpp"
 #include "test_support.hpp"
 
@@ -123,7 +124,9 @@ TEST(LfmDebye, NativeFieldOnTheGridIsRadialAndMatchesTheDirectIntegral) {
   const LfmOptics optics;
   const LfmPoint point{0, 0, 1.5};
   const int n = 51;  // one lenslet's window: 17 pixels x 3
-  const auto fast = lfm::nativeFieldFromProfile(optics, PupilModel::AbbeSine, point, n);
+  const auto profile =
+      lfm::radialProfile(optics, PupilModel::AbbeSine, point.zUm, lfm::maxRadiusOnGrid(optics, point, n));
+  const auto fast = lfm::nativeFieldFromProfile(optics, profile, point, n);
   const auto direct = lfm::nativeFieldDirect(optics, PupilModel::AbbeSine, point, n);
   double peak = 0, worst = 0, asymmetry = 0;
   for (const auto& value : direct) peak = std::max(peak, std::abs(value));
@@ -257,83 +260,129 @@ TEST(LfmPsf, RefusesWindowsAndSamplingItCannotModel) {
   EXPECT_EQ(LfmPsf::lensletsFor(LfmOptics{}, 2), 9);  // blur radius 60 * 2 * tan(alpha) = 233 um: 3 + 1 a side
 }
 
-TEST(LfmPsfSet, HoldsEveryDepthAndLensletPhase) {
+TEST(LfmPsfSet, HoldsEverySliceAndVoxelOfALenslet) {
   const LfmOptics optics;
-  const std::vector<double> depths{0, 0.5};
-  const auto set = computePsfSet(optics, depths, 3, 3);
+  const LfmGrid grid{.pixelsPerLenslet = 15, .voxelsPerLenslet = 3, .depthsUm = {0, 0.5}};
+  const auto set = computePsfSet(optics, grid, 3);
   ASSERT_TRUE(set) << set.error().message;
   const int n = set->pixelsAcross;
-  ASSERT_EQ(n, 47);
+  ASSERT_EQ(n, 45);
   ASSERT_EQ(set->values.size(), std::size_t(2 * 3 * 3) * n * n);
-  // The centre phase in focus is the on-axis point's PSF.
-  const auto model = LfmPsf::create(optics, 3);
-  ASSERT_TRUE(model);
-  const Image onAxis = model->psf({0, 0, 0});
-  for (int k = 0; k < n * n; ++k) ASSERT_FLOAT_EQ(set->psf(0, 1, 1)[k], onAxis.pixels()[k]);
-  // Phases either side of the centre are mirror images, at every depth; a phase one sample over
-  // is a different PSF.
-  for (int depth = 0; depth < 2; ++depth) {
-    const float *left = set->psf(depth, 0, 1), *right = set->psf(depth, 2, 1), *centre = set->psf(depth, 1, 1);
-    double peak = 0, mirror = 0, change = 0;
-    for (int k = 0; k < n * n; ++k) peak = std::max(peak, double(left[k]));
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        mirror = std::max(mirror, std::abs(double(left[y * n + x]) - right[y * n + (n - 1 - x)]) / peak);
-        change = std::max(change, std::abs(double(left[y * n + x]) - centre[y * n + x]) / peak);
-      }
-    EXPECT_LT(mirror, 1e-4) << depth;
-    EXPECT_GT(change, 1e-3) << depth;
-  }
-  EXPECT_NEAR(set->point(1, 2, 0).xUm, optics.sampleSpacingUm() / optics.magnification, 1e-12);
-  EXPECT_NEAR(set->point(1, 2, 0).yUm, -optics.sampleSpacingUm() / optics.magnification, 1e-12);
+  EXPECT_NEAR(set->optics.pixelSizeUm, 100.0 / 15, 1e-12);
+  // Voxel (2, 0) sits a third of a lenslet right of and above the centre, in the specimen.
+  EXPECT_NEAR(set->point(1, 2, 0).xUm, 100.0 / 3 / 60, 1e-12);
+  EXPECT_NEAR(set->point(1, 2, 0).yUm, -100.0 / 3 / 60, 1e-12);
   EXPECT_EQ(set->point(1, 2, 0).zUm, 0.5);
+  // Every phase, copied by symmetry or computed, is the PSF of its own point within 1e-4 of the
+  // peak (the FFT grid of an even sample count is not quite symmetric), and not its neighbour's.
+  const auto model = LfmPsf::create(set->optics, 3);
+  ASSERT_TRUE(model);
+  for (int depth = 0; depth < 2; ++depth)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) {
+        const Image direct = model->psf(set->point(depth, i, j));
+        const float* stored = set->psf(depth, i, j);
+        const float* other = set->psf(depth, (i + 1) % 3, j);
+        double peak = 0, worst = 0, change = 0;
+        for (int p = 0; p < n * n; ++p) peak = std::max(peak, double(direct.pixels()[p]));
+        for (int p = 0; p < n * n; ++p) {
+          worst = std::max(worst, std::abs(double(stored[p]) - direct.pixels()[p]) / peak);
+          change = std::max(change, std::abs(double(other[p]) - direct.pixels()[p]) / peak);
+        }
+        EXPECT_LT(worst, 1e-4) << depth << " " << i << " " << j;
+        EXPECT_GT(change, 1e-2) << depth << " " << i << " " << j;
+      }
 }
 
-TEST(LfmPsfSet, RefusesPhasesItCannotPlace) {
-  const std::vector<double> depths{0};
-  const auto even = computePsfSet(LfmOptics{}, depths, 2, 3);
-  ASSERT_FALSE(even);
-  EXPECT_EQ(even.error().message, "lenslet phases across 2 must be odd, in [1, 46] (samples across one pitch)");
-  EXPECT_FALSE(computePsfSet(LfmOptics{}, {}, 1, 3));
+TEST(LfmPsfSet, RefusesGridsItCannotPlace) {
+  auto refusal = [](const LfmGrid& grid) {
+    const auto set = computePsfSet(LfmOptics{}, grid, 3);
+    return set ? std::string() : set.error().message;
+  };
+  EXPECT_EQ(refusal({.pixelsPerLenslet = 16, .depthsUm = {0}}),
+            "pixels per lenslet 16 must be odd, in [3, 255]: rectify the frame to an odd count");
+  EXPECT_EQ(refusal({.pixelsPerLenslet = 15, .voxelsPerLenslet = 16, .depthsUm = {0}}),
+            "voxels per lenslet (supersample) 16 must be in [1, 15] (the pixels per lenslet)");
+  EXPECT_EQ(refusal({.pixelsPerLenslet = 15}), "no slices: the volume needs at least one");
 }
 
-TEST(LfmPsfCache, KeepsTheSetAndRefusesOtherOptics) {
+TEST(LfmSparsePsf, KeepsTheBrightestPixelsHoldingTheAskedEnergy) {
+  const LfmGrid grid{.pixelsPerLenslet = 15, .voxelsPerLenslet = 1, .depthsUm = {1.5}};
+  const auto set = computePsfSet(LfmOptics{}, grid, 5);
+  ASSERT_TRUE(set) << set.error().message;
+  const int n = set->pixelsAcross;
+  double total = 0;
+  int nonzero = 0;
+  for (int p = 0; p < n * n; ++p) total += set->psf(0, 0, 0)[p], nonzero += set->psf(0, 0, 0)[p] > 0;
+  const LfmSparsePsf all = sparsePsf(set.value(), 1);
+  EXPECT_EQ(int(all.splats.size()), nonzero);
+  EXPECT_EQ(all.reach, 2);
+  const LfmSparsePsf most = sparsePsf(set.value(), 0.95);
+  double kept = 0;
+  float smallest = 1;
+  for (const LfmSplat& splat : most.of(0, 0, 0)) kept += splat.weight, smallest = std::min(smallest, splat.weight);
+  EXPECT_GE(kept, 0.95 * total - 1e-6);
+  EXPECT_LT(kept - smallest, 0.95 * total);  // one splat fewer would not do
+  EXPECT_LT(most.splats.size(), all.splats.size() / 2);
+  std::printf("1.5 um: %zu of %d pixels hold 95 %% of the energy\n", most.splats.size(), n * n);
+  // Each splat is a pixel of the dense PSF, where its lenslet offset and pixel say.
+  for (const LfmSplat& splat : all.of(0, 0, 0)) {
+    const int x = (splat.dx + 2) * 15 + splat.pixel % 15, y = (splat.dy + 2) * 15 + splat.pixel / 15;
+    ASSERT_EQ(splat.weight, set->psf(0, 0, 0)[y * n + x]);
+  }
+}
+
+TEST(LfmPsfCache, KeepsTheSplatsAndRefusesOtherSettings) {
   test::TempDir dir;
   const LfmOptics optics;
-  const std::vector<double> depths{0.25};
-  const auto set = computePsfSet(optics, depths, 1, 3);
-  ASSERT_TRUE(set) << set.error().message;
+  const LfmGrid grid{.pixelsPerLenslet = 15, .voxelsPerLenslet = 1, .depthsUm = {0.25}};
+  const auto psf = computeSparsePsf(optics, grid, 0.99);
+  ASSERT_TRUE(psf) << psf.error().message;
   const std::string path = (dir.path() / "psf.h5").string();
-  const Status written = writePsfCache(set.value(), path);
+  const Status written = writePsfCache(psf.value(), path);
   ASSERT_TRUE(written) << written.error().message;
 
-  const auto read = readPsfCache(path, optics);
+  const auto read = readPsfCache(path, optics, grid, 0.99);
   ASSERT_TRUE(read) << read.error().message;
-  EXPECT_EQ(read->depthsUm, set->depthsUm);
-  EXPECT_EQ(read->lensletsAcross, 3);
-  EXPECT_EQ(read->phasesAcross, 1);
-  EXPECT_EQ(read->pixelsAcross, set->pixelsAcross);
-  EXPECT_EQ(read->values, set->values);
+  EXPECT_EQ(read->grid.depthsUm, grid.depthsUm);
+  EXPECT_EQ(read->reach, psf->reach);
+  EXPECT_EQ(read->begins, psf->begins);
+  ASSERT_EQ(read->splats.size(), psf->splats.size());
+  for (std::size_t k = 0; k < psf->splats.size(); ++k) {
+    EXPECT_EQ(read->splats[k].pixel, psf->splats[k].pixel);
+    EXPECT_EQ(read->splats[k].dx, psf->splats[k].dx);
+    EXPECT_EQ(read->splats[k].dy, psf->splats[k].dy);
+    EXPECT_EQ(read->splats[k].weight, psf->splats[k].weight);
+  }
 
-  auto refusal = [&](const LfmOptics& other, PupilModel pupil) {
-    const auto result = readPsfCache(path, other, pupil);
+  auto refusal = [&](const LfmOptics& other, const LfmGrid& otherGrid, double keep, PupilModel pupil) {
+    const auto result = readPsfCache(path, other, otherGrid, keep, pupil);
     return result ? std::string() : result.error().message;
   };
-  EXPECT_EQ(refusal(LfmOptics{.numericalAperture = 1.1}, PupilModel::AbbeSine),
-            path + ": made for NA 1.2, not 1.1: compute the PSFs again for these optics");
-  EXPECT_EQ(refusal(LfmOptics{.supersample = 5}, PupilModel::AbbeSine),
-            path + ": made for supersample 3, not 5: compute the PSFs again for these optics");
-  EXPECT_EQ(refusal(optics, PupilModel::Paraxial),
-            path + ": made for pupil (0 Abbe sine, 1 paraxial) 0, not 1: compute the PSFs again for these optics");
+  const std::string again = ": compute the PSFs again for these settings";
+  EXPECT_EQ(refusal(LfmOptics{.numericalAperture = 1.1}, grid, 0.99, PupilModel::AbbeSine),
+            path + ": made for NA 1.2, not 1.1" + again);
+  EXPECT_EQ(refusal(LfmOptics{.supersample = 5}, grid, 0.99, PupilModel::AbbeSine),
+            path + ": made for field samples per pixel 3, not 5" + again);
+  EXPECT_EQ(refusal(optics, grid, 0.99, PupilModel::Paraxial),
+            path + ": made for pupil (0 Abbe sine, 1 paraxial) 0, not 1" + again);
+  EXPECT_EQ(
+      refusal(optics, {.pixelsPerLenslet = 15, .voxelsPerLenslet = 3, .depthsUm = {0.25}}, 0.99, PupilModel::AbbeSine),
+      path + ": made for voxels per lenslet 1, not 3" + again);
+  EXPECT_EQ(
+      refusal(optics, {.pixelsPerLenslet = 15, .voxelsPerLenslet = 1, .depthsUm = {0.5}}, 0.99, PupilModel::AbbeSine),
+      path + ": made for a slice at 0.25 um, not 0.5" + again);
+  EXPECT_EQ(refusal(optics, grid, 0.95, PupilModel::AbbeSine),
+            path + ": made for kept PSF energy 0.99, not 0.95" + again);
 
-  const Status unwritable = writePsfCache(set.value(), (dir.path() / "missing" / "psf.h5").string());
+  const Status unwritable = writePsfCache(psf.value(), (dir.path() / "missing" / "psf.h5").string());
   ASSERT_FALSE(unwritable);
   EXPECT_EQ(unwritable.error().message, (dir.path() / "missing" / "psf.h5").string() + ": cannot write: the folder " +
                                             (dir.path() / "missing").string() + " does not exist");
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "missing"));
 
   test::writeBytes(dir.path() / "other.h5", "not HDF5");
-  const auto other = readPsfCache((dir.path() / "other.h5").string(), optics);
+  const auto other = readPsfCache((dir.path() / "other.h5").string(), optics, grid, 0.99);
   ASSERT_FALSE(other);
   EXPECT_EQ(other.error().code, ErrorCode::Io);
 }

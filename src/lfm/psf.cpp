@@ -3,6 +3,7 @@
 #include <fftw3.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -93,15 +94,11 @@ std::complex<double> DebyeIntegral::field(double radiusUm) const {
   return sum;
 }
 
-namespace {
-
 double maxRadiusOnGrid(const LfmOptics& optics, const LfmPoint& point, int n) {
   const double half = sampleCoordinate(n - 1, n, optics.sampleSpacingUm());
   const double cx = optics.magnification * point.xUm, cy = optics.magnification * point.yUm;
   return std::hypot(half + std::abs(cx), half + std::abs(cy));
 }
-
-}  // namespace
 
 std::vector<std::complex<double>> nativeFieldDirect(const LfmOptics& optics, PupilModel pupil, const LfmPoint& point,
                                                     int n) {
@@ -118,29 +115,33 @@ std::vector<std::complex<double>> nativeFieldDirect(const LfmOptics& optics, Pup
   return field;
 }
 
-std::vector<std::complex<double>> nativeFieldFromProfile(const LfmOptics& optics, PupilModel pupil,
+std::complex<double> RadialProfile::at(double radiusUm) const {
+  const double r = radiusUm / step;
+  const int i = std::min(int(r), int(values.size()) - 2);
+  const double t = r - i;
+  return (1 - t) * values[i] + t * values[i + 1];
+}
+
+RadialProfile radialProfile(const LfmOptics& optics, PupilModel pupil, double depthUm, double maxRadiusUm) {
+  const DebyeIntegral debye(optics, depthUm, maxRadiusUm, pupil);
+  RadialProfile profile{.depthUm = depthUm, .step = optics.sampleSpacingUm() / 16};
+  profile.values.resize(std::size_t(std::ceil(maxRadiusUm / profile.step)) + 2);
+  parallelFor(0, profile.values.size(), 16, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) profile.values[i] = debye.field(double(i) * profile.step);
+  });
+  return profile;
+}
+
+std::vector<std::complex<double>> nativeFieldFromProfile(const LfmOptics& optics, const RadialProfile& profile,
                                                          const LfmPoint& point, int n) {
   const double dx = optics.sampleSpacingUm();
-  const double maxRadius = maxRadiusOnGrid(optics, point, n);
-  const DebyeIntegral debye(optics, point.zUm, maxRadius, pupil);
-  // The radial profile every dx / 16: linear interpolation's error is (h^2 / 8) |U''|, with
-  // |U''| <= (2 pi kappa)^2 |U| and 2 kappa dx < 1, so below 1e-3 of the field's magnitude.
-  const double step = dx / 16;
-  const int count = int(std::ceil(maxRadius / step)) + 2;
-  std::vector<std::complex<double>> profile(count);
-  parallelFor(0, count, 16, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) profile[i] = debye.field(double(i) * step);
-  });
   const double cx = optics.magnification * point.xUm, cy = optics.magnification * point.yUm;
   std::vector<std::complex<double>> field(std::size_t(n) * n);
   parallelFor(0, n, 8, [&](std::size_t begin, std::size_t end) {
     for (std::size_t y = begin; y < end; ++y)
-      for (int x = 0; x < n; ++x) {
-        const double r = std::hypot(sampleCoordinate(x, n, dx) - cx, sampleCoordinate(int(y), n, dx) - cy) / step;
-        const int i = std::min(int(r), count - 2);
-        const double t = r - i;
-        field[y * n + x] = (1 - t) * profile[i] + t * profile[i + 1];
-      }
+      for (int x = 0; x < n; ++x)
+        field[y * n + x] =
+            profile.at(std::hypot(sampleCoordinate(x, n, dx) - cx, sampleCoordinate(int(y), n, dx) - cy));
   });
   return field;
 }
@@ -281,13 +282,39 @@ struct LfmPsf::State {
   PupilModel pupil;
   int pixels = 0, samples = 0;
   lfm::FresnelTransfer transfer;
+  std::vector<std::complex<float>> mask;  // the microlens array's transmission on the window
+  // The radial profiles of the depths seen so far, each reaching any point of the centre lenslet.
+  mutable std::mutex profilesMutex;
+  mutable std::vector<std::shared_ptr<const lfm::RadialProfile>> profiles;
 
   State(const LfmOptics& o, PupilModel p, int pixelsAcross)
       : optics(o),
         pupil(p),
         pixels(pixelsAcross),
         samples(pixelsAcross * o.supersample),
-        transfer(samples, o.sampleSpacingUm(), o.wavelengthUm(), o.microlensFocalLengthUm) {}
+        transfer(samples, o.sampleSpacingUm(), o.wavelengthUm(), o.microlensFocalLengthUm),
+        mask(std::size_t(samples) * samples, 1.0f) {
+    lfm::applyMicrolenses(optics, samples, mask.data());
+  }
+
+  std::shared_ptr<const lfm::RadialProfile> profileFor(const LfmPoint& point) const {
+    const double half = 0.5 * optics.microlensPitchUm / optics.magnification;
+    const LfmPoint corner{half, half, point.zUm};
+    const double reach = lfm::maxRadiusOnGrid(optics, corner, samples);
+    if (lfm::maxRadiusOnGrid(optics, point, samples) > reach)
+      return std::make_shared<const lfm::RadialProfile>(
+          lfm::radialProfile(optics, pupil, point.zUm, lfm::maxRadiusOnGrid(optics, point, samples)));
+    {
+      std::lock_guard lock(profilesMutex);
+      for (const auto& profile : profiles)
+        if (profile->depthUm == point.zUm) return profile;
+    }
+    // Two threads may both compute a new depth's profile; the second copy is dropped.
+    auto profile = std::make_shared<const lfm::RadialProfile>(lfm::radialProfile(optics, pupil, point.zUm, reach));
+    std::lock_guard lock(profilesMutex);
+    profiles.push_back(profile);
+    return profile;
+  }
 };
 
 Result<LfmPsf> LfmPsf::create(const LfmOptics& optics, int lensletsAcross, PupilModel pupil) {
@@ -329,13 +356,13 @@ int LfmPsf::pixelsAcross() const { return state_->pixels; }
 int LfmPsf::samplesAcross() const { return state_->samples; }
 
 std::vector<std::complex<double>> LfmPsf::nativeField(const LfmPoint& point) const {
-  return lfm::nativeFieldFromProfile(state_->optics, state_->pupil, point, state_->samples);
+  return lfm::nativeFieldFromProfile(state_->optics, *state_->profileFor(point), point, state_->samples);
 }
 
 std::vector<std::complex<float>> LfmPsf::sensorField(const LfmPoint& point) const {
   const std::vector<std::complex<double>> native = nativeField(point);
-  std::vector<std::complex<float>> field(native.begin(), native.end());
-  lfm::applyMicrolenses(state_->optics, state_->samples, field.data());
+  std::vector<std::complex<float>> field(native.size());
+  for (std::size_t i = 0; i < field.size(); ++i) field[i] = std::complex<float>(native[i]) * state_->mask[i];
   state_->transfer.propagate(field.data());
   return field;
 }
@@ -346,50 +373,80 @@ Image LfmPsf::psf(const LfmPoint& point) const {
                               state_->optics.sampleSpacingUm());
 }
 
+Status validateLfmGrid(const LfmGrid& grid) {
+  if (grid.pixelsPerLenslet < 3 || grid.pixelsPerLenslet % 2 == 0 || grid.pixelsPerLenslet > 255)
+    return makeError(ErrorCode::Usage, "pixels per lenslet " + std::to_string(grid.pixelsPerLenslet) +
+                                           " must be odd, in [3, 255]: rectify the frame to an odd count");
+  if (grid.voxelsPerLenslet < 1 || grid.voxelsPerLenslet > grid.pixelsPerLenslet)
+    return makeError(ErrorCode::Usage, "voxels per lenslet (supersample) " + std::to_string(grid.voxelsPerLenslet) +
+                                           " must be in [1, " + std::to_string(grid.pixelsPerLenslet) +
+                                           "] (the pixels per lenslet)");
+  if (grid.depthsUm.empty()) return makeError(ErrorCode::Usage, "no slices: the volume needs at least one");
+  for (double z : grid.depthsUm)
+    if (!std::isfinite(z)) return makeError(ErrorCode::Usage, "slice depth " + number(z) + " must be finite");
+  return {};
+}
+
+LfmOptics frameOptics(const LfmOptics& optics, int pixelsPerLenslet) {
+  LfmOptics frame = optics;
+  frame.pixelSizeUm = optics.microlensPitchUm / pixelsPerLenslet;
+  return frame;
+}
+
 LfmPoint LfmPsfSet::point(int depth, int i, int j) const {
-  const double dx = optics.sampleSpacingUm() / optics.magnification;  // in the specimen
-  return {lfm::sampleCoordinate(i, phasesAcross, dx), lfm::sampleCoordinate(j, phasesAcross, dx), depthsUm[depth]};
+  return {grid.voxelOffsetUm(optics, i), grid.voxelOffsetUm(optics, j), grid.depthsUm[depth]};
 }
 
 const float* LfmPsfSet::psf(int depth, int i, int j) const {
-  const std::size_t index = (std::size_t(depth) * phasesAcross + j) * phasesAcross + i;
+  const int k = grid.voxelsPerLenslet;
+  const std::size_t index = (std::size_t(depth) * k + j) * k + i;
   return values.data() + index * pixelsAcross * pixelsAcross;
 }
 
-Result<LfmPsfSet> computePsfSet(const LfmOptics& optics, std::span<const double> depthsUm, int phasesAcross,
-                                int lensletsAcross, PupilModel pupil) {
-  LFCAM_TRY(validateLfmOptics(optics));
-  if (depthsUm.empty()) return makeError(ErrorCode::Usage, "no depths to compute PSFs at");
+Result<LfmPsfSet> computePsfSet(const LfmOptics& microscope, const LfmGrid& grid, int lensletsAcross,
+                                PupilModel pupil) {
+  LFCAM_TRY(validateLfmOptics(microscope));
+  LFCAM_TRY(validateLfmGrid(grid));
+  const LfmOptics optics = frameOptics(microscope, grid.pixelsPerLenslet);
   double deepest = 0;
-  for (double z : depthsUm) {
-    if (!std::isfinite(z)) return makeError(ErrorCode::Usage, "depth " + number(z) + " must be finite");
-    deepest = std::max(deepest, std::abs(z));
-  }
-  const int samplesPerPitch = int(std::floor(optics.microlensPitchUm / optics.sampleSpacingUm()));
-  if (phasesAcross < 1 || phasesAcross % 2 == 0 || phasesAcross > samplesPerPitch)
-    return makeError(ErrorCode::Usage, "lenslet phases across " + std::to_string(phasesAcross) +
-                                           " must be odd, in [1, " + std::to_string(samplesPerPitch) +
-                                           "] (samples across one pitch)");
+  for (double z : grid.depthsUm) deepest = std::max(deepest, std::abs(z));
   if (lensletsAcross == 0) lensletsAcross = LfmPsf::lensletsFor(optics, deepest);
   LFCAM_ASSIGN_OR_RETURN(LfmPsf model, LfmPsf::create(optics, lensletsAcross, pupil));
-  LfmPsfSet set{.optics = optics,
-                .pupil = pupil,
-                .lensletsAcross = lensletsAcross,
-                .phasesAcross = phasesAcross,
-                .pixelsAcross = model.pixelsAcross(),
-                .depthsUm = std::vector<double>(depthsUm.begin(), depthsUm.end())};
-  const std::size_t count = depthsUm.size() * phasesAcross * phasesAcross;
-  const std::size_t size = std::size_t(set.pixelsAcross) * set.pixelsAcross;
-  set.values.resize(count * size);
+  const int k = grid.voxelsPerLenslet, n = model.pixelsAcross();
+  LfmPsfSet set{.optics = optics, .pupil = pupil, .grid = grid, .lensletsAcross = lensletsAcross, .pixelsAcross = n};
+  const std::size_t size = std::size_t(n) * n;
+  set.values.resize(grid.depthsUm.size() * k * k * size);
+  // The array and the pixels are symmetric about the centre lenslet's axes and diagonal: phase
+  // K - 1 - i is phase i mirrored, phase (j, i) phase (i, j) transposed. Only the phases with
+  // fold(i) <= fold(j) are computed; the others are copied from them.
+  auto fold = [k](int i) { return std::min(i, k - 1 - i); };
+  std::vector<std::array<int, 3>> computed;  // depth, i, j
+  for (int depth = 0; depth < int(grid.depthsUm.size()); ++depth)
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i)
+        if (i == fold(i) && j == fold(j) && i <= j) computed.push_back({depth, i, j});
   // One PSF a task: each one's own stages thread within it too.
-  parallelFor(0, count, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t index = begin; index < end; ++index) {
-      const int i = int(index % phasesAcross), j = int(index / phasesAcross % phasesAcross);
-      const int depth = int(index / (std::size_t(phasesAcross) * phasesAcross));
+  parallelFor(0, computed.size(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const auto [depth, i, j] = computed[c];
       const Image image = model.psf(set.point(depth, i, j));
-      std::copy(image.pixels().begin(), image.pixels().end(), set.values.begin() + index * size);
+      std::copy(image.pixels().begin(), image.pixels().end(), const_cast<float*>(set.psf(depth, i, j)));
     }
   });
+  for (int depth = 0; depth < int(grid.depthsUm.size()); ++depth)
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i) {
+        const int fi = fold(i), fj = fold(j);
+        const bool transposed = fi > fj;
+        if (i == fi && j == fj && !transposed) continue;
+        const float* base = set.psf(depth, transposed ? fj : fi, transposed ? fi : fj);
+        float* out = const_cast<float*>(set.psf(depth, i, j));
+        for (int y = 0; y < n; ++y)
+          for (int x = 0; x < n; ++x) {
+            const int my = j != fj ? n - 1 - y : y, mx = i != fi ? n - 1 - x : x;
+            out[std::size_t(y) * n + x] = transposed ? base[std::size_t(mx) * n + my] : base[std::size_t(my) * n + mx];
+          }
+      }
   return set;
 }
 

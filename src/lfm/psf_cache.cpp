@@ -1,6 +1,9 @@
-// The PSF cache (psf.hpp): one HDF5 file, written and read under the library's one HDF5 lock.
+// The PSF cache (sparse_psf.hpp): one HDF5 file, written and read under the library's one HDF5 lock.
 #include <hdf5.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <mutex>
 #include <string>
@@ -8,8 +11,7 @@
 #include "core/atomic_file.hpp"
 #include "core/hdf5_handle.hpp"
 #include "core/hdf5_lock.hpp"
-#include "lfcam/lfm/psf.hpp"
-#include "lfm/psf_stages.hpp"
+#include "lfcam/lfm/sparse_psf.hpp"
 
 namespace lfcam {
 
@@ -18,7 +20,7 @@ namespace {
 using hdf5::Handle;
 
 constexpr const char* kFormatTag = "lfcam-lfm-psf";
-constexpr int kFormatVersion = 1;
+constexpr int kFormatVersion = 2;  // 1 held dense PSFs on field-sample phases
 
 // Every number the cache is keyed by, with the name a refusal shows.
 struct Key {
@@ -27,7 +29,7 @@ struct Key {
   double value;
 };
 
-std::vector<Key> keysOf(const LfmOptics& o, PupilModel pupil) {
+std::vector<Key> keysOf(const LfmOptics& o, PupilModel pupil, const LfmGrid& grid, double keep) {
   return {{"magnification", "magnification", o.magnification},
           {"numerical_aperture", "NA", o.numericalAperture},
           {"immersion_index", "immersion index", o.immersionIndex},
@@ -37,8 +39,11 @@ std::vector<Key> keysOf(const LfmOptics& o, PupilModel pupil) {
           {"microlens_focal_length_um", "microlens focal length (um)", o.microlensFocalLengthUm},
           {"microlens_fill_factor", "microlens fill factor", o.microlensFillFactor},
           {"pixel_size_um", "pixel size (um)", o.pixelSizeUm},
-          {"supersample", "supersample", double(o.supersample)},
-          {"pupil", "pupil (0 Abbe sine, 1 paraxial)", double(int(pupil))}};
+          {"field_samples_per_pixel", "field samples per pixel", double(o.supersample)},
+          {"pupil", "pupil (0 Abbe sine, 1 paraxial)", double(int(pupil))},
+          {"pixels_per_lenslet", "pixels per lenslet", double(grid.pixelsPerLenslet)},
+          {"voxels_per_lenslet", "voxels per lenslet", double(grid.voxelsPerLenslet)},
+          {"kept_energy", "kept PSF energy", keep}};
 }
 
 std::string number(double x) {
@@ -84,8 +89,15 @@ bool readDataset(hid_t file, const char* name, hid_t memoryType, const std::vect
 
 namespace {
 
+// The splats' fields, one dataset each.
+struct SplatColumns {
+  std::vector<std::uint16_t> pixels;
+  std::vector<std::int8_t> dx, dy;
+  std::vector<float> weights;
+};
+
 // Writes to `file`, naming `path` (the destination) in errors.
-Status writeCacheFile(const LfmPsfSet& set, const std::string& fileName, const std::string& path) {
+Status writeCacheFile(const LfmSparsePsf& psf, const std::string& fileName, const std::string& path) {
   std::lock_guard lock(hdf5::libraryMutex());
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   Handle file(H5Fcreate(fileName.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
@@ -99,31 +111,54 @@ Status writeCacheFile(const LfmPsfSet& set, const std::string& fileName, const s
     ok = attribute.valid() && H5Awrite(attribute.get(), type.get(), kFormatTag) >= 0;
   }
   ok = ok && writeDouble(file.get(), "format_version", kFormatVersion);
-  for (const Key& key : keysOf(set.optics, set.pupil)) ok = ok && writeDouble(file.get(), key.attribute, key.value);
-  ok = ok && writeDouble(file.get(), "lenslets_across", set.lensletsAcross) &&
-       writeDouble(file.get(), "phases_across", set.phasesAcross);
-  ok = ok && writeDataset(file.get(), "depths_um", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {hsize_t(set.depthsUm.size())},
-                          set.depthsUm.data());
-  const hsize_t p = set.phasesAcross, n = set.pixelsAcross;
-  ok = ok && writeDataset(file.get(), "psf", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT,
-                          {hsize_t(set.depthsUm.size()), p, p, n, n}, set.values.data());
+  for (const Key& key : keysOf(psf.optics, psf.pupil, psf.grid, psf.keptEnergy))
+    ok = ok && writeDouble(file.get(), key.attribute, key.value);
+  ok = ok && writeDouble(file.get(), "reach", psf.reach);
+  ok = ok && writeDataset(file.get(), "depths_um", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                          {hsize_t(psf.grid.depthsUm.size())}, psf.grid.depthsUm.data());
+  const std::vector<std::uint64_t> begins(psf.begins.begin(), psf.begins.end());
+  ok = ok &&
+       writeDataset(file.get(), "begins", H5T_STD_U64LE, H5T_NATIVE_UINT64, {hsize_t(begins.size())}, begins.data());
+  SplatColumns columns;
+  for (const LfmSplat& splat : psf.splats) {
+    columns.pixels.push_back(splat.pixel);
+    columns.dx.push_back(splat.dx);
+    columns.dy.push_back(splat.dy);
+    columns.weights.push_back(splat.weight);
+  }
+  const std::vector<hsize_t> count{hsize_t(psf.splats.size())};
+  ok = ok && writeDataset(file.get(), "pixels", H5T_STD_U16LE, H5T_NATIVE_UINT16, count, columns.pixels.data()) &&
+       writeDataset(file.get(), "lenslet_dx", H5T_STD_I8LE, H5T_NATIVE_INT8, count, columns.dx.data()) &&
+       writeDataset(file.get(), "lenslet_dy", H5T_STD_I8LE, H5T_NATIVE_INT8, count, columns.dy.data()) &&
+       writeDataset(file.get(), "weights", H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, count, columns.weights.data());
   if (!ok) return makeError(ErrorCode::Io, path + ": cannot write the PSF cache");
   // The file's last metadata is written as it closes: its failure is the write's.
   if (!file.close()) return makeError(ErrorCode::Io, path + ": cannot write the PSF cache");
   return {};
 }
 
+hssize_t datasetLength(hid_t file, const char* name) {
+  if (H5Lexists(file, name, H5P_DEFAULT) <= 0) return -1;
+  Handle dataset(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose);
+  Handle space(H5Dget_space(dataset.get()), H5Sclose);
+  if (!dataset.valid() || H5Sget_simple_extent_ndims(space.get()) != 1) return -1;
+  return H5Sget_simple_extent_npoints(space.get());
+}
+
 }  // namespace
 
-Status writePsfCache(const LfmPsfSet& set, const std::string& path) {
+Status writePsfCache(const LfmSparsePsf& psf, const std::string& path) {
   // Whole or not at all: a cache cut short by a failure or a kill would be refused as not one, but
   // it would also have replaced a good one.
   return writeFileAtomically(
-      path, [&](const std::filesystem::path& temporary) { return writeCacheFile(set, temporary.string(), path); });
+      path, [&](const std::filesystem::path& temporary) { return writeCacheFile(psf, temporary.string(), path); });
 }
 
-Result<LfmPsfSet> readPsfCache(const std::string& path, const LfmOptics& optics, PupilModel pupil) {
-  LFCAM_TRY(validateLfmOptics(optics));
+Result<LfmSparsePsf> readPsfCache(const std::string& path, const LfmOptics& microscope, const LfmGrid& grid,
+                                  double keep, PupilModel pupil) {
+  LFCAM_TRY(validateLfmOptics(microscope));
+  LFCAM_TRY(validateLfmGrid(grid));
+  const LfmOptics optics = frameOptics(microscope, grid.pixelsPerLenslet);
   std::lock_guard lock(hdf5::libraryMutex());
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
@@ -141,41 +176,61 @@ Result<LfmPsfSet> readPsfCache(const std::string& path, const LfmOptics& optics,
     if (H5Aread(attribute.get(), memoryType.get(), tag.data()) < 0 || tag != kFormatTag) return notCache;
   }
   double version = 0;
-  if (!readDouble(file.get(), "format_version", version) || version != kFormatVersion) return notCache;
-  // The optics it was made for, exactly: a PSF of other optics is another PSF.
-  for (const Key& key : keysOf(optics, pupil)) {
+  if (!readDouble(file.get(), "format_version", version)) return notCache;
+  if (version != kFormatVersion)
+    return makeError(ErrorCode::Usage, path + ": a PSF cache of an earlier lfcam (format " + number(version) +
+                                           "): compute the PSFs again");
+  // What it was made for, exactly: a PSF of other optics is another PSF.
+  for (const Key& key : keysOf(optics, pupil, grid, keep)) {
     double made = 0;
     if (!readDouble(file.get(), key.attribute, made)) return notCache;
     if (made != key.value)
       return makeError(ErrorCode::Usage, path + ": made for " + key.name + " " + number(made) + ", not " +
-                                             number(key.value) + ": compute the PSFs again for these optics");
+                                             number(key.value) + ": compute the PSFs again for these settings");
   }
-  double lenslets = 0, phases = 0;
-  if (!readDouble(file.get(), "lenslets_across", lenslets) || !readDouble(file.get(), "phases_across", phases))
+  LfmSparsePsf psf{.optics = optics, .pupil = pupil, .grid = grid, .keptEnergy = keep};
+  double reach = 0;
+  if (!readDouble(file.get(), "reach", reach) || reach < 0 || reach > 127 || reach != int(reach)) return notCache;
+  psf.reach = int(reach);
+  std::vector<double> depths(grid.depthsUm.size());
+  if (datasetLength(file.get(), "depths_um") != hssize_t(depths.size()))
+    return makeError(ErrorCode::Usage, path + ": made for " + std::to_string(datasetLength(file.get(), "depths_um")) +
+                                           " slices, not " + std::to_string(depths.size()) +
+                                           ": compute the PSFs again for these settings");
+  if (!readDataset(file.get(), "depths_um", H5T_NATIVE_DOUBLE, {hsize_t(depths.size())}, depths.data()))
     return notCache;
-  if (lenslets < 1 || lenslets > 201 || lenslets != int(lenslets) || phases < 1 || phases > 1000 ||
-      phases != int(phases))
+  for (std::size_t d = 0; d < depths.size(); ++d)
+    if (depths[d] != grid.depthsUm[d])
+      return makeError(ErrorCode::Usage, path + ": made for a slice at " + number(depths[d]) + " um, not " +
+                                             number(grid.depthsUm[d]) + ": compute the PSFs again for these settings");
+  const std::size_t phases = depths.size() * grid.voxelsPerLenslet * grid.voxelsPerLenslet;
+  std::vector<std::uint64_t> begins(phases + 1);
+  if (datasetLength(file.get(), "begins") != hssize_t(begins.size()) ||
+      !readDataset(file.get(), "begins", H5T_NATIVE_UINT64, {hsize_t(begins.size())}, begins.data()))
     return notCache;
-  LfmPsfSet set{.optics = optics,
-                .pupil = pupil,
-                .lensletsAcross = int(lenslets),
-                .phasesAcross = int(phases),
-                .pixelsAcross = lfm::windowPixels(optics, int(lenslets))};
-  {
-    if (H5Lexists(file.get(), "depths_um", H5P_DEFAULT) <= 0) return notCache;
-    Handle dataset(H5Dopen2(file.get(), "depths_um", H5P_DEFAULT), H5Dclose);
-    Handle space(H5Dget_space(dataset.get()), H5Sclose);
-    const hssize_t count = H5Sget_simple_extent_npoints(space.get());
-    if (count < 1 || count > 100000) return notCache;
-    set.depthsUm.resize(count);
+  const hssize_t count = datasetLength(file.get(), "weights");
+  if (count < 0 || begins.front() != 0 || begins.back() != std::uint64_t(count) ||
+      !std::is_sorted(begins.begin(), begins.end()))
+    return notCache;
+  SplatColumns columns{std::vector<std::uint16_t>(count), std::vector<std::int8_t>(count),
+                       std::vector<std::int8_t>(count), std::vector<float>(count)};
+  const std::vector<hsize_t> dims{hsize_t(count)};
+  if (!readDataset(file.get(), "pixels", H5T_NATIVE_UINT16, dims, columns.pixels.data()) ||
+      !readDataset(file.get(), "lenslet_dx", H5T_NATIVE_INT8, dims, columns.dx.data()) ||
+      !readDataset(file.get(), "lenslet_dy", H5T_NATIVE_INT8, dims, columns.dy.data()) ||
+      !readDataset(file.get(), "weights", H5T_NATIVE_FLOAT, dims, columns.weights.data()))
+    return notCache;
+  const int pixels = grid.pixelsPerLenslet * grid.pixelsPerLenslet;
+  psf.begins.assign(begins.begin(), begins.end());
+  psf.splats.resize(count);
+  for (hssize_t k = 0; k < count; ++k) {
+    // The projectors index with these: a damaged file must not reach them.
+    if (columns.pixels[k] >= pixels || std::abs(columns.dx[k]) > psf.reach || std::abs(columns.dy[k]) > psf.reach ||
+        !std::isfinite(columns.weights[k]))
+      return notCache;
+    psf.splats[k] = {columns.pixels[k], columns.dx[k], columns.dy[k], columns.weights[k]};
   }
-  if (!readDataset(file.get(), "depths_um", H5T_NATIVE_DOUBLE, {hsize_t(set.depthsUm.size())}, set.depthsUm.data()))
-    return notCache;
-  const hsize_t p = set.phasesAcross, n = set.pixelsAcross;
-  set.values.resize(set.depthsUm.size() * p * p * n * n);
-  if (!readDataset(file.get(), "psf", H5T_NATIVE_FLOAT, {hsize_t(set.depthsUm.size()), p, p, n, n}, set.values.data()))
-    return notCache;
-  return set;
+  return psf;
 }
 
 }  // namespace lfcam

@@ -82,32 +82,43 @@ class LfmPsf {
   std::unique_ptr<State> state_;
 };
 
-// The PSFs Broxton's forward operator H needs (section 4): every depth, and every lenslet phase, the
-// points whose images fall on phasesAcross x phasesAcross field samples about the centre
-// lenslet's centre, phase (i, j) at image-side offset ((i - (P - 1) / 2) dx, (j - (P - 1) / 2) dx),
-// dx = sampleSpacingUm(). Values: [depth][j][i][y][x], pixelsAcross square each.
+// The volume a reconstruction samples. The frame is rectified to N x N pixels a lenslet, lenslet
+// (s, t) covering pixels [s N, (s + 1) N) x [t N, (t + 1) N); the volume holds K x K voxels a
+// lenslet across its slices, voxel i of a lenslet at ((i + 0.5) / K - 0.5) pitch / M from the
+// lenslet's centre in the specimen (napari-LF's layout; K = N is Prevedel et al.'s, a voxel a
+// pixel).
+struct LfmGrid {
+  int pixelsPerLenslet = 15;     // N: odd, so that a pixel sits on each lenslet's centre
+  int voxelsPerLenslet = 1;      // K in [1, N]: napari-LF's "supersample"
+  std::vector<double> depthsUm;  // each slice's depth in the specimen (z = 0 in focus)
+
+  double voxelOffsetUm(const LfmOptics& optics, int i) const {
+    return ((i + 0.5) / voxelsPerLenslet - 0.5) * optics.microlensPitchUm / optics.magnification;
+  }
+};
+// Ok, or one line: an even or out-of-range N, K outside [1, N], no slices, a depth not finite.
+Status validateLfmGrid(const LfmGrid& grid);
+
+// The optics of the rectified frame: the microscope's, its pixel the pitch / N of a rectified one.
+LfmOptics frameOptics(const LfmOptics& optics, int pixelsPerLenslet);
+
+// The PSFs Broxton's forward operator H needs (section 4): every slice and every voxel of the
+// centre lenslet, on the rectified frame's pixels over a window of lensletsAcross lenslets.
+// Values: [depth][j][i][y][x], pixelsAcross square each (pixelsAcross = lensletsAcross N).
 struct LfmPsfSet {
-  LfmOptics optics;
+  LfmOptics optics;  // frameOptics of the microscope
   PupilModel pupil = PupilModel::AbbeSine;
-  int lensletsAcross = 0, phasesAcross = 0, pixelsAcross = 0;
-  std::vector<double> depthsUm;
+  LfmGrid grid;
+  int lensletsAcross = 0, pixelsAcross = 0;
   std::vector<float> values;
 
-  LfmPoint point(int depth, int i, int j) const;
+  LfmPoint point(int depth, int i, int j) const;  // voxel (i, j) of the centre lenslet
   const float* psf(int depth, int i, int j) const;
 };
 
-// phasesAcross: odd, in [1, samples across one pitch]; the window: LfmPsf::create's refusals, and
-// lensletsAcross 0 picks LfmPsf::lensletsFor the deepest point.
-Result<LfmPsfSet> computePsfSet(const LfmOptics& optics, std::span<const double> depthsUm, int phasesAcross,
-                                int lensletsAcross = 0, PupilModel pupil = PupilModel::AbbeSine);
-
-// The PSF cache: an HDF5 file holding a set and the optics, pupil, window and phases it was made
-// for (datasets "psf", float32 [depth][j][i][y][x], and "depths_um"; the rest as attributes).
-// readPsfCache refuses, in one line naming the first difference, a file made for other optics or
-// another pupil (ErrorCode::Usage), or one that is not such a file (ErrorCode::Format).
-Status writePsfCache(const LfmPsfSet& set, const std::string& path);
-Result<LfmPsfSet> readPsfCache(const std::string& path, const LfmOptics& optics,
-                               PupilModel pupil = PupilModel::AbbeSine);
+// The grid's and LfmPsf::create's refusals; lensletsAcross 0 picks LfmPsf::lensletsFor the
+// deepest slice. The array's symmetry (mirrors and the diagonal) gives 7 of 8 phases by copying.
+Result<LfmPsfSet> computePsfSet(const LfmOptics& microscope, const LfmGrid& grid, int lensletsAcross = 0,
+                                PupilModel pupil = PupilModel::AbbeSine);
 
 }  // namespace lfcam

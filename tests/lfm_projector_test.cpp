@@ -1,0 +1,147 @@
+// The light-field microscope's projectors against the dense float64 sum on random volumes, and
+// Richardson-Lucy finding simulated beads where they are.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "lfcam/lfm/projector.hpp"
+#include "lfcam/lfm/reconstruct.hpp"
+#include "lfm/projector_reference.hpp"
+
+namespace lfcam {
+namespace lfm_projector_test {
+
+// A small microscope: 20x / 0.5 water, 40 um lenslets at f/20, the frame rectified to 7 pixels a
+// lenslet: PSFs of a few lenslets across, quick to compute.
+LfmOptics rectifiedMicroscope() {
+  return LfmOptics{.magnification = 20,
+                   .numericalAperture = 0.5,
+                   .immersionIndex = 1.33,
+                   .wavelengthNm = 500,
+                   .tubeFocalLengthMm = 200,
+                   .microlensPitchUm = 40,
+                   .microlensFocalLengthUm = 800,
+                   .pixelSizeUm = 40.0 / 7,
+                   .supersample = 2};
+}
+
+double relativeDifference(std::span<const float> fast, const std::vector<double>& reference) {
+  double difference = 0, norm = 0;
+  for (std::size_t i = 0; i < reference.size(); ++i)
+    difference += (fast[i] - reference[i]) * (fast[i] - reference[i]), norm += reference[i] * reference[i];
+  return std::sqrt(difference / norm);
+}
+
+}  // namespace lfm_projector_test
+
+using namespace lfm_projector_test;
+
+TEST(LfmProjector, MatchesTheDenseFloat64SumOnRandomVolumes) {
+  std::mt19937 random(52);
+  std::uniform_real_distribution<double> uniform(0, 1);
+  // Lenslet counts off the 8-lenslet tiles; K = 1, an even K and K = N.
+  for (const auto& [k, lx, ly] : {std::tuple{1, 11, 9}, std::tuple{2, 5, 4}, std::tuple{7, 3, 10}}) {
+    const LfmGrid grid{.pixelsPerLenslet = 7, .voxelsPerLenslet = k, .depthsUm = {-4, 0, 3}};
+    const auto set = computePsfSet(rectifiedMicroscope(), grid);
+    ASSERT_TRUE(set) << set.error().message;
+    const LfmSparsePsf psf = sparsePsf(set.value(), 1);
+    const LfmProjector projector(psf, lx, ly);
+    Volume volume = projector.emptyVolume();
+    ASSERT_EQ(volume.width(), lx * k);
+    ASSERT_EQ(volume.depth(), 3);
+    std::vector<double> volume64(volume.voxels().size());
+    for (std::size_t i = 0; i < volume64.size(); ++i) volume.voxels()[i] = float(volume64[i] = uniform(random));
+    const Image frame = projector.forward(volume);
+    ASSERT_EQ(frame.width(), lx * 7);
+    const double forwardError = relativeDifference(frame.pixels(), lfm::forwardDirect(set.value(), volume64, lx, ly));
+    EXPECT_LT(forwardError, 1e-6) << k;
+
+    Image image(lx * 7, ly * 7, 1);
+    std::vector<double> image64(image.pixels().size());
+    for (std::size_t i = 0; i < image64.size(); ++i) image.pixels()[i] = float(image64[i] = uniform(random));
+    const Volume back = projector.backward(image);
+    const double backwardError = relativeDifference(back.voxels(), lfm::backwardDirect(set.value(), image64, lx, ly));
+    EXPECT_LT(backwardError, 1e-6) << k;
+
+    // The back projection is the forward one's transpose: <H v, f> = <v, H^T f>.
+    double left = 0, right = 0;
+    for (std::size_t i = 0; i < image64.size(); ++i) left += double(frame.pixels()[i]) * image64[i];
+    for (std::size_t i = 0; i < volume64.size(); ++i) right += volume64[i] * back.voxels()[i];
+    EXPECT_NEAR(left / right, 1, 1e-5) << k;
+    std::printf("K %d, %d x %d lenslets: forward %.2g, backward %.2g from float64; <Hv,f>/<v,H'f> - 1 = %.2g\n", k, lx,
+                ly, forwardError, backwardError, left / right - 1);
+  }
+}
+
+TEST(LfmProjector, DroppedEnergyBoundsTheError) {
+  // Splats holding 95 % of each PSF's energy: the frame of a uniform volume loses about 5 %.
+  const LfmGrid grid{.pixelsPerLenslet = 7, .voxelsPerLenslet = 3, .depthsUm = {-4, 3}};
+  const auto set = computePsfSet(rectifiedMicroscope(), grid);
+  ASSERT_TRUE(set) << set.error().message;
+  const LfmSparsePsf all = sparsePsf(set.value(), 1), most = sparsePsf(set.value(), 0.95);
+  const LfmProjector exact(all, 8, 8), fast(most, 8, 8);
+  Volume volume = exact.emptyVolume();
+  std::fill(volume.voxels().begin(), volume.voxels().end(), 1.0f);
+  const Image a = exact.forward(volume), b = fast.forward(volume);
+  double sumA = 0, sumB = 0;
+  for (std::size_t i = 0; i < a.pixels().size(); ++i) sumA += a.pixels()[i], sumB += b.pixels()[i];
+  EXPECT_NEAR(sumB / sumA, 0.95, 0.01);
+  EXPECT_LT(most.splats.size(), all.splats.size() / 2);
+  std::printf("95 %% of the energy: %zu of %zu splats, frame total %.4f of the exact one\n", most.splats.size(),
+              all.splats.size(), sumB / sumA);
+}
+
+TEST(LfmReconstruct, FindsSimulatedBeadsWithinAVoxel) {
+  // Beads off the native plane (where a light-field microscope resolves least), imaged through
+  // the forward model with Poisson noise of 2000 photons at a bead's brightest pixel order.
+  const LfmGrid grid{.pixelsPerLenslet = 7, .voxelsPerLenslet = 3, .depthsUm = {-12, -9, -6, -3, 0, 3, 6, 9, 12}};
+  const auto psf = computeSparsePsf(rectifiedMicroscope(), grid, 0.99);
+  ASSERT_TRUE(psf) << psf.error().message;
+  const LfmProjector projector(psf.value(), 12, 12);
+  Volume truth = projector.emptyVolume();
+  struct Bead {
+    int x, y, z;
+  };
+  const Bead beads[] = {{9, 10, 1}, {25, 12, 7}, {14, 26, 2}, {27, 27, 6}};
+  for (const Bead& b : beads) truth.at(b.x, b.y, b.z) = 1;
+  const Image frame = simulateLfmFrame(projector, truth, 0.001, 20000, 7);
+  LfmReconstructOptions options{.iterations = 30, .background = 0.001};
+  const auto result = reconstructVolume(projector, frame, options);
+  ASSERT_TRUE(result) << result.error().message;
+  EXPECT_EQ(result->iterations, 30);
+  EXPECT_LT(result->residuals.back(), result->residuals.front());
+  const Volume& v = result->volume;
+  for (const Bead& b : beads) {
+    // The centroid of the reconstruction within 3 voxels (laterally) and 2 slices of the bead.
+    double sum = 0, cx = 0, cy = 0, cz = 0;
+    for (int z = std::max(0, b.z - 2); z <= std::min(v.depth() - 1, b.z + 2); ++z)
+      for (int y = std::max(0, b.y - 3); y <= std::min(v.height() - 1, b.y + 3); ++y)
+        for (int x = std::max(0, b.x - 3); x <= std::min(v.width() - 1, b.x + 3); ++x) {
+          const double value = v.at(x, y, z);
+          sum += value, cx += value * x, cy += value * y, cz += value * z;
+        }
+    ASSERT_GT(sum, 0);
+    cx /= sum, cy /= sum, cz /= sum;
+    EXPECT_LT(std::abs(cx - b.x), 1.0) << b.x << " " << b.y << " " << b.z;
+    EXPECT_LT(std::abs(cy - b.y), 1.0) << b.x << " " << b.y << " " << b.z;
+    EXPECT_LT(std::abs(cz - b.z), 1.0) << b.x << " " << b.y << " " << b.z;
+    std::printf("bead (%d, %d, %d): centroid (%.2f, %.2f, %.2f)\n", b.x, b.y, b.z, cx, cy, cz);
+  }
+  std::printf("residual %.4f -> %.4f\n", result->residuals.front(), result->residuals.back());
+}
+
+TEST(LfmReconstruct, RefusesAFrameOfAnotherSize) {
+  const LfmGrid grid{.pixelsPerLenslet = 7, .voxelsPerLenslet = 1, .depthsUm = {0}};
+  const auto psf = computeSparsePsf(rectifiedMicroscope(), grid, 0.95);
+  ASSERT_TRUE(psf);
+  const LfmProjector projector(psf.value(), 4, 4);
+  const auto result = reconstructVolume(projector, Image(30, 28, 1));
+  ASSERT_FALSE(result);
+  EXPECT_EQ(result.error().message, "the frame is 30 x 28 x 1, not the projector's 28 x 28 x 1");
+  EXPECT_FALSE(reconstructVolume(projector, Image(28, 28, 1), {.iterations = 0}));
+}
+
+}  // namespace lfcam
