@@ -64,7 +64,8 @@ TEST(LfmOptics, ReadsNapariLfMetadata) {
   EXPECT_EQ(optics->microlensFocalLengthUm, 2500);
   EXPECT_EQ(optics->microlensFillFactor, 1);
   EXPECT_EQ(optics->pixelSizeUm, 6.5);
-  EXPECT_EQ(optics->supersample, 3);
+  // napari-LF's supersample is the volume's voxels a lenslet, not the field's samples a pixel.
+  EXPECT_EQ(optics->supersample, 1);
   EXPECT_DOUBLE_EQ(optics->objectiveFocalLengthUm(), 200e3 / 60);
 }
 

@@ -42,10 +42,11 @@ using namespace lfm_projector_test;
 TEST(LfmProjector, MatchesTheDenseFloat64SumOnRandomVolumes) {
   std::mt19937 random(52);
   std::uniform_real_distribution<double> uniform(0, 1);
-  // Lenslet counts off the 8-lenslet tiles; K = 1, an even K and K = N.
-  for (const auto& [k, lx, ly] : {std::tuple{1, 11, 9}, std::tuple{2, 5, 4}, std::tuple{7, 3, 10}}) {
-    const LfmGrid grid{.pixelsPerLenslet = 7, .voxelsPerLenslet = k, .depthsUm = {-4, 0, 3}};
-    const auto set = computePsfSet(rectifiedMicroscope(), grid);
+  // Lenslet counts off the 8-lenslet tiles; K = 1, an even K and K = N; an odd and an even N.
+  for (const auto& [n, k, lx, ly] :
+       {std::tuple{7, 1, 11, 9}, std::tuple{7, 2, 5, 4}, std::tuple{7, 7, 3, 10}, std::tuple{6, 3, 9, 5}}) {
+    const LfmGrid grid{.pixelsPerLenslet = n, .voxelsPerLenslet = k, .depthsUm = {-4, 0, 3}};
+    const auto set = computePsfSet(frameOptics(rectifiedMicroscope(), n), grid);
     ASSERT_TRUE(set) << set.error().message;
     const LfmSparsePsf psf = sparsePsf(set.value(), 1);
     const LfmProjector projector(psf, lx, ly);
@@ -55,23 +56,30 @@ TEST(LfmProjector, MatchesTheDenseFloat64SumOnRandomVolumes) {
     std::vector<double> volume64(volume.voxels().size());
     for (std::size_t i = 0; i < volume64.size(); ++i) volume.voxels()[i] = float(volume64[i] = uniform(random));
     const Image frame = projector.forward(volume);
-    ASSERT_EQ(frame.width(), lx * 7);
+    ASSERT_EQ(frame.width(), lx * n);
     const double forwardError = relativeDifference(frame.pixels(), lfm::forwardDirect(set.value(), volume64, lx, ly));
     EXPECT_LT(forwardError, 1e-6) << k;
 
-    Image image(lx * 7, ly * 7, 1);
+    Image image(lx * n, ly * n, 1);
     std::vector<double> image64(image.pixels().size());
     for (std::size_t i = 0; i < image64.size(); ++i) image.pixels()[i] = float(image64[i] = uniform(random));
     const Volume back = projector.backward(image);
     const double backwardError = relativeDifference(back.voxels(), lfm::backwardDirect(set.value(), image64, lx, ly));
     EXPECT_LT(backwardError, 1e-6) << k;
 
+    // The sensitivity is the back projection of ones.
+    Image ones(lx * n, ly * n, 1);
+    std::fill(ones.pixels().begin(), ones.pixels().end(), 1.0f);
+    const Volume backOfOnes = projector.backward(ones), sensitivity = projector.sensitivity();
+    std::vector<double> expected(backOfOnes.voxels().begin(), backOfOnes.voxels().end());
+    EXPECT_LT(relativeDifference(sensitivity.voxels(), expected), 1e-6) << k;
+
     // The back projection is the forward one's transpose: <H v, f> = <v, H^T f>.
     double left = 0, right = 0;
     for (std::size_t i = 0; i < image64.size(); ++i) left += double(frame.pixels()[i]) * image64[i];
     for (std::size_t i = 0; i < volume64.size(); ++i) right += volume64[i] * back.voxels()[i];
     EXPECT_NEAR(left / right, 1, 1e-5) << k;
-    std::printf("K %d, %d x %d lenslets: forward %.2g, backward %.2g from float64; <Hv,f>/<v,H'f> - 1 = %.2g\n", k, lx,
+    std::printf("N %d, K %d, %d x %d lenslets: forward %.2g, backward %.2g from float64; <Hv,f>/<v,H'f> - 1 = %.2g\n", n, k, lx,
                 ly, forwardError, backwardError, left / right - 1);
   }
 }

@@ -162,13 +162,13 @@ TEST(LfmPsf, FresnelPropagationConservesEnergy) {
 }
 
 TEST(LfmPsf, DirectFresnelSumMatchesTheFft) {
-  // On a 62-sample window of 3 x 3 lenslets, an in-focus point on the axis: its light stays
+  // On a 60-sample window of 3 x 3 lenslets, an in-focus point on the axis: its light stays
   // under the centre lenslet, so the FFT's periodic window and the direct sum's open plane agree.
   const LfmOptics optics = smallMicroscope();
   const auto model = LfmPsf::create(optics, 3, PupilModel::AbbeSine);
   ASSERT_TRUE(model) << model.error().message;
   const int n = model->samplesAcross();
-  ASSERT_EQ(n, 62);
+  ASSERT_EQ(n, 60);  // 3 lenslets of 10 pixels, 2 samples each
   const LfmPoint point{0.3, 0, 0};
   std::vector<std::complex<double>> masked = model->nativeField(point);
   lfm::applyMicrolenses(optics, n, masked.data());
@@ -299,8 +299,7 @@ TEST(LfmPsfSet, RefusesGridsItCannotPlace) {
     const auto set = computePsfSet(LfmOptics{}, grid, 3);
     return set ? std::string() : set.error().message;
   };
-  EXPECT_EQ(refusal({.pixelsPerLenslet = 16, .depthsUm = {0}}),
-            "pixels per lenslet 16 must be odd, in [3, 255]: rectify the frame to an odd count");
+  EXPECT_EQ(refusal({.pixelsPerLenslet = 1, .depthsUm = {0}}), "pixels per lenslet 1 outside [2, 255]");
   EXPECT_EQ(refusal({.pixelsPerLenslet = 15, .voxelsPerLenslet = 16, .depthsUm = {0}}),
             "voxels per lenslet (supersample) 16 must be in [1, 15] (the pixels per lenslet)");
   EXPECT_EQ(refusal({.pixelsPerLenslet = 15}), "no slices: the volume needs at least one");

@@ -67,11 +67,6 @@ Result<LfmOptics> parseNapariLfOptics(const std::string& text, const std::string
       return makeError(ErrorCode::Format, where + ": calibrate." + key + ": expected a number");
     *out = section[key].get<double>();
   }
-  if (section.contains("supersample")) {
-    if (!section["supersample"].is_number_integer())
-      return makeError(ErrorCode::Format, where + ": calibrate.supersample: expected an integer");
-    optics.supersample = section["supersample"].get<int>();
-  }
   if (section.contains("ulens_profile") &&
       !(section["ulens_profile"].is_string() && section["ulens_profile"].get<std::string>() == "rect"))
     return makeError(ErrorCode::Unsupported,

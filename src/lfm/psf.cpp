@@ -45,7 +45,11 @@ void gaussLegendre(int n, std::vector<double>& nodes, std::vector<double>& weigh
 }
 
 int windowPixels(const LfmOptics& optics, int lensletsAcross) {
-  const int pixels = int(std::ceil(lensletsAcross * optics.microlensPitchUm / optics.pixelSizeUm - 1e-9));
+  const double perLenslet = optics.microlensPitchUm / optics.pixelSizeUm;
+  // A rectified frame's whole pixels a lenslet: the window is those lenslets exactly, its centre
+  // (the axis) on a pixel's centre when N is odd, between two when even.
+  if (std::abs(perLenslet - std::round(perLenslet)) < 1e-9) return lensletsAcross * int(std::round(perLenslet));
+  const int pixels = int(std::ceil(lensletsAcross * perLenslet - 1e-9));
   return pixels % 2 == 0 ? pixels + 1 : pixels;
 }
 
@@ -374,9 +378,9 @@ Image LfmPsf::psf(const LfmPoint& point) const {
 }
 
 Status validateLfmGrid(const LfmGrid& grid) {
-  if (grid.pixelsPerLenslet < 3 || grid.pixelsPerLenslet % 2 == 0 || grid.pixelsPerLenslet > 255)
-    return makeError(ErrorCode::Usage, "pixels per lenslet " + std::to_string(grid.pixelsPerLenslet) +
-                                           " must be odd, in [3, 255]: rectify the frame to an odd count");
+  if (grid.pixelsPerLenslet < 2 || grid.pixelsPerLenslet > 255)
+    return makeError(ErrorCode::Usage,
+                     "pixels per lenslet " + std::to_string(grid.pixelsPerLenslet) + " outside [2, 255]");
   if (grid.voxelsPerLenslet < 1 || grid.voxelsPerLenslet > grid.pixelsPerLenslet)
     return makeError(ErrorCode::Usage, "voxels per lenslet (supersample) " + std::to_string(grid.voxelsPerLenslet) +
                                            " must be in [1, " + std::to_string(grid.pixelsPerLenslet) +

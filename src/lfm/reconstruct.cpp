@@ -78,9 +78,7 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
     const float v = frame.pixels()[i];
     y.pixels()[i] = std::isfinite(v) ? std::max(v, 0.0f) : 0.0f;
   }
-  Image ones(frame.width(), frame.height(), 1);
-  std::fill(ones.pixels().begin(), ones.pixels().end(), 1.0f);
-  const Volume sensitivity = projector.backward(ones);  // H^T 1: how much of the frame each voxel reaches
+  const Volume sensitivity = projector.sensitivity();  // H^T 1
   // The normalised back-projection: the solution's first estimate and the cheap alternative.
   Volume x = projector.backward(y);
   auto divideBySensitivity = [&](Volume& v) {
@@ -98,20 +96,20 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
   }
   const double yNorm = std::max(norm(y.pixels()), 1e-30);
   const float background = float(options.background);
-  // |y - (H x + b)| / |y|, and y / (H x + b) into `ratio` when asked for.
-  auto compare = [&](const Volume& volume, Image* ratio) {
+  // |y - (H x + b)| / |y|, and y / (H x + b) into `ratio`.
+  auto compare = [&](const Volume& volume, Image& ratio) {
     const Image estimate = projector.forward(volume);
     double residual = 0;
     for (std::size_t i = 0; i < y.pixels().size(); ++i) {
       const float e = estimate.pixels()[i] + background, observed = y.pixels()[i];
       residual += double(observed - e) * (observed - e);
-      if (ratio) ratio->pixels()[i] = e > 0 ? observed / e : 0.0f;
+      ratio.pixels()[i] = e > 0 ? observed / e : 0.0f;
     }
     return std::sqrt(residual) / yNorm;
   };
   Image ratio(frame.width(), frame.height(), 1);
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
-    result.residuals.push_back(compare(x, &ratio));
+    result.residuals.push_back(compare(x, ratio));
     const Volume correction = projector.backward(ratio);
     std::vector<float> divergence;
     if (options.tvWeight > 0) divergence = tvDivergence(x);
@@ -129,7 +127,6 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
     if (cancellationRequested()) break;
     if (options.tolerance > 0 && std::sqrt(change) <= options.tolerance * std::max(norm(x.voxels()), 1e-30)) break;
   }
-  result.residuals.push_back(compare(x, nullptr));
   result.volume = std::move(x);
   return result;
 }

@@ -46,7 +46,8 @@ struct LfmOptics {
 Status validateLfmOptics(const LfmOptics& optics);
 
 // The optics in the "calibrate" section of napari-LF's metadata.txt (a JSON file): objective_*,
-// tubelens_focal_length, center_wavelength, medium_index, ulens_*, pixel_size, supersample.
+// tubelens_focal_length, center_wavelength, medium_index, ulens_*, pixel_size (its supersample is
+// the volume's voxels a lenslet: volume_request.hpp reads it).
 // `text` is the file's content, `where` its name for messages. Missing keys keep their defaults
 // in `defaults`; only the square microlens profile ("rect" or absent) is accepted. Validated.
 Result<LfmOptics> parseNapariLfOptics(const std::string& text, const std::string& where,

@@ -35,6 +35,10 @@ class LfmProjector {
   // grid's.
   Volume backward(const Image& frame) const;
 
+  // backward() of a frame of ones, how much of the frame each voxel reaches, from the splats'
+  // weights summed by lenslet offset instead of a projection.
+  Volume sensitivity() const;
+
   // A volume of the grid's dimensions and voxel sizes, zero-filled.
   Volume emptyVolume() const;
 

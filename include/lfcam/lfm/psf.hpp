@@ -8,8 +8,9 @@
 // Frames. A point at (x, y, z) micrometres in the specimen: z along the optical axis from the
 // native object plane (z = 0 is in focus), its image centred at (M x, M y) on the native image
 // plane, which is the microlens plane (the image is not inverted: the sensor's readout is assumed
-// to turn it upright). One lenslet is centred on the optical axis. The sensor's pixels form an
-// odd square whose centre pixel is centred on the axis.
+// to turn it upright). One lenslet is centred on the optical axis. The sensor's pixels form a
+// square centred on the axis (its centre pixel on it when odd; a rectified frame of N pixels a lenslet
+// has N times the lenslets, the axis between pixels when N is even).
 //
 // Normalisation. The field at the native image plane carries unit energy: the integral of
 // |U|^2 over that plane (square micrometres) is 1 at every depth. A PSF pixel holds the energy
@@ -64,7 +65,7 @@ class LfmPsf {
   ~LfmPsf();
 
   const LfmOptics& optics() const;
-  int pixelsAcross() const;   // sensor pixels across the window (odd)
+  int pixelsAcross() const;   // sensor pixels across the window
   int samplesAcross() const;  // field samples across: pixelsAcross() * supersample
 
   // The sensor image of one point: pixelsAcross() square, one channel, energy per pixel.
@@ -88,7 +89,7 @@ class LfmPsf {
 // lenslet's centre in the specimen (napari-LF's layout; K = N is Prevedel et al.'s, a voxel a
 // pixel).
 struct LfmGrid {
-  int pixelsPerLenslet = 15;     // N: odd, so that a pixel sits on each lenslet's centre
+  int pixelsPerLenslet = 15;     // N: a lenslet's centre on a pixel's centre when odd, between two when even
   int voxelsPerLenslet = 1;      // K in [1, N]: napari-LF's "supersample"
   std::vector<double> depthsUm;  // each slice's depth in the specimen (z = 0 in focus)
 
@@ -96,7 +97,7 @@ struct LfmGrid {
     return ((i + 0.5) / voxelsPerLenslet - 0.5) * optics.microlensPitchUm / optics.magnification;
   }
 };
-// Ok, or one line: an even or out-of-range N, K outside [1, N], no slices, a depth not finite.
+// Ok, or one line: N outside [2, 255], K outside [1, N], no slices, a depth not finite.
 Status validateLfmGrid(const LfmGrid& grid);
 
 // The optics of the rectified frame: the microscope's, its pixel the pitch / N of a rectified one.

@@ -1,0 +1,55 @@
+// One light-field microscope reconstruction as every front end asks for it (lfcam volume, the
+// Python package, batch steps): the microscope, the volume's slices and sampling, the PSF cache
+// and the solver, then a volume from a decoded frame.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "lfcam/core/light_field.hpp"
+#include "lfcam/core/progress.hpp"
+#include "lfcam/core/result.hpp"
+#include "lfcam/lfm/optics.hpp"
+#include "lfcam/lfm/reconstruct.hpp"
+
+namespace lfcam {
+
+struct LfmVolumeRequest {
+  LfmOptics optics;
+  int slices = 0;          // >= 1
+  double umPerSlice = 1;   // > 0, the slices' spacing in the specimen
+  double zCenterUm = 0;    // depth of the middle of the slices (napari-LF's z_center)
+  int supersample = 1;     // voxels across a lenslet (napari-LF's supersample), in [1, N]
+  double psfEnergy = 0.95; // of each PSF the projectors keep (napari-LF keeps 95 %)
+  // The PSF cache: read when it holds these settings, refused when it holds others; computed and
+  // written there when absent. Empty: computed, not kept.
+  std::string psfPath;
+  LfmReconstructOptions reconstruct;
+
+  // napari-LF's slices: zCenter + (i - (slices - 1) / 2) umPerSlice, i = 0 nearest... as it lists them.
+  std::vector<double> depthsUm() const;
+};
+
+// The settings of `text`, over `defaults`: napari-LF's metadata.txt (its "calibrate" section's
+// optics, num_slices, um_per_slice, z_center and supersample; its "deconvolve" section's
+// max_iter, background_level and conv_thresh), or lfcam's optics JSON (the same keys, at the top
+// level). `where` names the file in messages.
+Result<LfmVolumeRequest> parseLfmSettings(const std::string& text, const std::string& where,
+                                          const LfmVolumeRequest& defaults = {});
+
+// What can be checked before the frame is read: the optics, slices, sampling, energy, solver.
+Status checkVolumeRequest(const LfmVolumeRequest& request);
+
+struct LfmVolumeResult {
+  LfmReconstruction reconstruction;
+  bool psfFromCache = false;
+  std::size_t psfSplats = 0;
+};
+
+// The volume of a decoded frame: a light field of N x N views (colour averaged to grey),
+// its N within a quarter of the optics' pitch / pixel size. `where` (the frame's file) prefixes
+// every message. progress: the PSF's computation (when not cached) and the iterations.
+Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolumeRequest& request,
+                                          const std::string& where, const ProgressCallback& progress = {});
+
+}  // namespace lfcam

@@ -1,0 +1,143 @@
+#include "lfcam/lfm/volume_request.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "core/memory_budget.hpp"
+#include "lfcam/lfm/sparse_psf.hpp"
+
+namespace lfcam {
+
+namespace {
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+Error usage(std::string message) { return makeError(ErrorCode::Usage, std::move(message)); }
+
+}  // namespace
+
+std::vector<double> LfmVolumeRequest::depthsUm() const {
+  std::vector<double> depths;
+  for (int i = 0; i < slices; ++i) depths.push_back(zCenterUm + (i - 0.5 * (slices - 1)) * umPerSlice);
+  return depths;
+}
+
+Result<LfmVolumeRequest> parseLfmSettings(const std::string& text, const std::string& where,
+                                          const LfmVolumeRequest& defaults) {
+  nlohmann::json json = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded() || !json.is_object()) return makeError(ErrorCode::Format, where + ": not a JSON object");
+  // lfcam's own file: napari-LF's calibrate keys at the top level.
+  if (!json.contains("calibrate")) json = nlohmann::json{{"calibrate", json}};
+  LfmVolumeRequest request = defaults;
+  LFCAM_ASSIGN_OR_RETURN(request.optics, parseNapariLfOptics(json.dump(), where, defaults.optics));
+  const nlohmann::json& calibrate = json["calibrate"];
+  const nlohmann::json deconvolve = json.contains("deconvolve") ? json["deconvolve"] : nlohmann::json::object();
+  auto read = [&](const nlohmann::json& section, const char* sectionName, const char* key, auto& out) -> Status {
+    if (!section.is_object() || !section.contains(key)) return {};
+    const nlohmann::json& value = section[key];
+    using T = std::decay_t<decltype(out)>;
+    if constexpr (std::is_same_v<T, int>) {
+      if (!value.is_number_integer())
+        return makeError(ErrorCode::Format, where + ": " + sectionName + "." + key + ": expected an integer");
+      out = value.get<int>();
+    } else {
+      if (!value.is_number())
+        return makeError(ErrorCode::Format, where + ": " + sectionName + "." + key + ": expected a number");
+      out = value.get<double>();
+    }
+    return {};
+  };
+  LFCAM_TRY(read(calibrate, "calibrate", "num_slices", request.slices));
+  LFCAM_TRY(read(calibrate, "calibrate", "um_per_slice", request.umPerSlice));
+  LFCAM_TRY(read(calibrate, "calibrate", "z_center", request.zCenterUm));
+  LFCAM_TRY(read(calibrate, "calibrate", "supersample", request.supersample));
+  LFCAM_TRY(read(deconvolve, "deconvolve", "max_iter", request.reconstruct.iterations));
+  LFCAM_TRY(read(deconvolve, "deconvolve", "background_level", request.reconstruct.background));
+  LFCAM_TRY(read(deconvolve, "deconvolve", "conv_thresh", request.reconstruct.tolerance));
+  return request;
+}
+
+Status checkVolumeRequest(const LfmVolumeRequest& request) {
+  LFCAM_TRY(validateLfmOptics(request.optics));
+  if (request.slices < 1 || request.slices > 1000)
+    return usage("slices " + std::to_string(request.slices) + " outside [1, 1000]");
+  if (!(request.umPerSlice > 0) || !std::isfinite(request.umPerSlice))
+    return usage("um per slice " + number(request.umPerSlice) + " must be positive");
+  if (!std::isfinite(request.zCenterUm)) return usage("z centre must be finite");
+  if (request.supersample < 1 || request.supersample > 255)
+    return usage("supersample " + std::to_string(request.supersample) + " outside [1, 255]");
+  if (!(request.psfEnergy > 0 && request.psfEnergy <= 1))
+    return usage("PSF energy " + number(request.psfEnergy) + " outside (0, 1]");
+  if (request.reconstruct.iterations < 1 || request.reconstruct.iterations > 10000)
+    return usage("iterations " + std::to_string(request.reconstruct.iterations) + " outside [1, 10000]");
+  return {};
+}
+
+Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolumeRequest& request,
+                                          const std::string& where, const ProgressCallback& progress) {
+  auto fail = [&](const Error& error) { return makeError(error.code, where + ": " + error.message); };
+  if (Status checked = checkVolumeRequest(request); !checked) return checked.error();
+  const LightFieldShape shape = frame.shape();
+  const int n = shape.nu;
+  const double period = request.optics.microlensPitchUm / request.optics.pixelSizeUm;
+  if (shape.nu != shape.nv || n < 2)
+    return usage(where + ": " + std::to_string(shape.nu) + " x " + std::to_string(shape.nv) +
+                 " pixels a lenslet: a microscope frame needs a square count (rectify it to one)");
+  if (std::abs(n - period) > 0.25 * period)
+    return usage(where + ": " + std::to_string(n) + " pixels a lenslet, but the optics give " + number(period) +
+                 " (pitch " + number(request.optics.microlensPitchUm) + " um / pixel " +
+                 number(request.optics.pixelSizeUm) + " um): check the pitch, the pixel size or the frame");
+  if (request.supersample > n)
+    return usage(where + ": supersample " + std::to_string(request.supersample) + " above the " + std::to_string(n) +
+                 " pixels a lenslet");
+  // The solver holds about six volumes (the estimate, its correction, the sensitivity and the
+  // padded planes of both projections) and a few frames.
+  const auto voxels = checkedProduct({std::uint64_t(shape.ns) * request.supersample,
+                                      std::uint64_t(shape.nt) * request.supersample, std::uint64_t(request.slices)});
+  LFCAM_TRY(checkMemory(where, voxels ? checkedProduct({*voxels, 4 * 6}) : std::nullopt,
+                        "the volume (" + std::to_string(request.slices) + " slices)"));
+
+  const LfmGrid grid{.pixelsPerLenslet = n, .voxelsPerLenslet = request.supersample, .depthsUm = request.depthsUm()};
+  LfmVolumeResult result;
+  Result<LfmSparsePsf> psf = makeError(ErrorCode::Io, "");
+  const bool cached = !request.psfPath.empty() && std::filesystem::exists(request.psfPath);
+  const double psfShare = cached ? 0 : 0.5;
+  if (cached) {
+    psf = readPsfCache(request.psfPath, request.optics, grid, request.psfEnergy);
+    if (!psf) return psf.error();  // names the cache file itself
+    result.psfFromCache = true;
+  } else {
+    psf = computeSparsePsf(request.optics, grid, request.psfEnergy, PupilModel::AbbeSine, [&](double f) {
+      if (progress) progress(psfShare * f);
+    });
+    if (!psf) return fail(psf.error());
+    if (!request.psfPath.empty()) LFCAM_TRY(writePsfCache(psf.value(), request.psfPath));
+  }
+  result.psfSplats = psf->splats.size();
+
+  Image image(shape.ns * n, shape.nt * n, 1);
+  for (int v = 0; v < n; ++v)
+    for (int u = 0; u < n; ++u)
+      for (int t = 0; t < shape.nt; ++t)
+        for (int s = 0; s < shape.ns; ++s) {
+          double sum = 0;
+          for (int c = 0; c < shape.channels; ++c) sum += frame.at(u, v, s, t, c);
+          image.at(s * n + u, t * n + v, 0) = float(sum / shape.channels);
+        }
+  const LfmProjector projector(psf.value(), shape.ns, shape.nt);
+  auto reconstruction = reconstructVolume(projector, image, request.reconstruct, [&](double f) {
+    if (progress) progress(psfShare + (1 - psfShare) * f);
+  });
+  if (!reconstruction) return fail(reconstruction.error());
+  result.reconstruction = std::move(reconstruction.value());
+  return result;
+}
+
+}  // namespace lfcam
