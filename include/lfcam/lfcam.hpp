@@ -26,6 +26,7 @@
 #include "lfcam/io/color_map.hpp"
 #include "lfcam/io/image_io.hpp"
 #include "lfcam/io/light_field_io.hpp"
+#include "lfcam/io/volume_io.hpp"
 #include "lfcam/lfm/optics.hpp"
 #include "lfcam/lfm/psf.hpp"
 #include "lfcam/photo/photo_request.hpp"

@@ -5,23 +5,18 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <chrono>
 #include <climits>
 #include <cmath>
-#include <cstring>
-#include <fstream>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/hdf5_handle.hpp"
-#include "core/hdf5_lock.hpp"
 #include "core/parallel.hpp"
 #include "io/hdf5_chunk_codec.hpp"
+#include "io/hdf5_support.hpp"
 #include "io/io_support.hpp"
 #include "io/sample_encoding.hpp"
-#include "io/survives_in_child.hpp"
 
 namespace lfcam::io {
 
@@ -36,122 +31,6 @@ constexpr int kFormatVersion = 2;  // 2: samples in their own precision (sample_
 constexpr const char* kAxes = "v,u,c,t,s";
 constexpr int kDeflateLevel = 1;              // higher levels gain little on samples (docs/design.md), and cost time
 constexpr unsigned kSzipPixelsPerBlock = 32;  // szip's largest block: the fastest, as small as 16 here
-
-// The library's one HDF5 lock, shared with the other modules that write HDF5 (lfm's PSF cache).
-std::mutex& hdf5Mutex() { return hdf5::libraryMutex(); }
-
-// Holds the lock and keeps HDF5 from printing its error stack to stderr.
-class Hdf5Session {
- public:
-  Hdf5Session() : lock_(hdf5Mutex()) {
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    H5Eclear2(H5E_DEFAULT);
-  }
-
-  // Runs `work`, which makes no HDF5 call, with the lock released: lfcam's threads encode or
-  // decode samples meanwhile, and a task of another HDF5 user that one of them picks up cannot
-  // wait for a lock its own thread holds.
-  template <class Work>
-  auto unlockedWhile(Work&& work) {
-    lock_.unlock();
-    struct Relock {
-      std::unique_lock<std::mutex>& lock;
-      ~Relock() { lock.lock(); }
-    } relock{lock_};
-    return work();
-  }
-
- private:
-  std::unique_lock<std::mutex> lock_;
-};
-
-// The innermost message on HDF5's error stack: the actual reason ("file signature not found").
-// Walking downward goes from the API call to where the error arose, so the last entry wins.
-std::string hdf5Reason() {
-  std::string reason;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_DOWNWARD,
-      [](unsigned, const H5E_error2_t* error, void* data) -> herr_t {
-        if (error->desc && *error->desc) *static_cast<std::string*>(data) = error->desc;
-        return 0;
-      },
-      &reason);
-  H5Eclear2(H5E_DEFAULT);
-  return reason.empty() ? "unknown HDF5 error" : reason;
-}
-
-Error hdf5Error(ErrorCode code, const fs::path& path, const std::string& what) {
-  return fileError(code, path, what + ": " + hdf5Reason());
-}
-
-// File access: tolerate file systems without locking (network mounts) instead of failing.
-Handle fileAccess() {
-  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  H5Pset_file_locking(fapl.get(), true, true);
-  return fapl;
-}
-
-// ---- attributes ----
-
-Result<std::optional<std::string>> readStringAttribute(const fs::path& path, hid_t object, const char* name) {
-  if (H5Aexists(object, name) <= 0) return std::optional<std::string>();
-  Handle attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
-  Handle type(H5Aget_type(attribute.get()), H5Tclose);
-  Handle space(H5Aget_space(attribute.get()), H5Sclose);
-  if (!attribute.valid() || !type.valid() || H5Tget_class(type.get()) != H5T_STRING ||
-      H5Sget_simple_extent_npoints(space.get()) != 1)
-    return fileError(ErrorCode::Format, path, std::string("attribute '") + name + "' is not a string");
-  // libhdf5 1.10 copies a variable-length string's global-heap object into a buffer sized by the
-  // attribute's own length field, so a file whose two disagree overflows the heap inside H5Aread
-  // (fuzz/regressions/hdf5_light_field). lfcam writes fixed-length strings and refuses the others.
-  if (H5Tis_variable_str(type.get()) != 0)
-    return fileError(ErrorCode::Unsupported, path,
-                     std::string("attribute '") + name +
-                         "' is a variable-length string; lfcam reads fixed-length string attributes only");
-  const std::size_t size = H5Tget_size(type.get());
-  if (size == 0 || size > (1u << 20))
-    return fileError(ErrorCode::Format, path, std::string("attribute '") + name + "' has a bad size");
-  std::vector<char> text(size + 1, '\0');
-  if (H5Aread(attribute.get(), type.get(), text.data()) < 0)
-    return hdf5Error(ErrorCode::Format, path, std::string("cannot read attribute '") + name + "'");
-  return std::optional<std::string>(std::string(text.data()));  // up to the first NUL
-}
-
-Result<std::optional<double>> readNumberAttribute(const fs::path& path, hid_t object, const char* name) {
-  if (H5Aexists(object, name) <= 0) return std::optional<double>();
-  Handle attribute(H5Aopen(object, name, H5P_DEFAULT), H5Aclose);
-  Handle type(H5Aget_type(attribute.get()), H5Tclose);
-  Handle space(H5Aget_space(attribute.get()), H5Sclose);
-  const H5T_class_t typeClass = type.valid() ? H5Tget_class(type.get()) : H5T_NO_CLASS;
-  if (!attribute.valid() || (typeClass != H5T_FLOAT && typeClass != H5T_INTEGER) ||
-      H5Sget_simple_extent_npoints(space.get()) != 1)
-    return fileError(ErrorCode::Format, path, std::string("attribute '") + name + "' is not a number");
-  double value = 0;
-  if (H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value) < 0)
-    return hdf5Error(ErrorCode::Format, path, std::string("cannot read attribute '") + name + "'");
-  return std::optional<double>(value);
-}
-
-bool writeStringAttribute(hid_t object, const char* name, const std::string& value) {
-  // Fixed-length UTF-8, NUL-padded (see readStringAttribute for why not variable-length): h5py
-  // reads it as bytes, MATLAB's h5readatt as char.
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.get(), std::max<std::size_t>(value.size(), 1));
-  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
-  H5Tset_cset(type.get(), H5T_CSET_UTF8);
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  Handle attribute(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  std::string padded = value;
-  padded.resize(std::max<std::size_t>(value.size(), 1), '\0');
-  return attribute.valid() && H5Awrite(attribute.get(), type.get(), padded.data()) >= 0;
-}
-
-template <class T>
-bool writeScalarAttribute(hid_t object, const char* name, hid_t fileType, hid_t memoryType, T value) {
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  Handle attribute(H5Acreate2(object, name, fileType, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  return attribute.valid() && H5Awrite(attribute.get(), memoryType, &value) >= 0;
-}
 
 // ---- reading ----
 
@@ -614,21 +493,6 @@ Status writeMetadata(const fs::path& path, hid_t file, const LightFieldMetadata&
 
 }  // namespace
 
-bool startsLikeHdf5(const fs::path& path) {
-  static constexpr unsigned char kSignature[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return false;
-  const std::uintmax_t size = fs::file_size(path, ec);
-  std::ifstream in(path, std::ios::binary);
-  for (std::uintmax_t offset = 0; !ec && in && offset + 8 <= size; offset = offset == 0 ? 512 : offset * 2) {
-    unsigned char head[8] = {};
-    in.seekg(std::streamoff(offset));
-    in.read(reinterpret_cast<char*>(head), 8);
-    if (in.gcount() == 8 && std::memcmp(head, kSignature, 8) == 0) return true;
-  }
-  return false;
-}
-
 namespace {
 
 // The samples (and weights) of an opened file.
@@ -659,54 +523,46 @@ Result<LightField> readOpened(const fs::path& path, Hdf5Session& session, const 
 // itself, so the child also reads every sample when they are small enough to read twice without
 // notice; larger ones are read once, after the child has walked their metadata and chunk index.
 // A probe reads no samples, and its child opens the file only.
-Status refuseWhatCrashesLibhdf5(const fs::path& path, bool readsSamples) {
+Status refuseLightFieldsThatCrashLibhdf5(const fs::path& path, bool readsSamples) {
   constexpr std::size_t kReadTwiceBytes = std::size_t(64) << 20;
-  const ChildOutcome outcome = survivesInChild(
-      [&] {
-        auto opened = openLightFieldFile(path);
-        if (!opened || !readsSamples) return;  // a clean error is the parent's to find and report
-        for (StoredSamples* stored : {&opened->samples, opened->weight ? &*opened->weight : nullptr}) {
-          if (!stored) continue;
-          if (stored->rawFilters) {
-            for (std::size_t first = 0; first < stored->views(); first += kViewsPerBatch)
-              if (!readRawChunks(path, *stored, first, std::min(stored->views(), first + kViewsPerBatch))) return;
-            continue;
-          }
-          hsize_t chunks = 0;
-          if (H5Dget_num_chunks(stored->dataset->get(), H5S_ALL, &chunks) < 0) continue;
-          for (hsize_t i = 0; i < std::min<hsize_t>(chunks, 4096); ++i) {
-            hsize_t offset[5] = {}, size = 0;
-            unsigned filterMask = 0;
-            haddr_t address = 0;
-            H5Dget_chunk_info(stored->dataset->get(), H5S_ALL, i, offset, &filterMask, &address, &size);
-          }
-          if (stored->views() * stored->viewValues() * sizeof(float) <= kReadTwiceBytes) {
-            std::vector<float> scratch(stored->views() * stored->viewValues());
-            (void)readViewsThroughLibhdf5(path, *stored, 0, stored->views(), scratch.data());
-          }
-        }
-      },
-      std::chrono::seconds(30));
-  if (outcome == ChildOutcome::Crashed)
-    return fileError(ErrorCode::Format, path,
-                     "a corrupt HDF5 file: libhdf5 crashed reading it (in a throwaway process)");
-  if (outcome == ChildOutcome::TimedOut)
-    return fileError(ErrorCode::Format, path, "a corrupt HDF5 file: libhdf5 did not finish reading it within 30 s");
-  return {};
+  return io::refuseWhatCrashesLibhdf5(path, [&] {
+    auto opened = openLightFieldFile(path);
+    if (!opened || !readsSamples) return;  // a clean error is the parent's to find and report
+    for (StoredSamples* stored : {&opened->samples, opened->weight ? &*opened->weight : nullptr}) {
+      if (!stored) continue;
+      if (stored->rawFilters) {
+        for (std::size_t first = 0; first < stored->views(); first += kViewsPerBatch)
+          if (!readRawChunks(path, *stored, first, std::min(stored->views(), first + kViewsPerBatch))) return;
+        continue;
+      }
+      hsize_t chunks = 0;
+      if (H5Dget_num_chunks(stored->dataset->get(), H5S_ALL, &chunks) < 0) continue;
+      for (hsize_t i = 0; i < std::min<hsize_t>(chunks, 4096); ++i) {
+        hsize_t offset[5] = {}, size = 0;
+        unsigned filterMask = 0;
+        haddr_t address = 0;
+        H5Dget_chunk_info(stored->dataset->get(), H5S_ALL, i, offset, &filterMask, &address, &size);
+      }
+      if (stored->views() * stored->viewValues() * sizeof(float) <= kReadTwiceBytes) {
+        std::vector<float> scratch(stored->views() * stored->viewValues());
+        (void)readViewsThroughLibhdf5(path, *stored, 0, stored->views(), scratch.data());
+      }
+    }
+  });
 }
 
 }  // namespace
 
 Result<LightFieldInfo> probeHdf5(const fs::path& path) {
   Hdf5Session session;
-  LFCAM_TRY(refuseWhatCrashesLibhdf5(path, false));
+  LFCAM_TRY(refuseLightFieldsThatCrashLibhdf5(path, false));
   LFCAM_ASSIGN_OR_RETURN(auto opened, openLightFieldFile(path));
   return opened.info;
 }
 
 Result<LightField> readHdf5(const fs::path& path, const ProgressCallback& progress) {
   Hdf5Session session;
-  LFCAM_TRY(refuseWhatCrashesLibhdf5(path, true));
+  LFCAM_TRY(refuseLightFieldsThatCrashLibhdf5(path, true));
   LFCAM_ASSIGN_OR_RETURN(auto opened, openLightFieldFile(path));
   return readOpened(path, session, opened, progress);
 }

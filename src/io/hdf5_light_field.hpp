@@ -17,9 +17,6 @@
 
 namespace lfcam::io {
 
-// The HDF5 signature at offset 0 or at a user-block offset (512, 1024, 2048, ...).
-bool startsLikeHdf5(const std::filesystem::path& path);
-
 Result<LightFieldInfo> probeHdf5(const std::filesystem::path& path);
 Result<LightField> readHdf5(const std::filesystem::path& path, const ProgressCallback& progress);
 // Writes `file` directly (callers make it atomic); errors name `reportAs`.

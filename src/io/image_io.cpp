@@ -82,18 +82,11 @@ std::size_t bytesPerSample(SampleType type) {
 // no other codec of these formats (LZW, PackBits, JPEG, EXR's RLE/ZIP/PIZ) reaches 4096:1.
 Status checkAgainstFileLength(const fs::path& path, Kind kind, int width, int height, int channels,
                               std::size_t bytesPerSample) {
-  {
-    std::error_code ec;
-    const std::uint64_t fileSize = fs::file_size(path, ec);
-    const std::uint64_t ratio = kind == Kind::Png ? 1100 : 4096;
-    const auto bytes = checkedProduct(
-        {std::uint64_t(width), std::uint64_t(height), std::uint64_t(channels), std::uint64_t(bytesPerSample)});
-    if (!ec && (!bytes || *bytes / ratio > fileSize + 1024))
-      return fileError(ErrorCode::Format, path,
-                       "truncated or corrupt: the header claims " + std::to_string(width) + "x" +
-                           std::to_string(height) + " pixels but the file has only " + std::to_string(fileSize) +
-                           " bytes");
-  }
+  LFCAM_TRY(io::checkClaimFitsFile(path,
+                                   checkedProduct({std::uint64_t(width), std::uint64_t(height), std::uint64_t(channels),
+                                                   std::uint64_t(bytesPerSample)}),
+                                   kind == Kind::Png ? 1100 : 4096,
+                                   std::to_string(width) + "x" + std::to_string(height) + " pixels"));
   return io::checkSampleCount(path, {std::uint64_t(width), std::uint64_t(height), std::uint64_t(channels)});
 }
 

@@ -37,6 +37,16 @@ Status checkSampleCount(const fs::path& path, std::initializer_list<std::uint64_
   return checkMemory(path.string(), samples ? checkedProduct({*samples, sizeof(float)}) : samples, what + " samples");
 }
 
+Status checkClaimFitsFile(const fs::path& path, std::optional<std::uint64_t> bytes, std::uint64_t maxRatio,
+                          std::string_view claim) {
+  std::error_code ec;
+  const std::uint64_t fileSize = fs::file_size(path, ec);
+  if (ec || (bytes && *bytes / maxRatio <= fileSize + 1024)) return {};
+  return fileError(ErrorCode::Format, path,
+                   "truncated or corrupt: the header claims " + std::string(claim) + " but the file has only " +
+                       std::to_string(fileSize) + " bytes");
+}
+
 Status checkReadableFile(const fs::path& path) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);

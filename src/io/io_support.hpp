@@ -29,6 +29,12 @@ Error renamedInMessage(Error error, const std::filesystem::path& from, const std
 // (memory_budget.hpp), else a Resource error naming the file, the bytes needed and the limit.
 Status checkSampleCount(const std::filesystem::path& path, std::initializer_list<std::uint64_t> dims);
 
+// A header claiming `bytes` of samples (unset: more than 64 bits count) that `maxRatio` times the
+// file's length could not hold is a truncated or corrupt file: a Format error saying what it
+// claims (`claim`, "640x480 pixels"), before anything is allocated for it.
+Status checkClaimFitsFile(const std::filesystem::path& path, std::optional<std::uint64_t> bytes, std::uint64_t maxRatio,
+                          std::string_view claim);
+
 // Existing regular file, else an Io or Usage error naming it.
 Status checkReadableFile(const std::filesystem::path& path);
 

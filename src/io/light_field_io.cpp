@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.hpp"
 #include "io/hdf5_light_field.hpp"
+#include "io/hdf5_support.hpp"
 #include "io/io_support.hpp"
 #include "io/lenslet_image.hpp"
 #include "io/view_folder.hpp"

@@ -226,14 +226,10 @@ std::optional<double> meanOf(const T* values, std::uint16_t count) {
   return sum / count;
 }
 
-}  // namespace
-
-Result<InterleavedCodes> readTiff(const fs::path& path, bool pixels,
+// The current page, as readTiff reads the first; `messages` is what libtiff reported on `tiff`.
+Result<InterleavedCodes> readPage(TIFF* tiff, const fs::path& path, bool pixels, const std::string& messages,
                                   const std::function<Status(const InterleavedCodes&)>& checkHeader) {
-  std::string messages;
-  const TiffHandle tiff = openTiff(path, "r", messages);
-  if (!tiff) return fileError(ErrorCode::Format, path, "not a readable TIFF: " + reasonOr(messages, "unknown error"));
-  const Layout layout = layoutOf(tiff.get());
+  const Layout layout = layoutOf(tiff);
   if (layout.width == 0 || layout.height == 0 || layout.channels == 0)
     return fileError(ErrorCode::Format, path, "not a readable image: no pixels");
 
@@ -244,7 +240,7 @@ Result<InterleavedCodes> readTiff(const fs::path& path, bool pixels,
     return fileError(ErrorCode::Format, path, "not a readable image: impossible size");
   const bool direct = readsDirectly(layout);
   char rgbaProblem[1024] = "";
-  if (!direct && !TIFFRGBAImageOK(tiff.get(), rgbaProblem))
+  if (!direct && !TIFFRGBAImageOK(tiff, rgbaProblem))
     return fileError(ErrorCode::Unsupported, path, std::string("unsupported TIFF layout: ") + rgbaProblem);
   if (direct) {
     out.channels = layout.channels;
@@ -256,50 +252,131 @@ Result<InterleavedCodes> readTiff(const fs::path& path, bool pixels,
     out.channels = (grey ? 1 : 3) + (layout.alphaChannel >= 0 ? 1 : 0);
     out.type = SampleType::UInt8;
   }
-  if (char* description = nullptr; TIFFGetField(tiff.get(), TIFFTAG_IMAGEDESCRIPTION, &description) && description)
+  if (char* description = nullptr; TIFFGetField(tiff, TIFFTAG_IMAGEDESCRIPTION, &description) && description)
     out.description = description;
   LFCAM_TRY(checkHeader(out));
   if (!pixels) return out;
-  LFCAM_TRY(direct ? readDirectly(tiff.get(), path, layout, out, messages)
-                   : readThroughRgba(tiff.get(), path, out, messages));
+  LFCAM_TRY(direct ? readDirectly(tiff, path, layout, out, messages) : readThroughRgba(tiff, path, out, messages));
   return out;
 }
 
+Error notATiff(const fs::path& path, const std::string& messages) {
+  return fileError(ErrorCode::Format, path, "not a readable TIFF: " + reasonOr(messages, "unknown error"));
+}
+
+// Whether `page` is laid out as `first`, the first page of its stack.
+Status checkSameLayout(const fs::path& path, int z, const InterleavedCodes& page, const InterleavedCodes& first) {
+  const auto describe = [](const InterleavedCodes& codes) {
+    return std::to_string(codes.width) + "x" + std::to_string(codes.height) + " with " +
+           std::to_string(codes.channels) + " channel(s) of " +
+           (codes.type == SampleType::Float32  ? "float"
+            : codes.type == SampleType::UInt16 ? "16-bit"
+                                               : "8-bit") +
+           " samples";
+  };
+  if (page.width == first.width && page.height == first.height && page.channels == first.channels &&
+      page.type == first.type)
+    return {};
+  return fileError(ErrorCode::Format, path,
+                   "pages differ: page " + std::to_string(z) + " is " + describe(page) + ", page 0 " + describe(first));
+}
+
+// Writes one page laid out as `layout` (its samples at `samples`), then closes its directory.
+bool writePage(TIFF* t, const InterleavedCodes& layout, const std::string& description,
+               const std::optional<TiffResolution>& resolution, const unsigned char* samples, std::size_t sampleBytes) {
+  const std::size_t rowBytes = std::size_t(layout.width) * layout.channels * sampleBytes;
+  const int colors = layout.channels >= 3 ? 3 : 1;
+  std::vector<std::uint16_t> extra(layout.channels - colors, EXTRASAMPLE_UNSPECIFIED);
+  if (layout.channels == 2 || layout.channels == 4) extra[0] = EXTRASAMPLE_UNASSALPHA;
+  bool ok =
+      TIFFSetField(t, TIFFTAG_IMAGEWIDTH, std::uint32_t(layout.width)) &&
+      TIFFSetField(t, TIFFTAG_IMAGELENGTH, std::uint32_t(layout.height)) &&
+      TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, std::uint16_t(layout.channels)) &&
+      TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, std::uint16_t(8 * sampleBytes)) &&
+      TIFFSetField(t, TIFFTAG_SAMPLEFORMAT,
+                   std::uint16_t(layout.type == SampleType::Float32 ? SAMPLEFORMAT_IEEEFP : SAMPLEFORMAT_UINT)) &&
+      TIFFSetField(t, TIFFTAG_PLANARCONFIG, std::uint16_t(PLANARCONFIG_CONTIG)) &&
+      TIFFSetField(t, TIFFTAG_PHOTOMETRIC, std::uint16_t(colors == 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK)) &&
+      TIFFSetField(t, TIFFTAG_COMPRESSION, std::uint16_t(COMPRESSION_ADOBE_DEFLATE)) &&
+      TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0));
+  if (ok && !extra.empty()) ok = TIFFSetField(t, TIFFTAG_EXTRASAMPLES, std::uint16_t(extra.size()), extra.data());
+  if (ok && !description.empty()) ok = TIFFSetField(t, TIFFTAG_IMAGEDESCRIPTION, description.c_str());
+  if (ok && resolution)
+    ok = TIFFSetField(t, TIFFTAG_XRESOLUTION, resolution->x) && TIFFSetField(t, TIFFTAG_YRESOLUTION, resolution->y) &&
+         TIFFSetField(t, TIFFTAG_RESOLUTIONUNIT, resolution->unit);
+  if (!ok) return false;
+  std::vector<unsigned char> row(rowBytes);  // libtiff may encode in place
+  for (int y = 0; y < layout.height; ++y) {
+    std::memcpy(row.data(), samples + y * rowBytes, rowBytes);
+    if (TIFFWriteScanline(t, row.data(), std::uint32_t(y), 0) < 0) return false;
+  }
+  return TIFFWriteDirectory(t);
+}
+
+}  // namespace
+
+Result<InterleavedCodes> readTiff(const fs::path& path, bool pixels,
+                                  const std::function<Status(const InterleavedCodes&)>& checkHeader) {
+  std::string messages;
+  const TiffHandle tiff = openTiff(path, "r", messages);
+  if (!tiff) return notATiff(path, messages);
+  return readPage(tiff.get(), path, pixels, messages, checkHeader);
+}
+
+Status readTiffStack(const fs::path& path, const std::function<Status(const TiffStack&)>& start,
+                     const std::function<Status(int z, const InterleavedCodes& codes)>& page) {
+  std::string messages;
+  const TiffHandle tiff = openTiff(path, "r", messages);
+  if (!tiff) return notATiff(path, messages);
+  // Counting walks the whole chain of pages: a file cut short breaks it, and libtiff says so.
+  const tdir_t pages = TIFFNumberOfDirectories(tiff.get());
+  if (!messages.empty() || pages == 0 || pages > tdir_t(INT32_MAX))
+    return fileError(ErrorCode::Format, path, "truncated or corrupt: " + reasonOr(messages, "no readable pages"));
+  TiffStack stack;
+  stack.pages = int(pages);
+  const auto anyHeader = [](const InterleavedCodes&) { return Status(); };
+  LFCAM_ASSIGN_OR_RETURN(stack.header, readPage(tiff.get(), path, false, messages, anyHeader));
+  float x = 0, y = 0;
+  std::uint16_t unit = RESUNIT_INCH;
+  if (TIFFGetField(tiff.get(), TIFFTAG_XRESOLUTION, &x) && TIFFGetField(tiff.get(), TIFFTAG_YRESOLUTION, &y) &&
+      TIFFGetFieldDefaulted(tiff.get(), TIFFTAG_RESOLUTIONUNIT, &unit))
+    stack.resolution = TiffResolution{x, y, unit};
+  LFCAM_TRY(start(stack));
+  for (int z = 0; z < stack.pages; ++z) {
+    if (z > 0 && !TIFFReadDirectory(tiff.get()))
+      return fileError(ErrorCode::Format, path,
+                       "cannot read page " + std::to_string(z) + ": " + reasonOr(messages, "damaged directory"));
+    LFCAM_ASSIGN_OR_RETURN(auto codes, readPage(tiff.get(), path, true, messages, [&](const InterleavedCodes& header) {
+                             return checkSameLayout(path, z, header, stack.header);
+                           }));
+    LFCAM_TRY(page(z, codes));
+  }
+  return {};
+}
+
 Status writeTiff(const fs::path& temporary, const fs::path& path, const InterleavedCodes& image) {
-  const std::size_t sampleBytes = image.type == SampleType::UInt8 ? 1 : image.type == SampleType::UInt16 ? 2 : 4;
-  const std::size_t rowBytes = std::size_t(image.width) * image.channels * sampleBytes;
-  // Classic TIFF addresses 4 GiB; larger images go to BigTIFF.
-  const bool big = rowBytes * image.height > (std::size_t(1) << 32) - (std::size_t(1) << 26);
+  const TiffStack stack{.header = {image.width, image.height, image.channels, image.type, {}, image.description},
+                        .pages = 1};
+  return writeTiffStack(temporary, path, stack, [&](int) { return image.samples.data(); });
+}
+
+Status writeTiffStack(const fs::path& temporary, const fs::path& path, const TiffStack& stack,
+                      const std::function<const unsigned char*(int z)>& samples) {
+  const InterleavedCodes& layout = stack.header;
+  const std::size_t sampleBytes = layout.type == SampleType::UInt8 ? 1 : layout.type == SampleType::UInt16 ? 2 : 4;
+  const std::size_t pageBytes = std::size_t(layout.width) * layout.height * layout.channels * sampleBytes;
+  // Classic TIFF addresses 4 GiB; larger files go to BigTIFF.
+  const bool big = pageBytes * stack.pages > (std::size_t(1) << 32) - (std::size_t(1) << 26);
   std::string messages;
   const TiffHandle tiff = openTiff(temporary, big ? "w8" : "w", messages);
   const auto failed = [&] {
     return fileError(ErrorCode::Io, path, "cannot write: " + reasonOr(messages, "unknown error"));
   };
   if (!tiff) return failed();
-  TIFF* t = tiff.get();
-  const int colors = image.channels >= 3 ? 3 : 1;
-  std::vector<std::uint16_t> extra(image.channels - colors, EXTRASAMPLE_UNSPECIFIED);
-  if (image.channels == 2 || image.channels == 4) extra[0] = EXTRASAMPLE_UNASSALPHA;
-  bool ok =
-      TIFFSetField(t, TIFFTAG_IMAGEWIDTH, std::uint32_t(image.width)) &&
-      TIFFSetField(t, TIFFTAG_IMAGELENGTH, std::uint32_t(image.height)) &&
-      TIFFSetField(t, TIFFTAG_SAMPLESPERPIXEL, std::uint16_t(image.channels)) &&
-      TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, std::uint16_t(8 * sampleBytes)) &&
-      TIFFSetField(t, TIFFTAG_SAMPLEFORMAT,
-                   std::uint16_t(image.type == SampleType::Float32 ? SAMPLEFORMAT_IEEEFP : SAMPLEFORMAT_UINT)) &&
-      TIFFSetField(t, TIFFTAG_PLANARCONFIG, std::uint16_t(PLANARCONFIG_CONTIG)) &&
-      TIFFSetField(t, TIFFTAG_PHOTOMETRIC, std::uint16_t(colors == 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK)) &&
-      TIFFSetField(t, TIFFTAG_COMPRESSION, std::uint16_t(COMPRESSION_ADOBE_DEFLATE)) &&
-      TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0));
-  if (ok && !extra.empty()) ok = TIFFSetField(t, TIFFTAG_EXTRASAMPLES, std::uint16_t(extra.size()), extra.data());
-  if (ok && !image.description.empty()) ok = TIFFSetField(t, TIFFTAG_IMAGEDESCRIPTION, image.description.c_str());
-  if (!ok) return failed();
-  std::vector<unsigned char> row(rowBytes);  // libtiff may encode in place
-  for (int y = 0; y < image.height; ++y) {
-    std::memcpy(row.data(), image.samples.data() + y * rowBytes, rowBytes);
-    if (TIFFWriteScanline(t, row.data(), std::uint32_t(y), 0) < 0) return failed();
-  }
-  if (!TIFFFlush(t)) return failed();
+  for (int z = 0; z < stack.pages; ++z)
+    if (!writePage(tiff.get(), layout, z == 0 ? layout.description : std::string(), stack.resolution, samples(z),
+                   sampleBytes))
+      return failed();
   return {};
 }
 
