@@ -16,12 +16,18 @@ namespace lfcam {
 namespace fs = std::filesystem;
 using io::fileError;
 
-Status writeVolume(const fs::path& path, const Volume& volume) {
+Status checkVolumePath(const fs::path& path) {
   const std::string extension = io::lowerExtension(path);
-  const bool tiff = extension == ".tif" || extension == ".tiff";
-  if (!tiff && extension != ".h5" && extension != ".hdf5")
+  if (extension != ".tif" && extension != ".tiff" && extension != ".h5" && extension != ".hdf5")
     return fileError(ErrorCode::Usage, path,
                      "unknown volume extension '" + path.extension().string() + "' (use .tif, .tiff, .h5 or .hdf5)");
+  return {};
+}
+
+Status writeVolume(const fs::path& path, const Volume& volume) {
+  LFCAM_TRY(checkVolumePath(path));
+  const std::string extension = io::lowerExtension(path);
+  const bool tiff = extension == ".tif" || extension == ".tiff";
   if (volume.empty()) return fileError(ErrorCode::Usage, path, "nothing to write: the volume is empty");
   const auto positive = [](double size) { return std::isfinite(size) && size > 0; };
   if (!positive(volume.voxelWidthUm) || !positive(volume.voxelDepthUm) || !std::isfinite(volume.firstSliceUm))

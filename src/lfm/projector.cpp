@@ -41,34 +41,14 @@ struct PaddedPlanes {
 // One row of a tile: kTile floats, one AVX2 register (two SSE ones in the baseline clone).
 typedef float Row __attribute__((vector_size(kTile * sizeof(float))));
 
-// The forward projection of one (slice, voxel phase) plane over one tile: each splat adds its
-// weight times the voxels `d` lenslets back (origin - d) to its pixel's tile of sums. The splats
-// come sorted by pixel: each run of one pixel keeps that pixel's sums in registers.
-LFCAM_CLONES void forwardPhase(float* __restrict sums, const float* __restrict origin, int stride,
-                               const LfmSplat* splat, const LfmSplat* end) {
-  while (splat != end) {
-    const int pixel = splat->pixel;
-    float* out = sums + std::size_t(pixel) * kTileSize;
-    Row acc[kTile];
-    std::memcpy(acc, out, sizeof acc);
-    for (; splat != end && splat->pixel == pixel; ++splat) {
-      const float* in = origin - splat->dy * stride - splat->dx;
-      for (int r = 0; r < kTile; ++r) {
-        Row row;
-        std::memcpy(&row, in + r * stride, sizeof row);
-        acc[r] += splat->weight * row;
-      }
-    }
-    std::memcpy(out, acc, sizeof acc);
-  }
-}
-
-// The back projection into one (slice, voxel phase) plane over one tile: the sum over its splats
-// of the weight times the frame's plane of the splat's pixel `d` lenslets on. `local` holds every
-// pixel's plane around the tile, `planeSize` floats apart, origin at the tile's first lenslet.
-LFCAM_CLONES void backwardPhase(float* __restrict sums, const float* __restrict local, std::size_t planeSize,
-                                int stride, const LfmSplat* splat, const LfmSplat* end) {
-  Row acc[kTile] = {};
+// out[r] += the sum over splats of weight times a row of plane `splat.pixel` of `local` (planes
+// planeSize floats apart, rows `stride` apart), offset by the splat's (dx, dy): both projections'
+// inner step, one tile of sums held in registers over a list of splats. The back projection reads
+// the frame's planes at L + d; the forward one the volume's at L - d (its splats negated).
+LFCAM_CLONES void gatherTile(float* __restrict out, const float* __restrict local, std::size_t planeSize, int stride,
+                             const LfmSplat* splat, const LfmSplat* end) {
+  Row acc[kTile];
+  std::memcpy(acc, out, sizeof acc);
   for (; splat != end; ++splat) {
     const float* in = local + splat->pixel * planeSize + splat->dy * stride + splat->dx;
     for (int r = 0; r < kTile; ++r) {
@@ -77,7 +57,18 @@ LFCAM_CLONES void backwardPhase(float* __restrict sums, const float* __restrict 
       acc[r] += splat->weight * row;
     }
   }
-  std::memcpy(sums, acc, sizeof acc);
+  std::memcpy(out, acc, sizeof acc);
+}
+
+// Copies the padded planes [first, first + count) of `in` around the tile at (x0, y0) into
+// `local`, each (kTile + 2 reach)^2 floats: the splats then read from cache, not the whole planes.
+void copyAroundTile(const PaddedPlanes& in, std::size_t first, std::size_t count, int x0, int y0, float* local) {
+  const int side = kTile + 2 * in.reach;
+  for (std::size_t c = 0; c < count; ++c)
+    for (int r = 0; r < side; ++r) {
+      const float* row = in.at(first + c, x0 - in.reach, y0 - in.reach + r);
+      std::copy(row, row + side, local + (c * side + r) * side);
+    }
 }
 
 }  // namespace
@@ -86,6 +77,10 @@ struct LfmProjector::State {
   const LfmSparsePsf* psf = nullptr;
   int lensletsX = 0, lensletsY = 0;
   int n = 0, k = 0, slices = 0;
+  // The splats turned around for the forward projection: per (slice, pixel), the voxel phases
+  // (j K + i, in `pixel`) lighting that pixel, their offsets negated.
+  std::vector<std::size_t> byPixelBegins;
+  std::vector<LfmSplat> byPixel;
 
   std::size_t phases() const { return std::size_t(slices) * k * k; }
 };
@@ -96,7 +91,26 @@ LfmProjector::LfmProjector(const LfmSparsePsf& psf, int lensletsX, int lensletsY
                                            .lensletsY = lensletsY,
                                            .n = psf.grid.pixelsPerLenslet,
                                            .k = psf.grid.voxelsPerLenslet,
-                                           .slices = int(psf.grid.depthsUm.size())})) {}
+                                           .slices = int(psf.grid.depthsUm.size())})) {
+  State& s = *state_;
+  const std::size_t pixels = std::size_t(s.n) * s.n, phasesPerSlice = std::size_t(s.k) * s.k;
+  // A counting sort of every slice's splats by pixel.
+  s.byPixelBegins.assign(s.slices * pixels + 1, 0);
+  for (int z = 0; z < s.slices; ++z)
+    for (std::size_t a = 0; a < phasesPerSlice; ++a)
+      for (const LfmSplat& splat : psf.of(z, int(a % s.k), int(a / s.k)))
+        ++s.byPixelBegins[z * pixels + splat.pixel + 1];
+  for (std::size_t i = 1; i < s.byPixelBegins.size(); ++i) s.byPixelBegins[i] += s.byPixelBegins[i - 1];
+  s.byPixel.resize(s.byPixelBegins.back());
+  std::vector<std::size_t> next(s.byPixelBegins.begin(), s.byPixelBegins.end() - 1);
+  for (int z = 0; z < s.slices; ++z)
+    for (std::size_t a = 0; a < phasesPerSlice; ++a)
+      for (const LfmSplat& splat : psf.of(z, int(a % s.k), int(a / s.k)))
+        s.byPixel[next[z * pixels + splat.pixel]++] = {.pixel = std::uint16_t(a),
+                                                       .dx = std::int8_t(-splat.dx),
+                                                       .dy = std::int8_t(-splat.dy),
+                                                       .weight = splat.weight};
+}
 LfmProjector::~LfmProjector() = default;
 LfmProjector::LfmProjector(LfmProjector&&) noexcept = default;
 LfmProjector& LfmProjector::operator=(LfmProjector&&) noexcept = default;
@@ -163,18 +177,23 @@ Image LfmProjector::forward(const Volume& volume) const {
   });
   Image frame(s.lensletsX * n, s.lensletsY * n, 1);
   const int pixels = n * n;
-  const std::size_t tiles = std::size_t(in.tilesX) * in.tilesY;
+  const std::size_t tiles = std::size_t(in.tilesX) * in.tilesY, phasesPerSlice = std::size_t(k) * k;
+  const int side = kTile + 2 * in.reach;
+  const std::size_t planeSize = std::size_t(side) * side;
   parallelFor(0, tiles, 1, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> sums(std::size_t(pixels) * kTileSize);
+    std::vector<float> sums(std::size_t(pixels) * kTileSize), local(planeSize * phasesPerSlice);
     for (std::size_t tile = begin; tile < end; ++tile) {
       const int x0 = int(tile % in.tilesX) * kTile, y0 = int(tile / in.tilesX) * kTile;
       std::fill(sums.begin(), sums.end(), 0.0f);
-      for (std::size_t p = 0; p < s.phases(); ++p) {
-        const int z = int(p / (k * k)), j = int(p / k % k), i = int(p % k);
-        const float* origin = in.at(p, x0, y0);
-        // A voxel at lenslet L lights lenslet L + d: the tile at L reads the voxels at L - d.
-        const auto splats = s.psf->of(z, i, j);
-        forwardPhase(sums.data(), origin, in.width, splats.data(), splats.data() + splats.size());
+      // Slice by slice: one slice's voxel phases around the tile fit in the cache, all of them not.
+      for (int z = 0; z < s.slices; ++z) {
+        copyAroundTile(in, z * phasesPerSlice, phasesPerSlice, x0, y0, local.data());
+        const float* origin = local.data() + std::size_t(in.reach) * side + in.reach;
+        for (int c = 0; c < pixels; ++c) {
+          const std::size_t list = std::size_t(z) * pixels + c;
+          gatherTile(sums.data() + std::size_t(c) * kTileSize, origin, planeSize, side,
+                     s.byPixel.data() + s.byPixelBegins[list], s.byPixel.data() + s.byPixelBegins[list + 1]);
+        }
       }
       for (int c = 0; c < pixels; ++c) {
         const int u = c % n, v = c / n;
@@ -204,25 +223,21 @@ Volume LfmProjector::backward(const Image& frame) const {
   });
   Volume volume = emptyVolume();
   const std::size_t tiles = std::size_t(in.tilesX) * in.tilesY;
-  // Each tile first copies the frame's planes around it: the splats of a voxel phase read any of
-  // them, which from the whole planes would miss the cache at every splat.
-  const int reach = in.reach, side = kTile + 2 * reach;
+  const int side = kTile + 2 * in.reach;
   const std::size_t planeSize = std::size_t(side) * side;
   parallelFor(0, tiles, 1, [&](std::size_t begin, std::size_t end) {
     float sums[kTileSize];
     std::vector<float> local(planeSize * pixels);
     for (std::size_t tile = begin; tile < end; ++tile) {
       const int x0 = int(tile % in.tilesX) * kTile, y0 = int(tile / in.tilesX) * kTile;
-      for (int c = 0; c < pixels; ++c)
-        for (int r = 0; r < side; ++r) {
-          const float* row = in.at(c, x0 - reach, y0 - reach + r);
-          std::copy(row, row + side, local.data() + c * planeSize + std::size_t(r) * side);
-        }
-      const float* origin = local.data() + std::size_t(reach) * side + reach;
+      // Any splat of a voxel phase may read any pixel's plane.
+      copyAroundTile(in, 0, pixels, x0, y0, local.data());
+      const float* origin = local.data() + std::size_t(in.reach) * side + in.reach;
       for (std::size_t p = 0; p < s.phases(); ++p) {
         const int z = int(p / (k * k)), j = int(p / k % k), i = int(p % k);
         const auto splats = s.psf->of(z, i, j);
-        backwardPhase(sums, origin, planeSize, side, splats.data(), splats.data() + splats.size());
+        std::fill(std::begin(sums), std::end(sums), 0.0f);
+        gatherTile(sums, origin, planeSize, side, splats.data(), splats.data() + splats.size());
         for (int r = 0; r < kTile && y0 + r < s.lensletsY; ++r)
           for (int x = 0; x < kTile && x0 + x < s.lensletsX; ++x)
             volume.at((x0 + x) * k + i, (y0 + r) * k + j, z) = sums[r * kTile + x];

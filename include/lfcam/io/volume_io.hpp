@@ -28,4 +28,7 @@ Status writeVolume(const std::filesystem::path& path, const Volume& volume);
 
 Result<Volume> readVolume(const std::filesystem::path& path);
 
+// writeVolume's refusal of an unknown extension, for a command to give before its work.
+Status checkVolumePath(const std::filesystem::path& path);
+
 }  // namespace lfcam
