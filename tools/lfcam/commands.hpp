@@ -41,6 +41,7 @@ void addExperimentCommand(CLI::App& app, Job& job);
 void addDecodeCommand(CLI::App& app, Job& job);
 void addCalibrateCommand(CLI::App& app, Job& job);
 void addBatchCommand(CLI::App& app, Job& job);
+void addVolumeCommand(CLI::App& app, Job& job);
 void addMemoryLimitOption(CLI::App& app);  // global: --memory-limit / LFCAM_MEMORY_LIMIT
 
 // A light-field input as every command takes it: a path, recognised by content, and the few

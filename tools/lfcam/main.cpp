@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   cli::addDecodeCommand(app, job);
   cli::addCalibrateCommand(app, job);
   cli::addBatchCommand(app, job);
+  cli::addVolumeCommand(app, job);
 
   cli::addExamples(app);
 

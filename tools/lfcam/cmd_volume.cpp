@@ -1,0 +1,201 @@
+// lfcam volume FRAME [--white W --dark D] --optics OPTICS.json | --objective 60x/1.2/water ...
+//               --slices N --um-per-slice Z [--supersample K] [--iterations I] [--psf CACHE] -o VOLUME.tif:
+// a light-field microscope frame -> a 3D volume by Richardson-Lucy through the wave-optics PSF
+// (volume_request.hpp), written as a 32-bit TIFF stack Fiji opens with its voxel size, or HDF5.
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "core/parallel.hpp"
+#include "lfcam/io/volume_io.hpp"
+#include "lfcam/lfm/volume_request.hpp"
+#include "progress_bar.hpp"
+
+namespace lfcam::cli {
+
+namespace {
+
+volatile std::sig_atomic_t interrupted = 0;
+
+extern "C" void onInterrupt(int) {
+  interrupted = 1;
+  requestCancellation(true);
+}
+
+// Ctrl-C while it lives stops the work at the next parallel step instead of killing the process
+// half-way through a write; a second Ctrl-C kills as usual.
+class InterruptGuard {
+ public:
+  InterruptGuard() {
+    struct sigaction action {};
+    action.sa_handler = onInterrupt;
+    action.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &action, &previous_);
+  }
+  ~InterruptGuard() {
+    sigaction(SIGINT, &previous_, nullptr);
+    requestCancellation(false);
+  }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+ private:
+  struct sigaction previous_ {};
+};
+
+// "60x/1.2/water": magnification, NA and immersion (water, oil, glycerol, air, or an index).
+Status applyObjective(const std::string& text, LfmOptics& optics) {
+  const Error bad = makeError(ErrorCode::Usage, "--objective: expected MAGx/NA/MEDIUM as 60x/1.2/water, got '" + text + "'");
+  std::istringstream in(text);
+  std::string magnification, na, medium;
+  if (!std::getline(in, magnification, '/') || !std::getline(in, na, '/') || !std::getline(in, medium) ||
+      magnification.empty() || (magnification.back() != 'x' && magnification.back() != 'X'))
+    return bad;
+  try {
+    std::size_t used = 0;
+    optics.magnification = std::stod(magnification.substr(0, magnification.size() - 1), &used);
+    if (used != magnification.size() - 1) return bad;
+    optics.numericalAperture = std::stod(na, &used);
+    if (used != na.size()) return bad;
+    if (medium == "water") optics.immersionIndex = 1.333;
+    else if (medium == "oil") optics.immersionIndex = 1.515;
+    else if (medium == "glycerol") optics.immersionIndex = 1.47;
+    else if (medium == "air") optics.immersionIndex = 1.0;
+    else {
+      optics.immersionIndex = std::stod(medium, &used);
+      if (used != medium.size()) return bad;
+    }
+  } catch (const std::exception&) {
+    return bad;
+  }
+  return {};
+}
+
+Result<std::string> readText(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return makeError(ErrorCode::Io, path + ": cannot open");
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+// The default cache: beside the frame, named by the settings it holds, so that a time series in
+// one folder shares it and other settings get their own.
+std::string defaultPsfPath(const std::string& frame, const LfmVolumeRequest& r) {
+  std::ostringstream key;
+  key.precision(17);
+  const LfmOptics& o = r.optics;
+  key << o.magnification << ' ' << o.numericalAperture << ' ' << o.immersionIndex << ' ' << o.wavelengthNm << ' '
+      << o.tubeFocalLengthMm << ' ' << o.microlensPitchUm << ' ' << o.microlensFocalLengthUm << ' '
+      << o.microlensFillFactor << ' ' << o.pixelSizeUm << ' ' << o.supersample << ' ' << r.slices << ' '
+      << r.umPerSlice << ' ' << r.zCenterUm << ' ' << r.supersample << ' ' << r.psfEnergy;
+  char name[64];
+  std::snprintf(name, sizeof name, "lfcam-psf-%016zx.h5", std::hash<std::string>{}(key.str()));
+  return (std::filesystem::path(frame).parent_path() / name).string();
+}
+
+}  // namespace
+
+void addVolumeCommand(CLI::App& app, Job& job) {
+  struct Options {
+    InputOptions input;
+    std::string opticsFile, objective, output, psf, solver = "rl";
+    std::optional<double> wavelength, tubeLens, pitch, microlensFocalLength, pixelSize, umPerSlice, zCenter,
+        background, tolerance, tv, psfEnergy;
+    std::optional<int> slices, supersample, iterations;
+    bool noCache = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = app.add_subcommand(
+      "volume", "reconstruct a 3D volume from a light-field microscope frame (Richardson-Lucy, wave optics)");
+  addInputOptions(*command, options->input);
+  command->add_option("--optics", options->opticsFile,
+                      "microscope settings: napari-LF's metadata.txt, or a JSON object of its calibrate keys");
+  command->add_option("--objective", options->objective, "MAGx/NA/MEDIUM, e.g. 60x/1.2/water (medium: water, oil, "
+                                                         "glycerol, air or a refractive index)");
+  command->add_option("--wavelength", options->wavelength, "emission wavelength, nm");
+  command->add_option("--tube-lens", options->tubeLens, "tube lens focal length, mm (default 200)");
+  command->add_option("--pitch", options->pitch, "microlens pitch, um");
+  command->add_option("--microlens-focal-length", options->microlensFocalLength, "microlens focal length, um");
+  command->add_option("--pixel-size", options->pixelSize, "camera pixel size, um");
+  command->add_option("--slices", options->slices, "number of z-slices");
+  command->add_option("--um-per-slice", options->umPerSlice, "slice spacing in the specimen, um (default 1)");
+  command->add_option("--z-center", options->zCenter, "depth of the middle slice from the focal plane, um (default 0)");
+  command->add_option("--supersample", options->supersample, "voxels across a lenslet (napari-LF's supersample; "
+                                                             "default 1)");
+  command->add_option("--solver", options->solver, "rl (Richardson-Lucy, default) or backprojection");
+  command->add_option("--iterations", options->iterations, "Richardson-Lucy iterations (default 8)");
+  command->add_option("--tolerance", options->tolerance, "stop when the volume changes by less than this fraction");
+  command->add_option("--background", options->background, "background level in the frame's units (default 0)");
+  command->add_option("--tv", options->tv, "total-variation regularisation weight, in [0, 1) (default 0)");
+  command->add_option("--psf", options->psf, "PSF cache file (default: lfcam-psf-<settings>.h5 beside the frame)");
+  command->add_flag("--no-psf-cache", options->noCache, "compute the PSF and keep it nowhere");
+  command->add_option("--psf-energy", options->psfEnergy, "fraction of each PSF's energy kept (default 0.95)");
+  command->add_option("-o,--output", options->output, "output volume: NAME.tif (32-bit stack) or NAME.h5")->required();
+  command->callback([options, &job] {
+    job = [options]() -> Status {
+      const Options& o = *options;
+      LfmVolumeRequest request;
+      if (!o.opticsFile.empty()) {
+        LFCAM_ASSIGN_OR_RETURN(const std::string text, readText(o.opticsFile));
+        LFCAM_ASSIGN_OR_RETURN(request, parseLfmSettings(text, o.opticsFile, request));
+      }
+      if (!o.objective.empty()) LFCAM_TRY(applyObjective(o.objective, request.optics));
+      if (o.wavelength) request.optics.wavelengthNm = *o.wavelength;
+      if (o.tubeLens) request.optics.tubeFocalLengthMm = *o.tubeLens;
+      if (o.pitch) request.optics.microlensPitchUm = *o.pitch;
+      if (o.microlensFocalLength) request.optics.microlensFocalLengthUm = *o.microlensFocalLength;
+      if (o.pixelSize) request.optics.pixelSizeUm = *o.pixelSize;
+      if (o.slices) request.slices = *o.slices;
+      if (o.umPerSlice) request.umPerSlice = *o.umPerSlice;
+      if (o.zCenter) request.zCenterUm = *o.zCenter;
+      if (o.supersample) request.supersample = *o.supersample;
+      if (o.iterations) request.reconstruct.iterations = *o.iterations;
+      if (o.tolerance) request.reconstruct.tolerance = *o.tolerance;
+      if (o.background) request.reconstruct.background = *o.background;
+      if (o.tv) request.reconstruct.tvWeight = *o.tv;
+      if (o.psfEnergy) request.psfEnergy = *o.psfEnergy;
+      if (o.solver == "backprojection") request.reconstruct.solver = LfmSolver::BackProjection;
+      else if (o.solver != "rl")
+        return makeError(ErrorCode::Usage, "--solver: expected rl or backprojection, got '" + o.solver + "'");
+      if (o.opticsFile.empty() && o.objective.empty())
+        return makeError(ErrorCode::Usage, "--optics or --objective: the microscope is needed");
+      if (request.slices == 0) return makeError(ErrorCode::Usage, "--slices: how many z-slices (or num_slices in --optics)");
+      if (Status checked = checkVolumeRequest(request); !checked)
+        return makeError(ErrorCode::Usage, checked.error().message);
+      LFCAM_TRY(checkVolumePath(o.output));
+      if (!o.noCache) request.psfPath = o.psf.empty() ? defaultPsfPath(o.input.path, request) : o.psf;
+
+      LFCAM_ASSIGN_OR_RETURN(const LightField frame, loadInput(o.input));
+      InterruptGuard guard;
+      Result<LfmVolumeResult> result = makeError(ErrorCode::Io, "");
+      {
+        ProgressBar bar("volume " + o.input.path);
+        result = reconstructVolume(frame, request, o.input.path, [&](double f) { bar(f); });
+      }
+      if (interrupted) return makeError(ErrorCode::Io, o.input.path + ": interrupted; nothing written");
+      if (!result) return result.error();
+      const LfmReconstruction& r = result->reconstruction;
+      const std::string psfNote =
+          request.psfPath.empty()
+              ? std::string("computed")
+              : std::string(result->psfFromCache ? "read from " : "computed into ") + request.psfPath;
+      std::printf("%s: %d x %d x %d voxels of %.3g x %.3g x %.3g um; PSF %s (%zu splats); ", o.output.c_str(),
+                  r.volume.width(), r.volume.height(), r.volume.depth(), r.volume.voxelWidthUm, r.volume.voxelWidthUm,
+                  r.volume.voxelDepthUm, psfNote.c_str(), result->psfSplats);
+      if (request.reconstruct.solver == LfmSolver::RichardsonLucy)
+        std::printf("%d Richardson-Lucy iterations, residual %.4f -> %.4f\n", r.iterations, r.residuals.front(),
+                    r.residuals.back());
+      else
+        std::printf("back-projection\n");
+      return writeVolume(o.output, r.volume);
+    };
+  });
+}
+
+}  // namespace lfcam::cli
