@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
+#include <sstream>
 
 #include "core/memory_budget.hpp"
 #include "lfcam/lfm/sparse_psf.hpp"
@@ -59,7 +61,6 @@ Result<LfmVolumeRequest> parseLfmSettings(const std::string& text, const std::st
   LFCAM_TRY(read(calibrate, "calibrate", "z_center", request.zCenterUm));
   LFCAM_TRY(read(calibrate, "calibrate", "supersample", request.supersample));
   LFCAM_TRY(read(deconvolve, "deconvolve", "max_iter", request.reconstruct.iterations));
-  LFCAM_TRY(read(deconvolve, "deconvolve", "background_level", request.reconstruct.background));
   LFCAM_TRY(read(deconvolve, "deconvolve", "conv_thresh", request.reconstruct.tolerance));
   return request;
 }
@@ -138,6 +139,33 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
   if (!reconstruction) return fail(reconstruction.error());
   result.reconstruction = std::move(reconstruction.value());
   return result;
+}
+
+Status parseObjective(const std::string& text, LfmOptics& optics) {
+  const Error bad = makeError(ErrorCode::Usage, "--objective: expected MAGx/NA/MEDIUM as 60x/1.2/water, got '" + text + "'");
+  std::istringstream in(text);
+  std::string magnification, na, medium;
+  if (!std::getline(in, magnification, '/') || !std::getline(in, na, '/') || !std::getline(in, medium) ||
+      magnification.empty() || (magnification.back() != 'x' && magnification.back() != 'X'))
+    return bad;
+  try {
+    std::size_t used = 0;
+    optics.magnification = std::stod(magnification.substr(0, magnification.size() - 1), &used);
+    if (used != magnification.size() - 1) return bad;
+    optics.numericalAperture = std::stod(na, &used);
+    if (used != na.size()) return bad;
+    if (medium == "water") optics.immersionIndex = 1.333;
+    else if (medium == "oil") optics.immersionIndex = 1.515;
+    else if (medium == "glycerol") optics.immersionIndex = 1.47;
+    else if (medium == "air") optics.immersionIndex = 1.0;
+    else {
+      optics.immersionIndex = std::stod(medium, &used);
+      if (used != medium.size()) return bad;
+    }
+  } catch (const std::exception&) {
+    return bad;
+  }
+  return {};
 }
 
 }  // namespace lfcam

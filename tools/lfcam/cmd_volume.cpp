@@ -48,34 +48,6 @@ class InterruptGuard {
   struct sigaction previous_ {};
 };
 
-// "60x/1.2/water": magnification, NA and immersion (water, oil, glycerol, air, or an index).
-Status applyObjective(const std::string& text, LfmOptics& optics) {
-  const Error bad = makeError(ErrorCode::Usage, "--objective: expected MAGx/NA/MEDIUM as 60x/1.2/water, got '" + text + "'");
-  std::istringstream in(text);
-  std::string magnification, na, medium;
-  if (!std::getline(in, magnification, '/') || !std::getline(in, na, '/') || !std::getline(in, medium) ||
-      magnification.empty() || (magnification.back() != 'x' && magnification.back() != 'X'))
-    return bad;
-  try {
-    std::size_t used = 0;
-    optics.magnification = std::stod(magnification.substr(0, magnification.size() - 1), &used);
-    if (used != magnification.size() - 1) return bad;
-    optics.numericalAperture = std::stod(na, &used);
-    if (used != na.size()) return bad;
-    if (medium == "water") optics.immersionIndex = 1.333;
-    else if (medium == "oil") optics.immersionIndex = 1.515;
-    else if (medium == "glycerol") optics.immersionIndex = 1.47;
-    else if (medium == "air") optics.immersionIndex = 1.0;
-    else {
-      optics.immersionIndex = std::stod(medium, &used);
-      if (used != medium.size()) return bad;
-    }
-  } catch (const std::exception&) {
-    return bad;
-  }
-  return {};
-}
-
 Result<std::string> readText(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) return makeError(ErrorCode::Io, path + ": cannot open");
@@ -145,7 +117,7 @@ void addVolumeCommand(CLI::App& app, Job& job) {
         LFCAM_ASSIGN_OR_RETURN(const std::string text, readText(o.opticsFile));
         LFCAM_ASSIGN_OR_RETURN(request, parseLfmSettings(text, o.opticsFile, request));
       }
-      if (!o.objective.empty()) LFCAM_TRY(applyObjective(o.objective, request.optics));
+      if (!o.objective.empty()) LFCAM_TRY(parseObjective(o.objective, request.optics));
       if (o.wavelength) request.optics.wavelengthNm = *o.wavelength;
       if (o.tubeLens) request.optics.tubeFocalLengthMm = *o.tubeLens;
       if (o.pitch) request.optics.microlensPitchUm = *o.pitch;

@@ -32,10 +32,16 @@ struct LfmVolumeRequest {
 
 // The settings of `text`, over `defaults`: napari-LF's metadata.txt (its "calibrate" section's
 // optics, num_slices, um_per_slice, z_center and supersample; its "deconvolve" section's
-// max_iter, background_level and conv_thresh), or lfcam's optics JSON (the same keys, at the top
+// max_iter and conv_thresh; not its background_level, in the raw's counts where lfcam's frames hold
+// [0, 1]), or lfcam's optics JSON (the same keys, at the top
 // level). `where` names the file in messages.
 Result<LfmVolumeRequest> parseLfmSettings(const std::string& text, const std::string& where,
                                           const LfmVolumeRequest& defaults = {});
+
+// An objective as "60x/1.2/water" (the command line's --objective): its magnification, NA and
+// immersion (water, oil, glycerol, air, or a refractive index) into `optics`; a usage error for
+// anything else, in the same words for every front end.
+Status parseObjective(const std::string& text, LfmOptics& optics);
 
 // What can be checked before the frame is read: the optics, slices, sampling, energy, solver.
 Status checkVolumeRequest(const LfmVolumeRequest& request);
