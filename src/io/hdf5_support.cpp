@@ -1,6 +1,7 @@
 #include "io/hdf5_support.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -129,6 +130,31 @@ bool writeNumbersAttribute(hid_t object, const char* name, const std::vector<dou
   Handle space(H5Screate_simple(1, &count, nullptr), H5Sclose);
   Handle attribute(H5Acreate2(object, name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
   return attribute.valid() && H5Awrite(attribute.get(), H5T_NATIVE_DOUBLE, values.data()) >= 0;
+}
+
+Status writeHdf5ThroughMemory(const fs::path& file, const fs::path& path,
+                              const std::function<Status(hid_t file)>& fill) {
+  constexpr std::size_t kGrowth = std::size_t(16) << 20;  // the in-memory file grows by this much at a time
+  std::vector<char> image;
+  {
+    Hdf5Session session;
+    Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+    H5Pset_fapl_core(fapl.get(), kGrowth, false);  // no backing store: the file is the memory image only
+    Handle handle(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
+    if (!handle.valid()) return hdf5Error(ErrorCode::Io, path, "cannot create");
+    LFCAM_TRY(fill(handle.get()));
+    if (H5Fflush(handle.get(), H5F_SCOPE_GLOBAL) < 0) return hdf5Error(ErrorCode::Io, path, "cannot write");
+    const ssize_t size = H5Fget_file_image(handle.get(), nullptr, 0);
+    if (size > 0) image.resize(std::size_t(size));
+    if (size <= 0 || H5Fget_file_image(handle.get(), image.data(), image.size()) != size || !handle.close())
+      return hdf5Error(ErrorCode::Io, path, "cannot write");
+  }
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  if (!out) return fileError(ErrorCode::Io, path, "cannot create: " + std::string(std::strerror(errno)));
+  out.write(image.data(), std::streamsize(image.size()));
+  out.close();
+  if (!out) return fileError(ErrorCode::Io, path, "cannot write: " + std::string(std::strerror(errno)));
+  return {};
 }
 
 Status refuseWhatCrashesLibhdf5(const fs::path& path, const std::function<void()>& calls) {

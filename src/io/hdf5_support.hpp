@@ -68,6 +68,12 @@ bool writeScalarAttribute(hid_t object, const char* name, hid_t fileType, hid_t 
 // A one-dimensional float64 attribute.
 bool writeNumbersAttribute(hid_t object, const char* name, const std::vector<double>& values);
 
+// Makes an HDF5 file in memory, `fill` creating its contents, then writes its bytes to `file`;
+// errors name `reportAs`. libhdf5 1.10 does not survive its own failed writes (a full disk left a
+// file whose close crashed the process at exit): here it never touches the disk, lfcam does.
+Status writeHdf5ThroughMemory(const std::filesystem::path& file, const std::filesystem::path& reportAs,
+                              const std::function<Status(hid_t file)>& fill);
+
 // Runs `calls` (the HDF5 calls a reader will make on `path`) in a throwaway process first
 // (survives_in_child.hpp): fuzzing found memory errors inside libhdf5 1.10 on corrupt files. A
 // child that dies or hangs gets the file refused with a Format error.

@@ -93,29 +93,27 @@ Status readVoxels(const fs::path& path, const OpenedVolume& opened, float* out) 
 }  // namespace
 
 Status writeHdf5Volume(const fs::path& file, const Volume& volume, const fs::path& path) {
-  Hdf5Session session;
-  Handle fapl = fileAccess();
-  Handle handle(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
-  if (!handle.valid()) return hdf5Error(ErrorCode::Io, path, "cannot create");
-  const hsize_t dims[3] = {hsize_t(volume.depth()), hsize_t(volume.height()), hsize_t(volume.width())};
-  const hsize_t chunk[3] = {1, dims[1], dims[2]};
-  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
-  H5Pset_chunk(dcpl.get(), 3, chunk);
-  H5Pset_shuffle(dcpl.get());
-  H5Pset_deflate(dcpl.get(), kDeflateLevel);
-  Handle space(H5Screate_simple(3, dims, nullptr), H5Sclose);
-  Handle dataset(H5Dcreate2(handle.get(), kDataset, H5T_IEEE_F32LE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
-                 H5Dclose);
-  if (!dataset.valid()) return hdf5Error(ErrorCode::Io, path, "cannot create dataset volume");
-  if (H5Dwrite(dataset.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, volume.voxels().data()) < 0)
-    return hdf5Error(ErrorCode::Io, path, "cannot write voxels");
-  const bool attributes =
-      writeNumbersAttribute(dataset.get(), "voxel_size_um",
-                            {volume.voxelDepthUm, volume.voxelWidthUm, volume.voxelWidthUm}) &&
-      writeScalarAttribute(dataset.get(), "first_slice_um", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, volume.firstSliceUm);
-  if (!attributes) return hdf5Error(ErrorCode::Io, path, "cannot write attributes");
-  if (!dataset.close() || !handle.close()) return hdf5Error(ErrorCode::Io, path, "cannot write");
-  return {};
+  return writeHdf5ThroughMemory(file, path, [&](hid_t handle) -> Status {
+    const hsize_t dims[3] = {hsize_t(volume.depth()), hsize_t(volume.height()), hsize_t(volume.width())};
+    const hsize_t chunk[3] = {1, dims[1], dims[2]};
+    Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+    H5Pset_chunk(dcpl.get(), 3, chunk);
+    H5Pset_shuffle(dcpl.get());
+    H5Pset_deflate(dcpl.get(), kDeflateLevel);
+    Handle space(H5Screate_simple(3, dims, nullptr), H5Sclose);
+    Handle dataset(H5Dcreate2(handle, kDataset, H5T_IEEE_F32LE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                   H5Dclose);
+    if (!dataset.valid()) return hdf5Error(ErrorCode::Io, path, "cannot create dataset volume");
+    if (H5Dwrite(dataset.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, volume.voxels().data()) < 0)
+      return hdf5Error(ErrorCode::Io, path, "cannot write voxels");
+    const bool attributes =
+        writeNumbersAttribute(dataset.get(), "voxel_size_um",
+                              {volume.voxelDepthUm, volume.voxelWidthUm, volume.voxelWidthUm}) &&
+        writeScalarAttribute(dataset.get(), "first_slice_um", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, volume.firstSliceUm);
+    if (!attributes) return hdf5Error(ErrorCode::Io, path, "cannot write attributes");
+    if (!dataset.close()) return hdf5Error(ErrorCode::Io, path, "cannot write voxels");
+    return {};
+  });
 }
 
 Result<Volume> readHdf5Volume(const fs::path& path) {

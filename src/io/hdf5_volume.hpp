@@ -1,6 +1,7 @@
 // A Volume as an HDF5 file (volume_io.hpp): dataset /volume, float32 [z][y][x], one chunk per
 // slice through libhdf5's shuffle and deflate, attributes voxel_size_um = [dz, dy, dx] and
-// first_slice_um on the dataset. HDF5 calls hold the library's one lock (hdf5_support.hpp).
+// first_slice_um on the dataset. libhdf5 makes the file in memory, lfcam writes its bytes
+// (hdf5_support.hpp).
 #pragma once
 
 #include <filesystem>
