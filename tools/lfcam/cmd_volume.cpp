@@ -64,8 +64,8 @@ std::string defaultPsfPath(const std::string& frame, const LfmVolumeRequest& r) 
   const LfmOptics& o = r.optics;
   key << o.magnification << ' ' << o.numericalAperture << ' ' << o.immersionIndex << ' ' << o.wavelengthNm << ' '
       << o.tubeFocalLengthMm << ' ' << o.microlensPitchUm << ' ' << o.microlensFocalLengthUm << ' '
-      << o.microlensFillFactor << ' ' << o.pixelSizeUm << ' ' << o.supersample << ' ' << r.slices << ' '
-      << r.umPerSlice << ' ' << r.zCenterUm << ' ' << r.supersample << ' ' << r.psfEnergy;
+      << o.microlensFillFactor << ' ' << o.pixelSizeUm << ' ' << o.supersample << ' ' << r.slices << ' ' << r.umPerSlice
+      << ' ' << r.zCenterUm << ' ' << r.supersample << ' ' << r.psfEnergy;
   char name[64];
   std::snprintf(name, sizeof name, "lfcam-psf-%016zx.h5", std::hash<std::string>{}(key.str()));
   return (std::filesystem::path(frame).parent_path() / name).string();
@@ -77,8 +77,8 @@ void addVolumeCommand(CLI::App& app, Job& job) {
   struct Options {
     InputOptions input;
     std::string opticsFile, objective, output, psf, solver = "rl";
-    std::optional<double> wavelength, tubeLens, pitch, microlensFocalLength, pixelSize, umPerSlice, zCenter,
-        background, tolerance, tv, psfEnergy;
+    std::optional<double> wavelength, tubeLens, pitch, microlensFocalLength, pixelSize, umPerSlice, zCenter, background,
+        tolerance, tv, psfEnergy;
     std::optional<int> slices, supersample, iterations;
     bool noCache = false;
   };
@@ -88,8 +88,9 @@ void addVolumeCommand(CLI::App& app, Job& job) {
   addInputOptions(*command, options->input);
   command->add_option("--optics", options->opticsFile,
                       "microscope settings: napari-LF's metadata.txt, or a JSON object of its calibrate keys");
-  command->add_option("--objective", options->objective, "MAGx/NA/MEDIUM, e.g. 60x/1.2/water (medium: water, oil, "
-                                                         "glycerol, air or a refractive index)");
+  command->add_option("--objective", options->objective,
+                      "MAGx/NA/MEDIUM, e.g. 60x/1.2/water (medium: water, oil, "
+                      "glycerol, air or a refractive index)");
   command->add_option("--wavelength", options->wavelength, "emission wavelength, nm");
   command->add_option("--tube-lens", options->tubeLens, "tube lens focal length, mm (default 200)");
   command->add_option("--pitch", options->pitch, "microlens pitch, um");
@@ -98,8 +99,9 @@ void addVolumeCommand(CLI::App& app, Job& job) {
   command->add_option("--slices", options->slices, "number of z-slices");
   command->add_option("--um-per-slice", options->umPerSlice, "slice spacing in the specimen, um (default 1)");
   command->add_option("--z-center", options->zCenter, "depth of the middle slice from the focal plane, um (default 0)");
-  command->add_option("--supersample", options->supersample, "voxels across a lenslet (napari-LF's supersample; "
-                                                             "default 1)");
+  command->add_option("--supersample", options->supersample,
+                      "voxels across a lenslet (napari-LF's supersample; "
+                      "default 1)");
   command->add_option("--solver", options->solver, "rl (Richardson-Lucy, default) or backprojection");
   command->add_option("--iterations", options->iterations, "Richardson-Lucy iterations (default 8)");
   command->add_option("--tolerance", options->tolerance, "stop when the volume changes by less than this fraction");
@@ -132,12 +134,14 @@ void addVolumeCommand(CLI::App& app, Job& job) {
       if (o.background) request.reconstruct.background = *o.background;
       if (o.tv) request.reconstruct.tvWeight = *o.tv;
       if (o.psfEnergy) request.psfEnergy = *o.psfEnergy;
-      if (o.solver == "backprojection") request.reconstruct.solver = LfmSolver::BackProjection;
+      if (o.solver == "backprojection")
+        request.reconstruct.solver = LfmSolver::BackProjection;
       else if (o.solver != "rl")
         return makeError(ErrorCode::Usage, "--solver: expected rl or backprojection, got '" + o.solver + "'");
       if (o.opticsFile.empty() && o.objective.empty())
         return makeError(ErrorCode::Usage, "--optics or --objective: the microscope is needed");
-      if (request.slices == 0) return makeError(ErrorCode::Usage, "--slices: how many z-slices (or num_slices in --optics)");
+      if (!o.slices && request.slices == 0)
+        return makeError(ErrorCode::Usage, "--slices: how many z-slices (or num_slices in --optics)");
       if (Status checked = checkVolumeRequest(request); !checked)
         return makeError(ErrorCode::Usage, checked.error().message);
       LFCAM_TRY(checkVolumePath(o.output));
