@@ -12,6 +12,7 @@ void bindPipeline(py::module_& module);
 void bindPhotos(py::module_& module);
 void bindSimulate(py::module_& module);
 void bindBatch(py::module_& module);
+void bindVolume(py::module_& module);
 
 void registerErrors(py::module_& m) {
   static py::exception<LibraryError> error(m, "Error", PyExc_RuntimeError);
@@ -35,4 +36,5 @@ PYBIND11_MODULE(_lfcam, m) {
   lfcam::python::bindPhotos(m);
   lfcam::python::bindSimulate(m);
   lfcam::python::bindBatch(m);
+  lfcam::python::bindVolume(m);
 }

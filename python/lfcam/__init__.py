@@ -14,7 +14,7 @@ Errors raise lfcam.UsageError (a wrong argument) or lfcam.Error (a file or input
 with the command line's one-line messages.
 """
 from ._lfcam import (AllInFocus, DepthMap, Error, Image, LensletGrid, LightField, UsageError, calibrate, decode,
-                     denoise, depth, edof, observer, photo_fields, read, read_image, refocus, score, simulate, stack, write, write_image)
+                     denoise, depth, edof, observer, photo_fields, read, read_image, refocus, score, simulate, stack, volume, write, write_image)
 
 
 def __getattr__(name):
@@ -27,4 +27,4 @@ def __getattr__(name):
 
 __all__ = ["AllInFocus", "DepthMap", "Error", "Image", "LensletGrid", "LightField", "UsageError", "batch",
            "calibrate", "decode", "denoise", "depth", "edof", "observer", "photo_fields", "read", "read_image", "refocus", "score", "simulate",
-           "stack", "write", "write_image"]
+           "stack", "volume", "write", "write_image"]

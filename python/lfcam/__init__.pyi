@@ -108,6 +108,16 @@ def edof(light_field: LightField, *, depth: Optional[_Array] = None, min: Option
 def denoise(light_field: LightField, *, depth_range: Optional[tuple[float, float]] = None,
             bandwidth: Optional[float] = None) -> LightField: ...
 def score(estimate: _Array, truth: _Array, *, mask: Optional[_Array] = None, border: int = 15) -> dict[str, float]: ...
+# A light-field microscope volume (lfcam volume): float32 (z, y, x), voxels pitch / (M * supersample) um
+# across, slice i at depth z_center + (i - (slices - 1) / 2) * um_per_slice um.
+def volume(light_field: LightField, *, optics: Optional[_Path] = None, objective: Optional[str] = None,
+           wavelength: Optional[float] = None, pixel_size: Optional[float] = None, pitch: Optional[float] = None,
+           microlens_focal_length: Optional[float] = None, tube_lens: Optional[float] = None,
+           slices: Optional[int] = None, um_per_slice: Optional[float] = None, z_center: Optional[float] = None,
+           supersample: Optional[int] = None, iterations: Optional[int] = None, solver: str = "rl",
+           background: Optional[float] = None, tolerance: Optional[float] = None, tv: Optional[float] = None,
+           psf: Optional[_Path] = None, psf_energy: Optional[float] = None,
+           progress: _Progress = None) -> npt.NDArray[np.float32]: ...
 def simulate(scene: str, output: _Path, *, f_number: Optional[float] = None, image_f_number: Optional[float] = None,
              focus_mm: Optional[float] = None, size: Optional[int] = None, pixels_per_lens: Optional[float] = None,
              hexagonal: bool = False, samples: int = 16, seed: Optional[int] = None, exposure: Optional[float] = None,
