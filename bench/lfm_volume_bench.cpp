@@ -45,10 +45,14 @@ int main(int argc, char** argv) {
   int slices = 25, iterations = 4;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
-    if (flag == "--psf") psfPath = argv[i + 1];
-    else if (flag == "--keep") keep = std::atof(argv[i + 1]);
-    else if (flag == "--slices") slices = std::atoi(argv[i + 1]);
-    else if (flag == "--iterations") iterations = std::atoi(argv[i + 1]);
+    if (flag == "--psf")
+      psfPath = argv[i + 1];
+    else if (flag == "--keep")
+      keep = std::atof(argv[i + 1]);
+    else if (flag == "--slices")
+      slices = std::atoi(argv[i + 1]);
+    else if (flag == "--iterations")
+      iterations = std::atoi(argv[i + 1]);
     else {
       std::fprintf(stderr, "usage: %s [--psf PATH] [--keep E] [--slices N] [--iterations I]\n", argv[0]);
       return 2;
@@ -79,11 +83,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s\n", written.error().message.c_str());
   }
   const double psfSeconds = seconds(start);
-  std::printf("PSF: %d slices x %d voxel phases, %zu splats (%.0f a PSF, %.0f %% of the energy), reach %d lenslets, "
-              "%s in %.1f s, %.0f MB on disk\n",
-              slices, 19 * 19, psf->splats.size(), double(psf->splats.size()) / (slices * 361.0), keep * 100,
-              psf->reach, cached ? "read" : "computed", psfSeconds,
-              std::filesystem::file_size(psfPath) / 1e6);
+  std::printf(
+      "PSF: %d slices x %d voxel phases, %zu splats (%.0f a PSF, %.0f %% of the energy), reach %d lenslets, "
+      "%s in %.1f s, %.0f MB on disk\n",
+      slices, 19 * 19, psf->splats.size(), double(psf->splats.size()) / (slices * 361.0), keep * 100, psf->reach,
+      cached ? "read" : "computed", psfSeconds, std::filesystem::file_size(psfPath) / 1e6);
 
   const LfmProjector projector(psf.value(), 77, 67);
   Volume truth = projector.emptyVolume();
@@ -113,10 +117,10 @@ int main(int argc, char** argv) {
   std::printf("forward projection %.2f s, back projection %.2f s; a copy of the volume %.4f s (%.0fx, %.0fx it)\n",
               forwardSeconds, backwardSeconds, floorSeconds, forwardSeconds / floorSeconds,
               backwardSeconds / floorSeconds);
-  std::printf("Richardson-Lucy, %d iterations: %.1f s (%.1f s an iteration), residual %.3f -> %.3f; peak memory "
-              "%.2f GiB\n",
-              iterations, total, total / iterations, result->residuals.front(), result->residuals.back(),
-              peakMemoryGiB());
+  std::printf(
+      "Richardson-Lucy, %d iterations: %.1f s (%.1f s an iteration), residual %.3f -> %.3f; peak memory "
+      "%.2f GiB\n",
+      iterations, total, total / iterations, result->residuals.front(), result->residuals.back(), peakMemoryGiB());
   std::printf("against fast-light-field's published 629 s on a CPU: %.1fx faster\n", 629 / total);
   return 0;
 }

@@ -78,8 +78,8 @@ TEST(LfmProjector, MatchesTheDenseFloat64SumOnRandomVolumes) {
     for (std::size_t i = 0; i < image64.size(); ++i) left += double(frame.pixels()[i]) * image64[i];
     for (std::size_t i = 0; i < volume64.size(); ++i) right += volume64[i] * back.voxels()[i];
     EXPECT_NEAR(left / right, 1, 1e-5) << k;
-    std::printf("N %d, K %d, %d x %d lenslets: forward %.2g, backward %.2g from float64; <Hv,f>/<v,H'f> - 1 = %.2g\n", n, k, lx,
-                ly, forwardError, backwardError, left / right - 1);
+    std::printf("N %d, K %d, %d x %d lenslets: forward %.2g, backward %.2g from float64; <Hv,f>/<v,H'f> - 1 = %.2g\n",
+                n, k, lx, ly, forwardError, backwardError, left / right - 1);
   }
 }
 

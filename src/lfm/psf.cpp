@@ -77,9 +77,9 @@ DebyeIntegral::DebyeIntegral(const LfmOptics& optics, double depthUm, double max
       // sin^2(alpha) rho d rho / sqrt(cos theta); the constant sin^2(alpha) goes into C.
       const double cosTheta = std::sqrt(1 - sinAlpha * sinAlpha * rho * rho);
       amplitude = 1 / std::sqrt(cosTheta);
-      phase = -k * depthUm * (1 - cosTheta);
+      phase = k * depthUm * (1 - cosTheta);
     } else {
-      phase = -k * depthUm * 0.5 * sinAlpha * sinAlpha * rho * rho;
+      phase = k * depthUm * 0.5 * sinAlpha * sinAlpha * rho * rho;
     }
     rho_[j] = rho;
     weight_[j] = weight * amplitude * rho * std::polar(1.0, phase);

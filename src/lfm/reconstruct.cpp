@@ -56,7 +56,8 @@ std::vector<float> tvDivergence(const Volume& x) {
 }  // namespace
 
 Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const Image& frame,
-                                            const LfmReconstructOptions& options, const ProgressCallback& progress) {
+                                            const LfmReconstructOptions& options, const ProgressCallback& progress,
+                                            const Image* radiometry) {
   const int n = projector.psf().grid.pixelsPerLenslet;
   if (frame.channels() != 1 || frame.width() != projector.lensletsX() * n ||
       frame.height() != projector.lensletsY() * n)
@@ -64,6 +65,9 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
                                            std::to_string(frame.height()) + " x " + std::to_string(frame.channels()) +
                                            ", not the projector's " + std::to_string(projector.lensletsX() * n) +
                                            " x " + std::to_string(projector.lensletsY() * n) + " x 1");
+  if (radiometry &&
+      (radiometry->width() != frame.width() || radiometry->height() != frame.height() || radiometry->channels() != 1))
+    return makeError(ErrorCode::Usage, "the radiometry is not the frame's size");
   if (options.iterations < 1 || options.iterations > 10000)
     return makeError(ErrorCode::Usage, "iterations " + std::to_string(options.iterations) + " outside [1, 10000]");
   auto finiteAtLeastZero = [](double x) { return x >= 0 && std::isfinite(x); };
@@ -78,9 +82,29 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
     const float v = frame.pixels()[i];
     y.pixels()[i] = std::isfinite(v) ? std::max(v, 0.0f) : 0.0f;
   }
-  const Volume sensitivity = projector.sensitivity();  // H^T 1
+  // H' = diag(R) H: its forward projection R (H x), its back projection H^T (R f).
+  auto forward = [&](const Volume& volume) {
+    Image out = projector.forward(volume);
+    if (radiometry)
+      for (std::size_t i = 0; i < out.pixels().size(); ++i) out.pixels()[i] *= radiometry->pixels()[i];
+    return out;
+  };
+  auto backward = [&](Image& f) {  // scales f in place
+    if (radiometry)
+      for (std::size_t i = 0; i < f.pixels().size(); ++i) f.pixels()[i] *= radiometry->pixels()[i];
+    return projector.backward(f);
+  };
+  Volume sensitivity;  // H'^T 1
+  if (radiometry) {
+    Image r = radiometry->copy();
+    for (float& v : r.pixels()) v = std::isfinite(v) ? std::max(v, 0.0f) : 0.0f;
+    sensitivity = projector.backward(r);
+  } else {
+    sensitivity = projector.sensitivity();
+  }
   // The normalised back-projection: the solution's first estimate and the cheap alternative.
-  Volume x = projector.backward(y);
+  Image weighted = y.copy();
+  Volume x = backward(weighted);
   auto divideBySensitivity = [&](Volume& v) {
     for (std::size_t i = 0; i < v.voxels().size(); ++i) {
       const float s = sensitivity.voxels()[i];
@@ -98,7 +122,7 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
   const float background = float(options.background);
   // |y - (H x + b)| / |y|, and y / (H x + b) into `ratio`.
   auto compare = [&](const Volume& volume, Image& ratio) {
-    const Image estimate = projector.forward(volume);
+    const Image estimate = forward(volume);
     double residual = 0;
     for (std::size_t i = 0; i < y.pixels().size(); ++i) {
       const float e = estimate.pixels()[i] + background, observed = y.pixels()[i];
@@ -110,7 +134,7 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
   Image ratio(frame.width(), frame.height(), 1);
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     result.residuals.push_back(compare(x, ratio));
-    const Volume correction = projector.backward(ratio);
+    const Volume correction = backward(ratio);
     std::vector<float> divergence;
     if (options.tvWeight > 0) divergence = tvDivergence(x);
     double change = 0;

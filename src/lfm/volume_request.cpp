@@ -2,10 +2,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "core/memory_budget.hpp"
@@ -123,26 +125,46 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
   }
   result.psfSplats = psf->splats.size();
 
-  Image image(shape.ns * n, shape.nt * n, 1);
+  // A frame decoded with a white image holds radiance (the raw over the white) and the white as
+  // its weight: the light collected is their product, and the white over the model's frame of a
+  // uniform volume is the radiometry R of the model y = R (H x).
+  Image image(shape.ns * n, shape.nt * n, 1), white(shape.ns * n, shape.nt * n, 1);
   for (int v = 0; v < n; ++v)
     for (int u = 0; u < n; ++u)
       for (int t = 0; t < shape.nt; ++t)
         for (int s = 0; s < shape.ns; ++s) {
           double sum = 0;
           for (int c = 0; c < shape.channels; ++c) sum += frame.at(u, v, s, t, c);
-          image.at(s * n + u, t * n + v, 0) = float(sum / shape.channels);
+          const float weight = frame.hasWeight() ? frame.weightPlane(u, v)[std::size_t(t) * shape.ns + s] : 1.0f;
+          image.at(s * n + u, t * n + v, 0) = float(sum / shape.channels) * weight;
+          white.at(s * n + u, t * n + v, 0) = weight;
         }
   const LfmProjector projector(psf.value(), shape.ns, shape.nt);
-  auto reconstruction = reconstructVolume(projector, image, request.reconstruct, [&](double f) {
-    if (progress) progress(psfShare + (1 - psfShare) * f);
-  });
+  std::optional<Image> radiometry;
+  if (frame.hasWeight()) {
+    Volume uniform = projector.emptyVolume();
+    std::fill(uniform.voxels().begin(), uniform.voxels().end(), 1.0f);
+    radiometry = projector.forward(uniform);
+    const float peak = *std::max_element(radiometry->pixels().begin(), radiometry->pixels().end());
+    for (std::size_t i = 0; i < radiometry->pixels().size(); ++i) {
+      float& r = radiometry->pixels()[i];
+      r = r > 1e-3f * peak ? white.pixels()[i] / r : 0.0f;
+    }
+  }
+  auto reconstruction = reconstructVolume(
+      projector, image, request.reconstruct,
+      [&](double f) {
+        if (progress) progress(psfShare + (1 - psfShare) * f);
+      },
+      radiometry ? &*radiometry : nullptr);
   if (!reconstruction) return fail(reconstruction.error());
   result.reconstruction = std::move(reconstruction.value());
   return result;
 }
 
 Status parseObjective(const std::string& text, LfmOptics& optics) {
-  const Error bad = makeError(ErrorCode::Usage, "--objective: expected MAGx/NA/MEDIUM as 60x/1.2/water, got '" + text + "'");
+  const Error bad =
+      makeError(ErrorCode::Usage, "--objective: expected MAGx/NA/MEDIUM as 60x/1.2/water, got '" + text + "'");
   std::istringstream in(text);
   std::string magnification, na, medium;
   if (!std::getline(in, magnification, '/') || !std::getline(in, na, '/') || !std::getline(in, medium) ||
@@ -154,10 +176,14 @@ Status parseObjective(const std::string& text, LfmOptics& optics) {
     if (used != magnification.size() - 1) return bad;
     optics.numericalAperture = std::stod(na, &used);
     if (used != na.size()) return bad;
-    if (medium == "water") optics.immersionIndex = 1.333;
-    else if (medium == "oil") optics.immersionIndex = 1.515;
-    else if (medium == "glycerol") optics.immersionIndex = 1.47;
-    else if (medium == "air") optics.immersionIndex = 1.0;
+    if (medium == "water")
+      optics.immersionIndex = 1.333;
+    else if (medium == "oil")
+      optics.immersionIndex = 1.515;
+    else if (medium == "glycerol")
+      optics.immersionIndex = 1.47;
+    else if (medium == "air")
+      optics.immersionIndex = 1.0;
     else {
       optics.immersionIndex = std::stod(medium, &used);
       if (used != medium.size()) return bad;

@@ -6,11 +6,12 @@
 // microscope.
 //
 // Frames. A point at (x, y, z) micrometres in the specimen: z along the optical axis from the
-// native object plane (z = 0 is in focus), its image centred at (M x, M y) on the native image
-// plane, which is the microlens plane (the image is not inverted: the sensor's readout is assumed
-// to turn it upright). One lenslet is centred on the optical axis. The sensor's pixels form a
-// square centred on the axis (its centre pixel on it when odd; a rectified frame of N pixels a lenslet
-// has N times the lenslets, the axis between pixels when N is even).
+// native object plane (z = 0 is in focus), growing toward the objective as napari-LF's does (a real
+// GUV capture reconstructs as napari-LF's volume with this sign, slices reversed with the other), its image centred at
+// (M x, M y) on the native image plane, which is the microlens plane (the image is not inverted: the sensor's readout
+// is assumed to turn it upright). One lenslet is centred on the optical axis. The sensor's pixels form a square centred
+// on the axis (its centre pixel on it when odd; a rectified frame of N pixels a lenslet has N times the lenslets, the
+// axis between pixels when N is even).
 //
 // Normalisation. The field at the native image plane carries unit energy: the integral of
 // |U|^2 over that plane (square micrometres) is 1 at every depth. A PSF pixel holds the energy

@@ -34,12 +34,16 @@ struct LfmReconstruction {
   std::vector<double> residuals;  // |y - H x| / |y| before each iteration, and after the last
 };
 
-// Usage error when the frame's size is not the projector's lenslets times N, or for options out
-// of range. progress(fraction) after each iteration; a cancellation request (parallel.hpp) ends
-// the iterations early.
+// `radiometry`, when given, is R of the model y = R (H x) + b, per pixel (napari-LF's
+// premultiplier): a real microscope's lenslet images are not the model's (its pupil, vignetting,
+// the camera's gain), and R, the white image over the model's own frame of a uniform volume, says
+// by how much; RL then runs on H' = diag(R) H, and pixels where R is 0 are left out.
+// Usage error when the frame's (or R's) size is not the projector's lenslets times N, or for
+// options out of range. progress(fraction) after each iteration; a cancellation request
+// (parallel.hpp) ends the iterations early.
 Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const Image& frame,
                                             const LfmReconstructOptions& options = {},
-                                            const ProgressCallback& progress = {});
+                                            const ProgressCallback& progress = {}, const Image* radiometry = nullptr);
 
 // A frame of `volume` as the microscope would record it: the forward projection plus `background`,
 // each pixel then a Poisson count of photonsPerUnit times its value, divided back by

@@ -16,11 +16,11 @@ namespace lfcam {
 
 struct LfmVolumeRequest {
   LfmOptics optics;
-  int slices = 0;          // >= 1
-  double umPerSlice = 1;   // > 0, the slices' spacing in the specimen
-  double zCenterUm = 0;    // depth of the middle of the slices (napari-LF's z_center)
-  int supersample = 1;     // voxels across a lenslet (napari-LF's supersample), in [1, N]
-  double psfEnergy = 0.95; // of each PSF the projectors keep (napari-LF keeps 95 %)
+  int slices = 0;           // >= 1
+  double umPerSlice = 1;    // > 0, the slices' spacing in the specimen
+  double zCenterUm = 0;     // depth of the middle of the slices (napari-LF's z_center)
+  int supersample = 1;      // voxels across a lenslet (napari-LF's supersample), in [1, N]
+  double psfEnergy = 0.95;  // of each PSF the projectors keep (napari-LF keeps 95 %)
   // The PSF cache: read when it holds these settings, refused when it holds others; computed and
   // written there when absent. Empty: computed, not kept.
   std::string psfPath;
