@@ -2,6 +2,8 @@
 //               --slices N --um-per-slice Z [--supersample K] [--iterations I] [--psf CACHE] -o VOLUME.tif:
 // a light-field microscope frame -> a 3D volume by Richardson-Lucy through the wave-optics PSF
 // (volume_request.hpp), written as a 32-bit TIFF stack Fiji opens with its voxel size, or HDF5.
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -146,6 +148,21 @@ void addVolumeCommand(CLI::App& app, Job& job) {
         return makeError(ErrorCode::Usage, checked.error().message);
       LFCAM_TRY(checkVolumePath(o.output));
       if (!o.noCache) request.psfPath = o.psf.empty() ? defaultPsfPath(o.input.path, request) : o.psf;
+      // Beside a frame in a read-only folder (a shared data set) the default cache cannot be kept.
+      if (o.psf.empty() && !request.psfPath.empty() && !std::filesystem::exists(request.psfPath)) {
+        const auto folder = std::filesystem::path(request.psfPath).parent_path();
+        const auto where = folder.empty() ? std::filesystem::path(".") : folder;
+        std::error_code error;
+        const auto permissions = std::filesystem::status(where, error).permissions();
+        // Root may write anywhere: a folder without write bits is read-only by intent all the same.
+        const auto writeBits = std::filesystem::perms::owner_write | std::filesystem::perms::group_write |
+                               std::filesystem::perms::others_write;
+        if (error || access(where.c_str(), W_OK) != 0 || (permissions & writeBits) == std::filesystem::perms::none) {
+          std::fprintf(stderr, "lfcam: %s is not writable: the PSF is computed, not cached (--psf FILE keeps it)\n",
+                       folder.c_str());
+          request.psfPath.clear();
+        }
+      }
 
       LFCAM_ASSIGN_OR_RETURN(const LightField frame, loadInput(o.input));
       InterruptGuard guard;
