@@ -64,6 +64,27 @@ TEST(CliVolume, WritesAStackAndCachesItsPsf) {
     EXPECT_NEAR(volume->voxelDepthUm, 3, 1e-9);
     EXPECT_NEAR(volume->firstSliceUm, -3, 1e-9);
   }
+  // The cache refuses other optics rather than reconstruct with the wrong PSF.
+  std::filesystem::remove(dir / "volume.tif");
+  auto other = args;
+  other.insert(other.end(), {"--tube-lens", "180"});
+  const auto refused = runLfcam(other, dir.path());
+  EXPECT_EQ(refused.exitStatus, 2) << refused.err;
+  EXPECT_EQ(refused.errLines(), 1) << refused.err;
+  EXPECT_NE(refused.err.find("psf.h5: made for tube lens focal length (mm) 200, not 180"), std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "volume.tif"));
+
+  // A volume beyond the memory budget is refused before the work.
+  std::vector<std::string> big{
+      "volume", frame.string(), "--no-psf-cache", "--memory-limit", "64K", "-o", (dir / "volume.tif").string()};
+  const auto deep = smallMicroscope({{"--slices", "400"}});  // 6 x 5 x 400 voxels, held six times
+  big.insert(big.end(), deep.begin(), deep.end());
+  const auto tooBig = runLfcam(big, dir.path());
+  EXPECT_EQ(tooBig.exitStatus, 1) << tooBig.err;
+  EXPECT_EQ(tooBig.errLines(), 1) << tooBig.err;
+  EXPECT_NE(tooBig.err.find("more than the limit"), std::string::npos) << tooBig.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "volume.tif"));
 }
 
 TEST(CliVolume, RefusesInOneLineWithNoOutput) {
