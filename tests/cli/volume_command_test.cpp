@@ -3,7 +3,11 @@
 // refusals (exit 2, no output) of what cannot be reconstructed.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+
+#include <chrono>
 #include <map>
+#include <thread>
 #include <tuple>
 
 #include "cli_support.hpp"
@@ -15,9 +19,10 @@ namespace {
 
 using test::runLfcam;
 
-// A 6 x 5 lenslet frame of 7 pixels a lenslet, a bright spot under each lenslet's centre.
-std::filesystem::path writeFrame(const test::TempDir& dir) {
-  Image frame(6 * 7, 5 * 7, 1);
+// A frame of 7 pixels a lenslet (6 x 5 lenslets unless asked), a bright spot under each lenslet's
+// centre.
+std::filesystem::path writeFrame(const test::TempDir& dir, int lensletsX = 6, int lensletsY = 5) {
+  Image frame(lensletsX * 7, lensletsY * 7, 1);
   for (int y = 0; y < frame.height(); ++y)
     for (int x = 0; x < frame.width(); ++x) frame.at(x, y, 0) = (x % 7 == 3 && y % 7 == 3) ? 0.8f : 0.1f;
   const auto path = dir / "frame.tif";
@@ -113,6 +118,25 @@ TEST(CliVolume, RefusesInOneLineWithNoOutput) {
     EXPECT_NE(result.err.find(message), std::string::npos) << result.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << message;
   }
+}
+
+TEST(CliVolume, CtrlCEndsTheIterationsAndWritesNothing) {
+  test::TempDir dir;
+  const auto frame = writeFrame(dir, 64, 64);
+  std::vector<std::string> args{"volume", frame.string(), "--no-psf-cache", "-o", (dir / "volume.tif").string()};
+  const auto microscope = smallMicroscope({{"--iterations", "10000"}});  // a minute or more, uninterrupted
+  args.insert(args.end(), microscope.begin(), microscope.end());
+  const pid_t pid = test::startLfcam(args, dir / "out.txt", dir / "err.txt");
+  ASSERT_GT(pid, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal instead of stopping";
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string err = test::readBytes(dir / "err.txt");
+  EXPECT_NE(err.find("interrupted; nothing written"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "volume.tif"));
 }
 
 }  // namespace

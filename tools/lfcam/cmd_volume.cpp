@@ -164,14 +164,17 @@ void addVolumeCommand(CLI::App& app, Job& job) {
         }
       }
 
-      LFCAM_ASSIGN_OR_RETURN(const LightField frame, loadInput(o.input));
       InterruptGuard guard;
+      const auto stopped = [&] { return makeError(ErrorCode::Io, o.input.path + ": interrupted; nothing written"); };
+      Result<LightField> loaded = loadInput(o.input);
+      if (interrupted) return stopped();
+      LFCAM_ASSIGN_OR_RETURN(const LightField frame, std::move(loaded));
       Result<LfmVolumeResult> result = makeError(ErrorCode::Io, "");
       {
         ProgressBar bar("volume " + o.input.path);
         result = reconstructVolume(frame, request, o.input.path, [&](double f) { bar(f); });
       }
-      if (interrupted) return makeError(ErrorCode::Io, o.input.path + ": interrupted; nothing written");
+      if (interrupted) return stopped();
       if (!result) return result.error();
       const LfmReconstruction& r = result->reconstruction;
       const std::string psfNote =
