@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <sstream>
 
@@ -67,6 +68,19 @@ Result<LfmVolumeRequest> parseLfmSettings(const std::string& text, const std::st
   return request;
 }
 
+std::string psfCacheName(const LfmVolumeRequest& r) {
+  std::ostringstream key;
+  key.precision(17);
+  const LfmOptics& o = r.optics;
+  key << o.magnification << ' ' << o.numericalAperture << ' ' << o.immersionIndex << ' ' << o.wavelengthNm << ' '
+      << o.tubeFocalLengthMm << ' ' << o.microlensPitchUm << ' ' << o.microlensFocalLengthUm << ' '
+      << o.microlensFillFactor << ' ' << o.pixelSizeUm << ' ' << o.supersample << ' ' << r.slices << ' ' << r.umPerSlice
+      << ' ' << r.zCenterUm << ' ' << r.supersample << ' ' << r.psfEnergy;
+  char name[64];
+  std::snprintf(name, sizeof name, "lfcam-psf-%016zx.h5", std::hash<std::string>{}(key.str()));
+  return name;
+}
+
 Status checkVolumeRequest(const LfmVolumeRequest& request) {
   LFCAM_TRY(validateLfmOptics(request.optics));
   if (request.slices < 1 || request.slices > 1000)
@@ -83,11 +97,11 @@ Status checkVolumeRequest(const LfmVolumeRequest& request) {
   return {};
 }
 
-Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolumeRequest& request,
-                                          const std::string& where, const ProgressCallback& progress) {
-  auto fail = [&](const Error& error) { return makeError(error.code, where + ": " + error.message); };
-  if (Status checked = checkVolumeRequest(request); !checked) return checked.error();
-  const LightFieldShape shape = frame.shape();
+namespace {
+
+// The frame's pixels a lenslet N, checked against the request: square, near the optics' period,
+// the supersample within it.
+Result<int> checkFrame(const LightFieldShape& shape, const LfmVolumeRequest& request, const std::string& where) {
   const int n = shape.nu;
   const double period = request.optics.microlensPitchUm / request.optics.pixelSizeUm;
   if (shape.nu != shape.nv || n < 2)
@@ -100,6 +114,49 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
   if (request.supersample > n)
     return usage(where + ": supersample " + std::to_string(request.supersample) + " above the " + std::to_string(n) +
                  " pixels a lenslet");
+  return n;
+}
+
+LfmGrid gridOf(const LfmVolumeRequest& request, int pixelsPerLenslet) {
+  return {
+      .pixelsPerLenslet = pixelsPerLenslet, .voxelsPerLenslet = request.supersample, .depthsUm = request.depthsUm()};
+}
+
+bool psfCached(const LfmVolumeRequest& request) {
+  return !request.psfPath.empty() && std::filesystem::exists(request.psfPath);
+}
+
+// The PSF of the grid: read from request.psfPath when it exists (refused when of other settings),
+// else computed and written there when set.
+Result<LfmSparsePsf> volumePsf(const LfmVolumeRequest& request, const LfmGrid& grid, const std::string& where,
+                               const ProgressCallback& progress) {
+  if (psfCached(request)) return readPsfCache(request.psfPath, request.optics, grid, request.psfEnergy);
+  auto psf = computeSparsePsf(request.optics, grid, request.psfEnergy, PupilModel::AbbeSine, [&](double f) {
+    if (progress) progress(f);
+  });
+  if (!psf) return makeError(psf.error().code, where + ": " + psf.error().message);
+  if (!request.psfPath.empty()) LFCAM_TRY(writePsfCache(psf.value(), request.psfPath));
+  return psf;
+}
+
+}  // namespace
+
+Status cacheVolumePsf(const LightField& frame, const LfmVolumeRequest& request, const std::string& where,
+                      const ProgressCallback& progress) {
+  if (request.psfPath.empty() || psfCached(request)) return {};
+  LFCAM_TRY(checkVolumeRequest(request));
+  LFCAM_ASSIGN_OR_RETURN(const int n, checkFrame(frame.shape(), request, where));
+  const Result<LfmSparsePsf> psf = volumePsf(request, gridOf(request, n), where, progress);
+  if (!psf) return psf.error();
+  return {};
+}
+
+Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolumeRequest& request,
+                                          const std::string& where, const ProgressCallback& progress) {
+  auto fail = [&](const Error& error) { return makeError(error.code, where + ": " + error.message); };
+  if (Status checked = checkVolumeRequest(request); !checked) return checked.error();
+  const LightFieldShape shape = frame.shape();
+  LFCAM_ASSIGN_OR_RETURN(const int n, checkFrame(shape, request, where));
   // The solver holds about six volumes (the estimate, its correction, the sensitivity and the
   // padded planes of both projections) and a few frames.
   const auto voxels = checkedProduct({std::uint64_t(shape.ns) * request.supersample,
@@ -107,23 +164,13 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
   LFCAM_TRY(checkMemory(where, voxels ? checkedProduct({*voxels, 4 * 6}) : std::nullopt,
                         "the volume (" + std::to_string(request.slices) + " slices)"));
 
-  const LfmGrid grid{.pixelsPerLenslet = n, .voxelsPerLenslet = request.supersample, .depthsUm = request.depthsUm()};
   LfmVolumeResult result;
-  Result<LfmSparsePsf> psf = makeError(ErrorCode::Io, "");
-  const bool cached = !request.psfPath.empty() && std::filesystem::exists(request.psfPath);
-  const double psfShare = cached ? 0 : 0.5;
-  if (cached) {
-    psf = readPsfCache(request.psfPath, request.optics, grid, request.psfEnergy);
-    if (!psf) return psf.error();  // names the cache file itself
-    result.psfFromCache = true;
-  } else {
-    psf = computeSparsePsf(request.optics, grid, request.psfEnergy, PupilModel::AbbeSine, [&](double f) {
-      if (progress) progress(psfShare * f);
-    });
-    if (!psf) return fail(psf.error());
-    if (!request.psfPath.empty()) LFCAM_TRY(writePsfCache(psf.value(), request.psfPath));
-  }
-  result.psfSplats = psf->splats.size();
+  result.psfFromCache = psfCached(request);
+  const double psfShare = result.psfFromCache ? 0 : 0.5;
+  LFCAM_ASSIGN_OR_RETURN(const auto psf, volumePsf(request, gridOf(request, n), where, [&](double f) {
+                           if (progress) progress(psfShare * f);
+                         }));
+  result.psfSplats = psf.splats.size();
 
   // A frame decoded with a white image holds radiance (the raw over the white) and the white as
   // its weight: the light collected is their product, and the white over the model's frame of a
@@ -139,7 +186,7 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
           image.at(s * n + u, t * n + v, 0) = float(sum / shape.channels) * weight;
           white.at(s * n + u, t * n + v, 0) = weight;
         }
-  const LfmProjector projector(psf.value(), shape.ns, shape.nt);
+  const LfmProjector projector(psf, shape.ns, shape.nt);
   std::optional<Image> radiometry;
   if (frame.hasWeight()) {
     Volume uniform = projector.emptyVolume();

@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <memory>
 #include <sstream>
 
@@ -58,19 +57,9 @@ Result<std::string> readText(const std::string& path) {
   return text.str();
 }
 
-// The default cache: beside the frame, named by the settings it holds, so that a time series in
-// one folder shares it and other settings get their own.
-std::string defaultPsfPath(const std::string& frame, const LfmVolumeRequest& r) {
-  std::ostringstream key;
-  key.precision(17);
-  const LfmOptics& o = r.optics;
-  key << o.magnification << ' ' << o.numericalAperture << ' ' << o.immersionIndex << ' ' << o.wavelengthNm << ' '
-      << o.tubeFocalLengthMm << ' ' << o.microlensPitchUm << ' ' << o.microlensFocalLengthUm << ' '
-      << o.microlensFillFactor << ' ' << o.pixelSizeUm << ' ' << o.supersample << ' ' << r.slices << ' ' << r.umPerSlice
-      << ' ' << r.zCenterUm << ' ' << r.supersample << ' ' << r.psfEnergy;
-  char name[64];
-  std::snprintf(name, sizeof name, "lfcam-psf-%016zx.h5", std::hash<std::string>{}(key.str()));
-  return (std::filesystem::path(frame).parent_path() / name).string();
+// The default cache: beside the frame, named by its settings (psfCacheName).
+std::string defaultPsfPath(const std::string& frame, const LfmVolumeRequest& request) {
+  return (std::filesystem::path(frame).parent_path() / psfCacheName(request)).string();
 }
 
 }  // namespace

@@ -43,6 +43,11 @@ Result<LfmVolumeRequest> parseLfmSettings(const std::string& text, const std::st
 // anything else, in the same words for every front end.
 Status parseObjective(const std::string& text, LfmOptics& optics);
 
+// The PSF cache's file name for these settings, "lfcam-psf-<hash of the settings>.h5": the default
+// cache beside a frame (lfcam volume) or in a batch's output folder, so that a time series shares
+// one and other settings get their own.
+std::string psfCacheName(const LfmVolumeRequest& request);
+
 // What can be checked before the frame is read: the optics, slices, sampling, energy, solver.
 Status checkVolumeRequest(const LfmVolumeRequest& request);
 
@@ -57,5 +62,11 @@ struct LfmVolumeResult {
 // every message. progress: the PSF's computation (when not cached) and the iterations.
 Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolumeRequest& request,
                                           const std::string& where, const ProgressCallback& progress = {});
+
+// The PSF cache at request.psfPath for this frame's lenslets (checked as reconstructVolume checks
+// them), computed and written when absent; nothing when it exists or no path is set. A batch calls
+// it once before its captures, so that each only reads the cache.
+Status cacheVolumePsf(const LightField& frame, const LfmVolumeRequest& request, const std::string& where,
+                      const ProgressCallback& progress = {});
 
 }  // namespace lfcam
