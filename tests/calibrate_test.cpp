@@ -374,6 +374,55 @@ TEST(LensletGridJson, RoundTripsAndRejectsBadFiles) {
   EXPECT_EQ(readGrid(dir.path() / "missing.json").error().code, ErrorCode::Io);
 }
 
+TEST(GridWarp, InterpolatesRoundTripsAndIsFittedFromCentres) {
+  LensletGrid grid;
+  grid.pitchX = grid.pitchY = 20;
+  grid.origin = {10, 10};
+  grid.columns = 65;
+  grid.rows = 49;
+  // A known smooth field: control points every 16 microlenses, 5 x 4 of them.
+  auto field = [](double i, double j) {
+    return std::array<double, 2>{0.8 * std::sin(i / 20.0) * std::cos(j / 25.0), 0.5 * std::cos(i / 30.0 + j / 15.0)};
+  };
+  std::vector<DetectedCentre> centres;
+  std::mt19937 random(53);
+  std::normal_distribution<double> noise(0, 0.05);
+  for (int j = 0; j < grid.rows; ++j)
+    for (int i = 0; i < grid.columns; ++i) {
+      if (i > 50 && j > 30) continue;  // a corner without signal: the warp carries on across it
+      const auto p = grid.centre(i, j);
+      const auto d = field(i, j);
+      centres.push_back({i, j, p[0] + d[0] + noise(random), p[1] + d[1] + noise(random), 0, true});
+    }
+  calibrate_detail::fitGridWarp(grid, centres);
+  EXPECT_EQ(grid.warp.columns, 5);
+  EXPECT_EQ(grid.warp.rows, 4);
+  // The field is smooth on the mesh's scale: what is left is the noise and the bilinear error.
+  EXPECT_LT(grid.fit.rmsResidualPx, 0.1);
+  std::printf("warp fitted to a known field: residual RMS %.4f px (noise 0.0707)\n", grid.fit.rmsResidualPx);
+  // centre() adds the bilinear offset; latticeCentre() does not; the control points sit on
+  // microlenses 0, 16, 32, ...
+  const auto& corner = grid.warp.offsets[0];
+  EXPECT_NEAR(grid.centre(0, 0)[0] - grid.latticeCentre(0, 0)[0], corner[0], 1e-12);
+  const auto mid = grid.centre(8, 0), a = grid.warp.offsets[0], b = grid.warp.offsets[1];
+  EXPECT_NEAR(mid[1] - grid.latticeCentre(8, 0)[1], 0.5 * (a[1] + b[1]), 1e-12);
+
+  const test::TempDir dir;
+  ASSERT_TRUE(writeGrid(dir.path() / "grid.json", grid).ok());
+  auto back = readGrid(dir.path() / "grid.json");
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  for (int j : {0, 17, 48})
+    for (int i : {0, 9, 64}) {
+      EXPECT_NEAR(back->centre(i, j)[0], grid.centre(i, j)[0], 1e-9);
+      EXPECT_NEAR(back->centre(i, j)[1], grid.centre(i, j)[1], 1e-9);
+    }
+  nlohmann::json json = gridToJson(grid);
+  json["warp"]["offsets_px"].erase(0);
+  const auto bad = gridFromJson(json, "g.json");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("warp.offsets_px"), std::string::npos) << bad.error().message;
+}
+
 TEST(LensletHint, FromCameraJsonAndLytroMetadata) {
   const CameraModel camera = testCamera(Packing::Hexagonal, 13.37, 0.5, {0, 0}, ColorFilter::Mono);
   auto hint = lensletHintFromJson(cameraToJson(camera), "camera.json");

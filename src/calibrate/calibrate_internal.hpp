@@ -43,6 +43,10 @@ struct LatticeFit {
 // samples whose residual exceeds 4 sigma (sigma from the median residual). Starts at `start`.
 LatticeFit fitLattice(const std::vector<Sample>& samples, const Lattice& start);
 
+// Fits grid.warp to the inlier centres' residuals against the lattice (grid_warp.cpp) and
+// updates their residuals and grid.fit to the warped grid.
+void fitGridWarp(LensletGrid& grid, std::vector<DetectedCentre>& centres);
+
 // A first lattice (packing, pitches, rotation; no origin) from the autocorrelation of the central
 // part of a prepared image. Fails when no two independent periodic peaks are found. minPeak:
 // the share of the strongest peak a lattice vector's peak must reach.

@@ -6,12 +6,15 @@
 //   square:    a = i * pitchX,                        b = j * pitchY
 //   hexagonal: a = (i + (shifted(j) ? 0.5 : 0)) * pitchX, b = j * pitchY
 // with shifted(j) = ((j + hexParity) odd), R rotating x towards y. For an ideal hexagonal
-// array pitchY = pitchX * sqrt(3) / 2; both are fitted.
+// array pitchY = pitchX * sqrt(3) / 2; both are fitted. A grid may add a smooth warp: offsets in
+// pixels on a coarse mesh over (i, j), interpolated bilinearly and added to centre(i, j), for an
+// array (or an optical path) that is not quite a lattice (GridWarp).
 #pragma once
 
 #include <array>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "lfcam/core/result.hpp"
 #include "lfcam/core/sensor_layout.hpp"
@@ -28,6 +31,13 @@ struct GridFitReport {
   bool selfCalibrated = false;
 };
 
+// Control point (p, q), p in [0, columns), q in [0, rows), sits at microlens
+// (p (grid.columns - 1) / (columns - 1), q (grid.rows - 1) / (rows - 1)); offsets[q * columns + p].
+struct GridWarp {
+  int columns = 0, rows = 0;  // 0: no warp; else both >= 2
+  std::vector<std::array<double, 2>> offsets;
+};
+
 struct LensletGrid {
   Packing packing = Packing::Square;
   double pitchX = 0, pitchY = 0;  // pixels
@@ -35,9 +45,11 @@ struct LensletGrid {
   std::array<double, 2> origin{0, 0};  // centre of microlens (0, 0), pixels
   int columns = 0, rows = 0;
   int hexParity = 0;  // 0 or 1, see above
+  GridWarp warp;
   GridFitReport fit;
 
-  std::array<double, 2> centre(int i, int j) const;
+  std::array<double, 2> centre(int i, int j) const;         // with the warp
+  std::array<double, 2> latticeCentre(int i, int j) const;  // without it
 };
 
 // grid.json (docs/formats.md).
