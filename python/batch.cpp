@@ -87,15 +87,18 @@ void bindBatch(py::module_& m) {
       },
       py::arg("plan"), py::arg("jobs"), py::arg("progress"));
   m.def(
+      "_batch_prepare", [](const BatchPlan& plan) { throwIfError(interruptible([&] { return prepareBatch(plan); })); },
+      py::arg("plan"), "The work the captures share, once before they are dispatched (prepareBatch).");
+  m.def(
       "_batch_capture",
       [](const std::string& input, const std::string& name, const std::vector<std::string>& stepTexts,
-         const std::string& white, const std::string& output) {
-        const std::vector<BatchStep> steps = valueOrThrow(parseBatchSteps(stepTexts));
+         const std::string& white, const std::string& output, const std::string& base) {
+        const std::vector<BatchStep> steps = valueOrThrow(parseBatchSteps(stepTexts, base));
         const BatchOutcome outcome =
             interruptible([&] { return runBatchCapture({.input = input, .name = name}, steps, white, output); });
         return outcomeToDict(outcome);
       },
-      py::arg("input"), py::arg("name"), py::arg("steps"), py::arg("white"), py::arg("output"));
+      py::arg("input"), py::arg("name"), py::arg("steps"), py::arg("white"), py::arg("output"), py::arg("base") = "");
   m.def(
       "_batch_finish",
       [](const BatchPlan& plan, const std::vector<py::dict>& dicts) {

@@ -49,7 +49,8 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
         inputs, or globs (expanded here; one matching nothing is a UsageError).
     output: OUTDIR; each capture writes under OUTDIR/<input's name>/.
     steps: a list, or a comma-separated string, of refocus:SLOPE, stack:FROM:TO:N, edof, depth, page,
-        photo:NAME?FIELD=TEXT&... (any photograph: lfcam.photo_fields()).
+        photo:NAME?FIELD=TEXT&... (any photograph: lfcam.photo_fields()), volume:SETTINGS (a microscope
+        volume.tif; SETTINGS as lfcam volume --optics takes them; the PSF computed once into OUTDIR).
     white: the inputs are raw lenslet images of this white image, decoded on the way.
     jobs: captures at once on this machine (default: half the cores, 1 to 4); not used with `client`.
     report: the report's file (default: OUTDIR/batch-report.json).
@@ -78,9 +79,10 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
     return result
 
 
-def capture_task(input, name, steps, white, output):
-    """One capture on a Dask worker: the C++ runBatchCapture, the single-machine batch's own code."""
-    return _lfcam._batch_capture(input, name, steps, white, output)
+def capture_task(input, name, steps, white, output, base=""):
+    """One capture on a Dask worker: the C++ runBatchCapture, the single-machine batch's own code.
+    base: the caller's working folder, where the steps' relative paths (volume:SETTINGS) start."""
+    return _lfcam._batch_capture(input, name, steps, white, output, base)
 
 
 def _connect(address):
@@ -101,14 +103,15 @@ def _run_on_dask(plan, client, progress):
     if owned:
         client = _connect(client)
     try:
-        os.makedirs(plan.output, exist_ok=True)
+        # What the captures share (a volume step's PSF) is made here once, so the workers only read it.
+        _lfcam._batch_prepare(plan)
         # Workers need not share the caller's working folder: they get absolute paths. The report
         # keeps the paths as given, as on one machine.
         absolute = os.path.abspath
         white = absolute(plan.white) if plan.white else ""
         run_id = uuid.uuid4().hex[:8]
         futures = [
-            client.submit(capture_task, absolute(input), name, plan.steps, white, absolute(plan.output),
+            client.submit(capture_task, absolute(input), name, plan.steps, white, absolute(plan.output), os.getcwd(),
                           key=f"lfcam-batch-{run_id}-{index}-{name}", pure=False, retries=2)
             for index, (input, name) in enumerate(plan.captures)
         ]

@@ -15,6 +15,8 @@
 #include "lfcam/io/color_map.hpp"
 #include "lfcam/io/image_io.hpp"
 #include "lfcam/io/light_field_io.hpp"
+#include "lfcam/io/volume_io.hpp"
+#include "lfcam/lfm/volume_request.hpp"
 #include "lfcam/photo/photo_request.hpp"
 #include "lfcam/viewer/living_picture.hpp"
 #include "photo/focal_stack_output.hpp"
@@ -50,6 +52,9 @@ nlohmann::json doneMarker(const BatchCapture& capture, const std::vector<BatchSt
   nlohmann::json marker{{"steps", stepTexts}};
   marker["fingerprint"] = inputFingerprint(capture.input);
   if (!white.empty()) marker["white"] = inputFingerprint(white);
+  // A volume's settings file edited in place changes the volume as much as the input would.
+  for (const BatchStep& step : steps)
+    if (step.kind == BatchStep::Kind::Volume) marker["settings"].push_back(inputFingerprint(step.settings));
   return marker;
 }
 
@@ -63,7 +68,8 @@ bool completeAlready(const fs::path& folder, const nlohmann::json& marker, const
   return true;
 }
 
-Status runStep(const BatchStep& step, const LightField& lightField, const fs::path& input, const fs::path& folder) {
+Status runStep(const BatchStep& step, const LightField& lightField, const fs::path& input, const fs::path& outputFolder,
+               const fs::path& folder) {
   switch (step.kind) {
     case BatchStep::Kind::Refocus: {
       LFCAM_ASSIGN_OR_RETURN(auto photo,
@@ -89,17 +95,18 @@ Status runStep(const BatchStep& step, const LightField& lightField, const fs::pa
       return writeImage(folder / "depth.png", colorMap(depth.disparity, depth.disparityMin, depth.disparityMax));
     }
     case BatchStep::Kind::Page: return writeLivingPicture(folder / "page.html", lightField);
+    case BatchStep::Kind::Volume: {
+      LfmVolumeRequest request = step.volume;
+      request.psfPath = batchPsfPath(step, outputFolder).string();  // prepareBatch wrote it: only read here
+      LFCAM_ASSIGN_OR_RETURN(auto result, reconstructVolume(lightField, request, input.string()));
+      return writeVolume(folder / step.outputs().front(), result.reconstruction.volume);
+    }
   }
   return {};
 }
 
-Result<LightField> loadCapture(const fs::path& input, const fs::path& white) {
-  if (white.empty()) return readLightField(input);
-  return decodeRawFiles({.raw = input.string(), .white = white.string()});
-}
-
 Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps, const fs::path& white,
-                const fs::path& folder, const nlohmann::json& marker) {
+                const fs::path& outputFolder, const fs::path& folder, const nlohmann::json& marker) {
   std::error_code ec;
   fs::remove(folder / kBatchDoneMarker, ec);  // half-done until every step has written again
   removeStaleTemporaries(folder);             // of a run killed mid-write
@@ -107,7 +114,7 @@ Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps
   fs::create_directories(folder, ec);  // only now, so that an unreadable input leaves no folder
   if (ec) return makeError(ErrorCode::Io, folder.string() + ": cannot create the folder: " + ec.message());
   for (const BatchStep& step : steps) {
-    const Status status = runStep(step, lightField, capture.input, folder);
+    const Status status = runStep(step, lightField, capture.input, outputFolder, folder);
     if (!status) return makeError(status.error().code, step.text + ": " + status.error().message);
     // A cancelled step's outputs are meaningless (parallel.hpp): no marker, so a rerun redoes them.
     if (cancellationRequested()) return makeError(ErrorCode::Io, "cancelled");
@@ -122,6 +129,11 @@ Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps
 
 }  // namespace
 
+Result<LightField> loadCapture(const fs::path& input, const fs::path& white) {
+  if (white.empty()) return readLightField(input);
+  return decodeRawFiles({.raw = input.string(), .white = white.string()});
+}
+
 BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps, const fs::path& white,
                              const fs::path& outputFolder) {
   const auto start = std::chrono::steady_clock::now();
@@ -135,7 +147,7 @@ BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<Batc
     const nlohmann::json marker = doneMarker(capture, steps, white);
     if (completeAlready(folder, marker, outputs)) {
       outcome.status = BatchOutcome::Status::Skipped;
-    } else if (const Status status = runSteps(capture, steps, white, folder, marker); status) {
+    } else if (const Status status = runSteps(capture, steps, white, outputFolder, folder, marker); status) {
       outcome.status = BatchOutcome::Status::Done;
     } else {
       const std::string& message = status.error().message;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -22,9 +23,29 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr std::array<const char*, 6> kStepNames{"refocus", "stack", "edof", "depth", "page", "photo"};
+constexpr std::array<const char*, 7> kStepNames{"refocus", "stack", "edof", "depth", "page", "photo", "volume"};
 
-Result<BatchStep> parseBatchStep(const std::string& text) {
+// "volume:SETTINGS": the settings read and checked as lfcam volume --optics reads them, so that a bad
+// file is refused before any capture runs.
+Result<BatchStep> parseVolumeStep(const std::string& text, const std::string& argument, const fs::path& base) {
+  const auto refuse = [&](const std::string& message) {
+    return makeError(ErrorCode::Usage, "--steps: '" + text + "': " + message);
+  };
+  if (argument.empty()) return refuse("expected volume:SETTINGS (napari-LF's metadata.txt or an optics JSON)");
+  BatchStep step{.kind = BatchStep::Kind::Volume, .text = text, .settings = base / argument};
+  std::ifstream in(step.settings, std::ios::binary);
+  if (!in) return refuse("cannot read " + step.settings.string());
+  std::ostringstream contents;
+  contents << in.rdbuf();
+  auto request = parseLfmSettings(contents.str(), step.settings.string());
+  if (!request) return refuse(request.error().message);
+  if (request->slices == 0) return refuse(step.settings.string() + ": num_slices missing");
+  if (Status checked = checkVolumeRequest(*request); !checked) return refuse(checked.error().message);
+  step.volume = std::move(*request);
+  return step;
+}
+
+Result<BatchStep> parseBatchStep(const std::string& text, const fs::path& base) {
   const std::string name = text.substr(0, text.find(':'));
   const std::string argument = text.find(':') == std::string::npos ? "" : text.substr(text.find(':') + 1);
   const auto usage = [&](const std::string& form) {
@@ -59,6 +80,7 @@ Result<BatchStep> parseBatchStep(const std::string& text) {
       return makeError(ErrorCode::Usage, "--steps: '" + text + "': " + checked.error().message);
     return step;
   }
+  if (name == "volume") return parseVolumeStep(text, argument, base);
   if (name == "stack") {
     auto slopes = parseEvenlySpaced(argument, "--steps stack");
     if (!slopes) return usage("stack:FROM:TO:N (N 1 to 100000)");
@@ -70,7 +92,8 @@ Result<BatchStep> parseBatchStep(const std::string& text) {
   if (found == plain.end())
     return makeError(ErrorCode::Usage,
                      "--steps: unknown step '" + text +
-                         "' (refocus:SLOPE, stack:FROM:TO:N, edof, depth, page, photo:NAME?FIELD=TEXT&...)");
+                         "' (refocus:SLOPE, stack:FROM:TO:N, edof, depth, page, photo:NAME?FIELD=TEXT&..., "
+                         "volume:SETTINGS)");
   if (!argument.empty() || text.find(':') != std::string::npos) return usage(name + " without an argument");
   return BatchStep{.kind = found->second, .text = text};
 }
@@ -110,8 +133,13 @@ std::vector<std::string> BatchStep::outputs() const {
     case Kind::Depth: return {"depth.pfm", "depth.png"};
     case Kind::Page: return {"page.html"};
     case Kind::Photo: return {"photo_" + name + ".png"};
+    case Kind::Volume: return {"volume.tif"};
   }
   return {};
+}
+
+fs::path batchPsfPath(const BatchStep& step, const fs::path& outputFolder) {
+  return outputFolder / psfCacheName(step.volume);
 }
 
 std::vector<std::string> splitBatchSteps(const std::string& text) {
@@ -133,10 +161,10 @@ std::vector<std::string> splitBatchSteps(const std::string& text) {
   return steps;
 }
 
-Result<std::vector<BatchStep>> parseBatchSteps(const std::vector<std::string>& texts) {
+Result<std::vector<BatchStep>> parseBatchSteps(const std::vector<std::string>& texts, const fs::path& base) {
   std::vector<BatchStep> steps;
   for (const std::string& text : texts) {
-    LFCAM_ASSIGN_OR_RETURN(auto step, parseBatchStep(text));
+    LFCAM_ASSIGN_OR_RETURN(auto step, parseBatchStep(text, base));
     steps.push_back(std::move(step));
   }
   if (steps.empty()) return makeError(ErrorCode::Usage, "--steps: give at least one step");

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/parallel.hpp"
+#include "lfcam/lfm/volume_request.hpp"
 
 namespace lfcam {
 namespace fs = std::filesystem;
@@ -29,10 +30,33 @@ const char* batchStatusName(BatchOutcome::Status status) {
   return "";
 }
 
-Result<std::vector<BatchOutcome>> runBatchCaptures(const BatchPlan& plan, int jobs, const ProgressCallback& progress) {
+Status prepareBatch(const BatchPlan& plan, const ProgressCallback& progress) {
   std::error_code ec;
   fs::create_directories(plan.output, ec);
   if (ec) return makeError(ErrorCode::Io, plan.output.string() + ": cannot create the folder: " + ec.message());
+  std::vector<const BatchStep*> uncached;
+  for (const BatchStep& step : plan.steps)
+    if (step.kind == BatchStep::Kind::Volume && !fs::exists(batchPsfPath(step, plan.output))) uncached.push_back(&step);
+  if (uncached.empty()) return {};
+  // The first capture that reads: an unreadable one fails as itself when its turn comes.
+  for (const BatchCapture& capture : plan.captures) {
+    Result<LightField> frame = loadCapture(capture.input, plan.white);
+    if (!frame) continue;
+    for (std::size_t k = 0; k < uncached.size(); ++k) {
+      LfmVolumeRequest request = uncached[k]->volume;
+      request.psfPath = batchPsfPath(*uncached[k], plan.output).string();
+      const Status cached = cacheVolumePsf(*frame, request, capture.input.string(), [&](double f) {
+        if (progress) progress((double(k) + f) / double(uncached.size()));
+      });
+      if (!cached) return makeError(cached.error().code, uncached[k]->text + ": " + cached.error().message);
+    }
+    return {};
+  }
+  return {};
+}
+
+Result<std::vector<BatchOutcome>> runBatchCaptures(const BatchPlan& plan, int jobs, const ProgressCallback& progress) {
+  LFCAM_TRY(prepareBatch(plan));
   const std::vector<BatchCapture>& captures = plan.captures;
   std::vector<BatchOutcome> outcomes(captures.size());
   std::mutex mutex;

@@ -6,6 +6,8 @@
 
 #include "cli_support.hpp"
 #include "lfcam/io/image_io.hpp"
+#include "lfcam/io/light_field_io.hpp"
+#include "lfcam/io/volume_io.hpp"
 
 namespace lfcam {
 namespace {
@@ -23,6 +25,48 @@ fs::path makeTwoCaptures(const test::TempDir& dir) {
 }
 
 nlohmann::json readJson(const fs::path& file) { return nlohmann::json::parse(test::readBytes(file)); }
+
+// A light-field microscope's time series in dir/series: t0, t1, t2.lf.h5, each 7 x 7 views of 6 x 5
+// lenslets (volume_command_test.cpp's frame, a spot under each lenslet, brighter at each time).
+fs::path makeMicroscopeSeries(const test::TempDir& dir) {
+  const fs::path folder = dir / "series";
+  fs::create_directories(folder);
+  for (int time = 0; time < 3; ++time) {
+    LightField frame({.nu = 7, .nv = 7, .ns = 6, .nt = 5, .channels = 1});
+    for (int v = 0; v < 7; ++v)
+      for (int u = 0; u < 7; ++u)
+        for (int t = 0; t < 5; ++t)
+          for (int s = 0; s < 6; ++s) frame.at(u, v, s, t, 0) = u == 3 && v == 3 ? 0.6f + 0.1f * time : 0.1f;
+    EXPECT_TRUE(writeLightField(folder / ("t" + std::to_string(time) + ".lf.h5"), frame));
+  }
+  return folder;
+}
+
+// Its microscope (20x/0.5 water, 500 nm, 40 um lenslets of 800 um, 5.714 um pixels: 7 pixels a
+// lenslet) as napari-LF's settings, less any key of `without`.
+fs::path writeMicroscopeSettings(const test::TempDir& dir, const std::string& without = "") {
+  nlohmann::json calibrate{{"objective_magnification", 20},
+                           {"objective_na", 0.5},
+                           {"medium_index", 1.333},
+                           {"center_wavelength", 500},
+                           {"ulens_pitch", 40},
+                           {"ulens_focal_length", 800},
+                           {"pixel_size", 5.714},
+                           {"num_slices", 3},
+                           {"um_per_slice", 3},
+                           {"supersample", 1}};
+  calibrate.erase(without);
+  const fs::path file = dir / (without.empty() ? "optics.json" : "optics-" + without + ".json");
+  test::writeBytes(file, nlohmann::json{{"calibrate", calibrate}, {"deconvolve", {{"max_iter", 2}}}}.dump(2));
+  return file;
+}
+
+std::vector<fs::path> psfCaches(const fs::path& folder) {
+  std::vector<fs::path> caches;
+  for (const auto& entry : fs::directory_iterator(folder))
+    if (entry.path().filename().string().rfind("lfcam-psf-", 0) == 0) caches.push_back(entry.path());
+  return caches;
+}
 
 TEST(CliBatch, EveryStepWritesItsFilesPerCaptureAndTheReportSaysSo) {
   test::TempDir dir;
@@ -140,6 +184,7 @@ TEST(CliBatch, BadArgumentsAreOneLineUsageErrors) {
   test::TempDir dir;
   const fs::path inputs = makeTwoCaptures(dir), out = dir / "out";
   test::writeBytes(dir / "spec.json", R"({"inputs": ["x"], "stpes": ["edof"]})");
+  const fs::path noSlices = writeMicroscopeSettings(dir, "num_slices");
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
       {{"batch", inputs.string(), "-o", out.string(), "--steps", "edof,sharpen"}, "unknown step 'sharpen'"},
       {{"batch", inputs.string(), "-o", out.string(), "--steps", "refocus:near"}, "refocus:SLOPE"},
@@ -151,6 +196,12 @@ TEST(CliBatch, BadArgumentsAreOneLineUsageErrors) {
       {{"batch", (dir / "*.lfp").string(), "-o", out.string(), "--steps", "edof"},
        (dir / "*.lfp").string() + ": no file matches"},
       {{"batch", "--spec", (dir / "spec.json").string()}, (dir / "spec.json").string() + ": unknown key 'stpes'"},
+      {{"batch", inputs.string(), "-o", out.string(), "--steps", "edof,volume:" + (dir / "none.json").string()},
+       "--steps: 'volume:" + (dir / "none.json").string() + "': cannot read " + (dir / "none.json").string()},
+      {{"batch", inputs.string(), "-o", out.string(), "--steps", "volume:" + noSlices.string()},
+       noSlices.string() + ": num_slices missing"},
+      {{"batch", inputs.string(), "-o", out.string(), "--steps", "volume:" + (dir / "spec.json").string()},
+       "'volume:" + (dir / "spec.json").string() + "': "},
   };
   for (const auto& [args, message] : cases) {
     const auto result = runLfcam(args, dir.path());
@@ -159,6 +210,38 @@ TEST(CliBatch, BadArgumentsAreOneLineUsageErrors) {
     EXPECT_NE(result.err.find(message), std::string::npos) << result.err;
     EXPECT_FALSE(fs::exists(out)) << args.back();
   }
+}
+
+// A volume step reconstructs every capture of a microscope time series, the PSF computed once into
+// OUTDIR before the captures run: they only read it, even all redone at once.
+TEST(CliBatch, AVolumeStepReconstructsEveryCaptureFromOnePsf) {
+  test::TempDir dir;
+  const fs::path series = makeMicroscopeSeries(dir), settings = writeMicroscopeSettings(dir), out = dir / "out";
+  const std::string step = "volume:" + settings.string();
+  const std::vector<std::string> args{"batch", series.string(), "-o", out.string(), "--steps", step, "--jobs", "3"};
+  const auto result = runLfcam(args, dir.path());
+  ASSERT_EQ(result.exitStatus, 0) << result.err;
+  EXPECT_NE(result.out.find("3 done"), std::string::npos) << result.out;
+  const auto caches = psfCaches(out);
+  ASSERT_EQ(caches.size(), 1u);
+  const auto cacheTime = fs::last_write_time(caches.front());
+  for (const char* capture : {"t0", "t1", "t2"}) {
+    const auto volume = readVolume(out / capture / "volume.tif");
+    ASSERT_TRUE(volume) << volume.error().message;
+    EXPECT_EQ(volume->width(), 6);
+    EXPECT_EQ(volume->height(), 5);
+    EXPECT_EQ(volume->depth(), 3);
+    EXPECT_NEAR(volume->voxelDepthUm, 3, 1e-9);
+    EXPECT_LE(cacheTime, fs::last_write_time(out / capture / "volume.tif")) << "the PSF before every capture";
+    EXPECT_EQ(readJson(out / capture / ".batch-done.json")["steps"], nlohmann::json({step}));
+  }
+  // Every capture redone at once reads the cache, rewriting it nowhere.
+  for (const char* capture : {"t0", "t1", "t2"}) fs::remove(out / capture / ".batch-done.json");
+  const auto rerun = runLfcam(args, dir.path());
+  ASSERT_EQ(rerun.exitStatus, 0) << rerun.err;
+  EXPECT_NE(rerun.out.find("3 done"), std::string::npos) << rerun.out;
+  EXPECT_EQ(psfCaches(out), caches);
+  EXPECT_EQ(fs::last_write_time(caches.front()), cacheTime);
 }
 
 // A photograph step is any photograph request, named: its fields' commas do not split --steps, and

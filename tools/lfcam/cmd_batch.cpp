@@ -29,7 +29,9 @@ void addBatchCommand(CLI::App& app, Job& job) {
                       "comma-separated: refocus:SLOPE (refocus_SLOPE.png), stack:FROM:TO:N (stack/slice_NNN.png, "
                       "stack/stack.json), edof (all-in-focus.png), depth (depth.pfm, depth.png), page (page.html, the "
                       "living picture of export-html), photo:NAME?FIELD=TEXT&... (photo_NAME.png: any photograph, "
-                      "its fields lfcam refocus's flags without the dashes, e.g. photo:tilt?slope=0.5&tilt=1)");
+                      "its fields lfcam refocus's flags without the dashes, e.g. photo:tilt?slope=0.5&tilt=1), "
+                      "volume:SETTINGS (volume.tif: a microscope volume, SETTINGS as lfcam volume --optics takes "
+                      "them; the PSF computed once into OUTDIR)");
   command->add_option("--white", options->white, "the inputs are raw lenslet images of this white image");
   command->add_option("--jobs", options->jobs, "captures at once on this machine (default: half the cores, 1 to 4)")
       ->check(CLI::Range(1, 256));

@@ -9,26 +9,36 @@
 #include <vector>
 
 #include "lfcam/core/result.hpp"
+#include "lfcam/lfm/volume_request.hpp"
 #include "lfcam/photo/photo_request.hpp"
 
 namespace lfcam {
 
 // One step and the files it writes under the capture's output folder.
 struct BatchStep {
-  enum class Kind { Refocus, Stack, Edof, Depth, Page, Photo } kind;
-  std::string text;            // as given, e.g. "refocus:0.5"; recorded in the done-marker
-  double slope = 0;            // refocus
-  std::vector<double> slopes;  // stack
-  std::string name;            // photo: its output is photo_NAME.png
-  PhotoRequest photo;          // photo
+  enum class Kind { Refocus, Stack, Edof, Depth, Page, Photo, Volume } kind;
+  std::string text;                // as given, e.g. "refocus:0.5"; recorded in the done-marker
+  double slope = 0;                // refocus
+  std::vector<double> slopes;      // stack
+  std::string name;                // photo: its output is photo_NAME.png
+  PhotoRequest photo;              // photo
+  LfmVolumeRequest volume;         // volume: its settings, psfPath empty (batchPsfPath gives it)
+  std::filesystem::path settings;  // volume: the settings file, as read (relative ones resolved)
   std::vector<std::string> outputs() const;
 };
 
-// "refocus:SLOPE", "stack:FROM:TO:N", "edof", "depth", "page", or "photo:NAME?FIELD=TEXT&FIELD=TEXT..."
+// "refocus:SLOPE", "stack:FROM:TO:N", "edof", "depth", "page", "photo:NAME?FIELD=TEXT&FIELD=TEXT..."
 // (any photograph, its fields those of photo_request.hpp, as the viewer's query takes them, e.g.
-// photo:tilted?slope=0.5&tilt=1&f-number=2) -> steps; a Usage error naming the bad one, in the
-// request's own words for a photograph it refuses.
-Result<std::vector<BatchStep>> parseBatchSteps(const std::vector<std::string>& texts);
+// photo:tilted?slope=0.5&tilt=1&f-number=2), or "volume:SETTINGS" (a light-field microscope volume,
+// SETTINGS napari-LF's metadata.txt or lfcam's optics JSON as lfcam volume --optics takes them, read
+// and checked here; a relative path is taken from `base` when given, for a worker whose working
+// folder is not the caller's) -> steps; a Usage error naming the bad one, in the request's own words
+// for a photograph or settings it refuses.
+Result<std::vector<BatchStep>> parseBatchSteps(const std::vector<std::string>& texts,
+                                               const std::filesystem::path& base = {});
+
+// A volume step's PSF cache: OUTDIR/psfCacheName(settings), shared by every capture of the batch.
+std::filesystem::path batchPsfPath(const BatchStep& step, const std::filesystem::path& outputFolder);
 
 // "refocus:0.5,photo:p?focus-plane=1,2:3,4:5,6,edof" -> its steps: split at every comma but those
 // inside a photograph's fields, where only a comma followed by a step's name ends the step (the

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "lfcam/batch/batch_plan.hpp"
+#include "lfcam/core/light_field.hpp"
 #include "lfcam/core/progress.hpp"
 #include "lfcam/core/result.hpp"
 
@@ -30,10 +31,20 @@ struct BatchOutcome {
 BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps,
                              const std::filesystem::path& white, const std::filesystem::path& outputFolder);
 
+// A capture's light field: read, or decoded when `white` is given.
+Result<LightField> loadCapture(const std::filesystem::path& input, const std::filesystem::path& white);
+
+// The work every capture shares, done once in OUTDIR (created) before the captures are dispatched,
+// here or to a cluster: each volume step's PSF cache (batchPsfPath) computed from the first capture
+// that reads (the PSF depends on its pixels a lenslet), unless there already. Then every capture,
+// in any process, only reads it: none computes it again, and none writes it while another reads.
+// An error names the step and the capture.
+Status prepareBatch(const BatchPlan& plan, const ProgressCallback& progress = {});
+
 // Half the cores, from 1 to 4 (batch_run.cpp says why).
 int defaultBatchJobs();
 
-// Every capture of the plan, `jobs` at once, in OUTDIR (created). progress(fraction of the
+// Every capture of the plan, `jobs` at once, in OUTDIR (created), after prepareBatch. progress(fraction of the
 // captures finished) is called on the calling thread. Once cancellation is requested
 // (parallel.hpp) no further capture starts; those are failed as cancelled.
 Result<std::vector<BatchOutcome>> runBatchCaptures(const BatchPlan& plan, int jobs,
