@@ -10,23 +10,14 @@
 #include "lfcam/lfm/projector.hpp"
 #include "lfcam/lfm/reconstruct.hpp"
 #include "lfm/projector_reference.hpp"
+#include "lfm_small_microscope.hpp"
 
 namespace lfcam {
 namespace lfm_projector_test {
 
-// A small microscope: 20x / 0.5 water, 40 um lenslets at f/20, the frame rectified to 7 pixels a
-// lenslet: PSFs of a few lenslets across, quick to compute.
-LfmOptics rectifiedMicroscope() {
-  return LfmOptics{.magnification = 20,
-                   .numericalAperture = 0.5,
-                   .immersionIndex = 1.33,
-                   .wavelengthNm = 500,
-                   .tubeFocalLengthMm = 200,
-                   .microlensPitchUm = 40,
-                   .microlensFocalLengthUm = 800,
-                   .pixelSizeUm = 40.0 / 7,
-                   .supersample = 2};
-}
+// test::smallMicroscope with the frame rectified to 7 pixels a lenslet (computePsfSet's frameOptics
+// does the same for other counts).
+LfmOptics rectifiedMicroscope() { return frameOptics(test::smallMicroscope(), 7); }
 
 double relativeDifference(std::span<const float> fast, const std::vector<double>& reference) {
   double difference = 0, norm = 0;

@@ -10,6 +10,7 @@
 #include "lfcam/lfm/psf.hpp"
 #include "lfcam/lfm/sparse_psf.hpp"
 #include "lfm/psf_stages.hpp"
+#include "lfm_small_microscope.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {
@@ -32,20 +33,6 @@ double encircledEnergy(const LfmOptics& optics, double depthUm, double vMax, Pup
     sum += weight * 2 * kPi * radii[i] * std::norm(field->at(i));
   }
   return sum * h / 3;
-}
-
-// The small microscope of the direct Fresnel test: 20x / 0.5, matched 40 um lenslets at f/20.
-LfmOptics smallMicroscope() {
-  return LfmOptics{.magnification = 20,
-                   .numericalAperture = 0.5,
-                   .immersionIndex = 1.33,
-                   .wavelengthNm = 500,
-                   .tubeFocalLengthMm = 200,
-                   .microlensPitchUm = 40,
-                   .microlensFocalLengthUm = 800,
-                   .microlensFillFactor = 1,
-                   .pixelSizeUm = 4,
-                   .supersample = 2};
 }
 
 }  // namespace lfm_psf_test
@@ -164,7 +151,7 @@ TEST(LfmPsf, FresnelPropagationConservesEnergy) {
 TEST(LfmPsf, DirectFresnelSumMatchesTheFft) {
   // On a 60-sample window of 3 x 3 lenslets, an in-focus point on the axis: its light stays
   // under the centre lenslet, so the FFT's periodic window and the direct sum's open plane agree.
-  const LfmOptics optics = smallMicroscope();
+  const LfmOptics optics = test::smallMicroscope();
   const auto model = LfmPsf::create(optics, 3, PupilModel::AbbeSine);
   ASSERT_TRUE(model) << model.error().message;
   const int n = model->samplesAcross();

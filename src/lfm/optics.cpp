@@ -6,19 +6,12 @@
 #include <cstdio>
 #include <utility>
 
+#include "lfm/message_text.hpp"
+
 namespace lfcam {
 
-namespace {
-
-std::string number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
-Error usage(std::string message) { return makeError(ErrorCode::Usage, std::move(message)); }
-
-}  // namespace
+using lfm::number;
+using lfm::usage;
 
 Status validateLfmOptics(const LfmOptics& o) {
   // Each length and ratio finite and positive; NaN fails every comparison, so `!(x > 0)`.

@@ -13,7 +13,12 @@
 #include "core/parallel.hpp"
 #include "lfm/psf_stages.hpp"
 
+#include "lfm/message_text.hpp"
+
 namespace lfcam {
+
+using lfm::number;
+using lfm::usage;
 
 namespace lfm {
 
@@ -254,22 +259,13 @@ Image integratePixels(const std::complex<float>* field, int n, int supersample, 
 
 }  // namespace lfm
 
-namespace {
-
-std::string number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", x);
-  return text;
-}
-
-}  // namespace
-
 Result<std::vector<std::complex<double>>> debyeField(const LfmOptics& optics, double depthUm,
                                                      std::span<const double> radiiUm, PupilModel pupil) {
   LFCAM_TRY(validateLfmOptics(optics));
   double maxRadius = 0;
   for (double r : radiiUm) {
-    if (!(r >= 0) || !std::isfinite(r)) return makeError(ErrorCode::Usage, "radius " + number(r) + " must be >= 0");
+    if (!(r >= 0) || !std::isfinite(r))
+      return makeError(ErrorCode::Usage, "radius " + number(r, "%.3g") + " must be >= 0");
     maxRadius = std::max(maxRadius, r);
   }
   if (!std::isfinite(depthUm)) return makeError(ErrorCode::Usage, "depth must be finite");
@@ -333,9 +329,9 @@ Result<LfmPsf> LfmPsf::create(const LfmOptics& optics, int lensletsAcross, Pupil
                        (optics.wavelengthUm() * optics.microlensFocalLengthUm);
   const double bandwidth = optics.imageCutoffPerUm() + slope;
   if (!(2 * bandwidth * dx < 1))
-    return makeError(ErrorCode::Usage, "sample spacing " + number(dx) +
-                                           " um aliases the field after the microlenses (up to " + number(bandwidth) +
-                                           " cycles/um): raise supersample to at least " +
+    return makeError(ErrorCode::Usage, "sample spacing " + number(dx, "%.3g") +
+                                           " um aliases the field after the microlenses (up to " +
+                                           number(bandwidth, "%.3g") + " cycles/um): raise supersample to at least " +
                                            std::to_string(int(std::floor(2 * bandwidth * optics.pixelSizeUm)) + 1));
   const int pixels = lfm::windowPixels(optics, lensletsAcross);
   if (std::size_t(pixels) * optics.supersample > 8192)
@@ -387,7 +383,7 @@ Status validateLfmGrid(const LfmGrid& grid) {
                                            "] (the pixels per lenslet)");
   if (grid.depthsUm.empty()) return makeError(ErrorCode::Usage, "no slices: the volume needs at least one");
   for (double z : grid.depthsUm)
-    if (!std::isfinite(z)) return makeError(ErrorCode::Usage, "slice depth " + number(z) + " must be finite");
+    if (!std::isfinite(z)) return makeError(ErrorCode::Usage, "slice depth " + number(z, "%.3g") + " must be finite");
   return {};
 }
 

@@ -13,7 +13,12 @@
 #include "core/hdf5_lock.hpp"
 #include "lfcam/lfm/sparse_psf.hpp"
 
+#include "lfm/message_text.hpp"
+
 namespace lfcam {
+
+using lfm::number;
+using lfm::usage;
 
 namespace {
 
@@ -44,12 +49,6 @@ std::vector<Key> keysOf(const LfmOptics& o, PupilModel pupil, const LfmGrid& gri
           {"pixels_per_lenslet", "pixels per lenslet", double(grid.pixelsPerLenslet)},
           {"voxels_per_lenslet", "voxels per lenslet", double(grid.voxelsPerLenslet)},
           {"kept_energy", "kept PSF energy", keep}};
-}
-
-std::string number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", x);
-  return text;
 }
 
 bool writeDouble(hid_t object, const char* name, double value) {
@@ -178,15 +177,16 @@ Result<LfmSparsePsf> readPsfCache(const std::string& path, const LfmOptics& micr
   double version = 0;
   if (!readDouble(file.get(), "format_version", version)) return notCache;
   if (version != kFormatVersion)
-    return makeError(ErrorCode::Usage, path + ": a PSF cache of an earlier lfcam (format " + number(version) +
+    return makeError(ErrorCode::Usage, path + ": a PSF cache of an earlier lfcam (format " + number(version, "%.10g") +
                                            "): compute the PSFs again");
   // What it was made for, exactly: a PSF of other optics is another PSF.
   for (const Key& key : keysOf(optics, pupil, grid, keep)) {
     double made = 0;
     if (!readDouble(file.get(), key.attribute, made)) return notCache;
     if (made != key.value)
-      return makeError(ErrorCode::Usage, path + ": made for " + key.name + " " + number(made) + ", not " +
-                                             number(key.value) + ": compute the PSFs again for these settings");
+      return makeError(ErrorCode::Usage, path + ": made for " + key.name + " " + number(made, "%.10g") + ", not " +
+                                             number(key.value, "%.10g") +
+                                             ": compute the PSFs again for these settings");
   }
   LfmSparsePsf psf{.optics = optics, .pupil = pupil, .grid = grid, .keptEnergy = keep};
   double reach = 0;
@@ -201,8 +201,9 @@ Result<LfmSparsePsf> readPsfCache(const std::string& path, const LfmOptics& micr
     return notCache;
   for (std::size_t d = 0; d < depths.size(); ++d)
     if (depths[d] != grid.depthsUm[d])
-      return makeError(ErrorCode::Usage, path + ": made for a slice at " + number(depths[d]) + " um, not " +
-                                             number(grid.depthsUm[d]) + ": compute the PSFs again for these settings");
+      return makeError(ErrorCode::Usage, path + ": made for a slice at " + number(depths[d], "%.10g") + " um, not " +
+                                             number(grid.depthsUm[d], "%.10g") +
+                                             ": compute the PSFs again for these settings");
   const std::size_t phases = depths.size() * grid.voxelsPerLenslet * grid.voxelsPerLenslet;
   std::vector<std::uint64_t> begins(phases + 1);
   if (datasetLength(file.get(), "begins") != hssize_t(begins.size()) ||

@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "core/parallel.hpp"
+#include "lfm/message_text.hpp"
 
 namespace lfcam {
 
@@ -70,11 +71,7 @@ Result<LfmSparsePsf> computeSparsePsf(const LfmOptics& microscope, const LfmGrid
                                       const ProgressCallback& progress) {
   LFCAM_TRY(validateLfmOptics(microscope));
   LFCAM_TRY(validateLfmGrid(grid));
-  if (!(keep > 0 && keep <= 1)) {
-    char text[64];
-    std::snprintf(text, sizeof text, "PSF energy kept %g outside (0, 1]", keep);
-    return makeError(ErrorCode::Usage, text);
-  }
+  if (!(keep > 0 && keep <= 1)) return lfm::usage("PSF energy kept " + lfm::number(keep) + " outside (0, 1]");
   LfmSparsePsf out{
       .optics = frameOptics(microscope, grid.pixelsPerLenslet), .pupil = pupil, .grid = grid, .keptEnergy = keep};
   for (std::size_t d = 0; d < grid.depthsUm.size(); ++d) {

@@ -14,19 +14,12 @@
 #include "core/memory_budget.hpp"
 #include "lfcam/lfm/sparse_psf.hpp"
 
+#include "lfm/message_text.hpp"
+
 namespace lfcam {
 
-namespace {
-
-std::string number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
-Error usage(std::string message) { return makeError(ErrorCode::Usage, std::move(message)); }
-
-}  // namespace
+using lfm::number;
+using lfm::usage;
 
 std::vector<double> LfmVolumeRequest::depthsUm() const {
   std::vector<double> depths;

@@ -13,7 +13,7 @@ namespace {
 const std::vector<std::string> kCommands{"info",       "convert", "views",     "refocus", "stack",    "observer",
                                          "bench",      "animate", "synth",     "demo",    "simulate", "depth",
                                          "score",      "edof",    "denoise",   "extract", "view",     "export-html",
-                                         "experiment", "decode",  "calibrate", "batch"};
+                                         "experiment", "decode",  "calibrate", "batch",   "volume"};
 
 TEST(CommandHelp, AloneListsEveryCommandOnOneLineEach) {
   TempDir dir;
