@@ -97,3 +97,36 @@ def test_the_command_line_hands_over_to_the_cluster(cluster, single_machine):
     assert result.returncode == 0, result.stderr
     assert f"batch: {CAPTURES} done, 0 skipped" in result.stdout
     assert files_below(folder / "cli") == local_files
+
+
+def test_a_volume_step_on_the_cluster_shares_one_psf(cluster, tmp_path):
+    """A microscope time series on the cluster: the PSF computed once, before the tasks, into the
+    output folder; every worker only reads it; the volumes are the single machine's."""
+    import numpy as np
+    _, client = cluster
+    series = tmp_path / "series"
+    series.mkdir()
+    for time_point in range(4):
+        samples = np.full((7, 7, 1, 5, 6), 0.1, np.float32)
+        samples[3, 3] = 0.6 + 0.1 * time_point
+        lfcam.write(series / f"t{time_point}.lf.h5", lfcam.LightField(samples))
+    settings = tmp_path / "microscope.json"
+    settings.write_text(json.dumps({
+        "calibrate": {"objective_magnification": 20, "objective_na": 0.5, "medium_index": 1.33,
+                      "center_wavelength": 500, "ulens_pitch": 40, "ulens_focal_length": 800,
+                      "pixel_size": 40 / 7, "num_slices": 3, "um_per_slice": 3, "supersample": 1},
+        "deconvolve": {"max_iter": 2}}))
+    steps = [f"volume:{settings}"]
+    local = lfcam.batch.run(str(series), tmp_path / "local", steps, jobs=2)
+    remote = lfcam.batch.run(str(series), tmp_path / "dask", steps, client=client)
+    assert (remote["done"], remote["failed"]) == (4, 0)
+    caches = sorted(p.name for p in (tmp_path / "dask").glob("lfcam-psf-*.h5"))
+    assert len(caches) == 1
+    written = (tmp_path / "dask" / caches[0]).stat().st_mtime_ns
+    volumes = sorted((tmp_path / "dask").glob("*/volume.tif"))
+    assert len(volumes) == 4
+    assert all(v.stat().st_mtime_ns >= written for v in volumes)  # every volume after the one PSF
+    for v in volumes:
+        assert v.read_bytes() == (tmp_path / "local" / v.parent.name / "volume.tif").read_bytes()
+    assert local["done"] == 4
+    assert without_times(remote) == without_times(local)
