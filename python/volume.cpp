@@ -6,9 +6,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 #include <string>
 
 #include "arrays.hpp"
@@ -22,14 +20,6 @@ namespace py = pybind11;
 namespace lfcam::python {
 
 namespace {
-
-std::string readText(const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw LibraryError(ErrorCode::Io, path.string() + ": cannot open");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
 
 const char* const volumeDoc = R"doc(
 A 3D volume from a light-field microscope frame: Richardson-Lucy deconvolution through the
@@ -74,33 +64,24 @@ void bindVolume(py::module_& m) {
          std::optional<double> tolerance, std::optional<double> tv, std::optional<std::filesystem::path> psf,
          std::optional<double> psfEnergy, const py::object& progress) {
         // As cmd_volume.cpp: the file, then the objective, then each keyword over them.
-        LfmVolumeRequest request;
-        if (opticsFile) request = valueOrThrow(parseLfmSettings(readText(*opticsFile), opticsFile->string(), request));
-        if (objective) throwIfError(parseObjective(*objective, request.optics));
-        if (wavelength) request.optics.wavelengthNm = *wavelength;
-        if (tubeLens) request.optics.tubeFocalLengthMm = *tubeLens;
-        if (pitch) request.optics.microlensPitchUm = *pitch;
-        if (microlensFocalLength) request.optics.microlensFocalLengthUm = *microlensFocalLength;
-        if (pixelSize) request.optics.pixelSizeUm = *pixelSize;
-        if (slices) request.slices = *slices;
-        if (umPerSlice) request.umPerSlice = *umPerSlice;
-        if (zCenter) request.zCenterUm = *zCenter;
-        if (supersample) request.supersample = *supersample;
-        if (iterations) request.reconstruct.iterations = *iterations;
-        if (tolerance) request.reconstruct.tolerance = *tolerance;
-        if (background) request.reconstruct.background = *background;
-        if (tv) request.reconstruct.tvWeight = *tv;
-        if (psfEnergy) request.psfEnergy = *psfEnergy;
-        if (solver == "backprojection")
-          request.reconstruct.solver = LfmSolver::BackProjection;
-        else if (solver != "rl")
-          throw LibraryError(ErrorCode::Usage, "--solver: expected rl or backprojection, got '" + solver + "'");
-        if (!opticsFile && !objective)
-          throw LibraryError(ErrorCode::Usage, "--optics or --objective: the microscope is needed");
-        if (!slices && request.slices == 0)
-          throw LibraryError(ErrorCode::Usage, "--slices: how many z-slices (or num_slices in --optics)");
-        if (Status checked = checkVolumeRequest(request); !checked)
-          throw LibraryError(ErrorCode::Usage, checked.error().message);
+        LfmVolumeSettings settings{.opticsFile = opticsFile ? opticsFile->string() : std::string(),
+                                   .objective = objective.value_or(""),
+                                   .solver = solver,
+                                   .wavelengthNm = wavelength,
+                                   .tubeLensMm = tubeLens,
+                                   .pitchUm = pitch,
+                                   .microlensFocalLengthUm = microlensFocalLength,
+                                   .pixelSizeUm = pixelSize,
+                                   .umPerSlice = umPerSlice,
+                                   .zCenterUm = zCenter,
+                                   .background = background,
+                                   .tolerance = tolerance,
+                                   .tvWeight = tv,
+                                   .psfEnergy = psfEnergy,
+                                   .slices = slices,
+                                   .supersample = supersample,
+                                   .iterations = iterations};
+        LfmVolumeRequest request = valueOrThrow(volumeRequestFrom(settings));
         if (psf) request.psfPath = psf->string();
 
         const Progress report(progress, "volume");

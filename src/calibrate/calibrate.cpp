@@ -290,10 +290,10 @@ Result<Calibration> calibrateFrom(const Image& image, const calibrate_detail::Ph
     result.centres.push_back(
         {samples[m].k - k0, samples[m].n - n0, samples[m].x, samples[m].y, fit.residual[m], bool(fit.inlier[m])});
   // A white image's centres fit a lattice to a few hundredths of a pixel. A scene whose centres
-  // miss it by several times their own noise (about 0.05 px: a centre against its neighbours'
+  // miss it by several times their own noise (0.055 px RMS: a centre against its neighbours'
   // median on the fluorescence frame) lies on a warped lattice; one that fits is left alone, as a
-  // warp would only fit its noise (lfm-guv's capture: 0.07 px; warped, its worst centre moved
-  // 0.08 px further from its radiometry grid's).
+  // warp would only fit its noise (lfm-guv's capture fits to 0.07 px; a warp tried on it moved its
+  // worst centre further from its radiometry grid's). 0.15 px was set with both frames in view.
   constexpr double kWarpAbovePx = 0.15;
   if (scene && grid.fit.rmsResidualPx > kWarpAbovePx) calibrate_detail::fitGridWarp(grid, result.centres);
   return result;

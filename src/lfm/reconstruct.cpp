@@ -89,7 +89,7 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
       for (std::size_t i = 0; i < out.pixels().size(); ++i) out.pixels()[i] *= radiometry->pixels()[i];
     return out;
   };
-  auto backward = [&](Image& f) {  // scales f in place
+  auto backward = [&](Image f) {
     if (radiometry)
       for (std::size_t i = 0; i < f.pixels().size(); ++i) f.pixels()[i] *= radiometry->pixels()[i];
     return projector.backward(f);
@@ -103,15 +103,11 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
     sensitivity = projector.sensitivity();
   }
   // The normalised back-projection: the solution's first estimate and the cheap alternative.
-  Image weighted = y.copy();
-  Volume x = backward(weighted);
-  auto divideBySensitivity = [&](Volume& v) {
-    for (std::size_t i = 0; i < v.voxels().size(); ++i) {
-      const float s = sensitivity.voxels()[i];
-      v.voxels()[i] = s > 0 ? v.voxels()[i] / s : 0.0f;
-    }
-  };
-  divideBySensitivity(x);
+  Volume x = backward(y.copy());
+  for (std::size_t i = 0; i < x.voxels().size(); ++i) {
+    const float s = sensitivity.voxels()[i];
+    x.voxels()[i] = s > 0 ? x.voxels()[i] / s : 0.0f;
+  }
   LfmReconstruction result;
   if (options.solver == LfmSolver::BackProjection) {
     result.volume = std::move(x);
@@ -134,7 +130,7 @@ Result<LfmReconstruction> reconstructVolume(const LfmProjector& projector, const
   Image ratio(frame.width(), frame.height(), 1);
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     result.residuals.push_back(compare(x, ratio));
-    const Volume correction = backward(ratio);
+    const Volume correction = backward(ratio.copy());
     std::vector<float> divergence;
     if (options.tvWeight > 0) divergence = tvDivergence(x);
     double change = 0;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <optional>
 #include <sstream>
@@ -132,6 +133,38 @@ Result<LfmSparsePsf> volumePsf(const LfmVolumeRequest& request, const LfmGrid& g
   return psf;
 }
 
+Status parseObjective(const std::string& text, LfmOptics& optics) {
+  const Error bad =
+      makeError(ErrorCode::Usage, "--objective: expected MAGx/NA/MEDIUM as 60x/1.2/water, got '" + text + "'");
+  std::istringstream in(text);
+  std::string magnification, na, medium;
+  if (!std::getline(in, magnification, '/') || !std::getline(in, na, '/') || !std::getline(in, medium) ||
+      magnification.empty() || (magnification.back() != 'x' && magnification.back() != 'X'))
+    return bad;
+  try {
+    std::size_t used = 0;
+    optics.magnification = std::stod(magnification.substr(0, magnification.size() - 1), &used);
+    if (used != magnification.size() - 1) return bad;
+    optics.numericalAperture = std::stod(na, &used);
+    if (used != na.size()) return bad;
+    if (medium == "water")
+      optics.immersionIndex = 1.333;
+    else if (medium == "oil")
+      optics.immersionIndex = 1.515;
+    else if (medium == "glycerol")
+      optics.immersionIndex = 1.47;
+    else if (medium == "air")
+      optics.immersionIndex = 1.0;
+    else {
+      optics.immersionIndex = std::stod(medium, &used);
+      if (used != medium.size()) return bad;
+    }
+  } catch (const std::exception&) {
+    return bad;
+  }
+  return {};
+}
+
 }  // namespace
 
 Status cacheVolumePsf(const LightField& frame, const LfmVolumeRequest& request, const std::string& where,
@@ -202,36 +235,42 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
   return result;
 }
 
-Status parseObjective(const std::string& text, LfmOptics& optics) {
-  const Error bad =
-      makeError(ErrorCode::Usage, "--objective: expected MAGx/NA/MEDIUM as 60x/1.2/water, got '" + text + "'");
-  std::istringstream in(text);
-  std::string magnification, na, medium;
-  if (!std::getline(in, magnification, '/') || !std::getline(in, na, '/') || !std::getline(in, medium) ||
-      magnification.empty() || (magnification.back() != 'x' && magnification.back() != 'X'))
-    return bad;
-  try {
-    std::size_t used = 0;
-    optics.magnification = std::stod(magnification.substr(0, magnification.size() - 1), &used);
-    if (used != magnification.size() - 1) return bad;
-    optics.numericalAperture = std::stod(na, &used);
-    if (used != na.size()) return bad;
-    if (medium == "water")
-      optics.immersionIndex = 1.333;
-    else if (medium == "oil")
-      optics.immersionIndex = 1.515;
-    else if (medium == "glycerol")
-      optics.immersionIndex = 1.47;
-    else if (medium == "air")
-      optics.immersionIndex = 1.0;
-    else {
-      optics.immersionIndex = std::stod(medium, &used);
-      if (used != medium.size()) return bad;
-    }
-  } catch (const std::exception&) {
-    return bad;
+Result<LfmVolumeRequest> volumeRequestFrom(const LfmVolumeSettings& given) {
+  LfmVolumeRequest request;
+  if (!given.opticsFile.empty()) {
+    std::ifstream file(given.opticsFile, std::ios::binary);
+    if (!file) return makeError(ErrorCode::Io, given.opticsFile + ": cannot open");
+    std::ostringstream text;
+    text << file.rdbuf();
+    LFCAM_ASSIGN_OR_RETURN(request, parseLfmSettings(text.str(), given.opticsFile, request));
   }
-  return {};
+  if (!given.objective.empty()) LFCAM_TRY(parseObjective(given.objective, request.optics));
+  auto set = [](const auto& value, auto& field) {
+    if (value) field = *value;
+  };
+  set(given.wavelengthNm, request.optics.wavelengthNm);
+  set(given.tubeLensMm, request.optics.tubeFocalLengthMm);
+  set(given.pitchUm, request.optics.microlensPitchUm);
+  set(given.microlensFocalLengthUm, request.optics.microlensFocalLengthUm);
+  set(given.pixelSizeUm, request.optics.pixelSizeUm);
+  set(given.slices, request.slices);
+  set(given.umPerSlice, request.umPerSlice);
+  set(given.zCenterUm, request.zCenterUm);
+  set(given.supersample, request.supersample);
+  set(given.iterations, request.reconstruct.iterations);
+  set(given.tolerance, request.reconstruct.tolerance);
+  set(given.background, request.reconstruct.background);
+  set(given.tvWeight, request.reconstruct.tvWeight);
+  set(given.psfEnergy, request.psfEnergy);
+  if (given.solver == "backprojection")
+    request.reconstruct.solver = LfmSolver::BackProjection;
+  else if (given.solver != "rl")
+    return usage("--solver: expected rl or backprojection, got '" + given.solver + "'");
+  if (given.opticsFile.empty() && given.objective.empty())
+    return usage("--optics or --objective: the microscope is needed");
+  if (!given.slices && request.slices == 0) return usage("--slices: how many z-slices (or num_slices in --optics)");
+  if (Status checked = checkVolumeRequest(request); !checked) return usage(checked.error().message);
+  return request;
 }
 
 }  // namespace lfcam

@@ -2,8 +2,12 @@
 // fluorescence JPEG (lfm-stanford-fluor) and from the lfm-guv capture against its radiometry grid.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <vector>
 
 #include "lfcam/calibrate/calibrate.hpp"
 #include "lfcam/decode/decode_files.hpp"
@@ -42,6 +46,50 @@ TEST(SelfCalibration, StanfordFluorescenceJpeg) {
   // microlenses) was chosen with this frame's residuals in view: not an independent check.
   EXPECT_GT(grid->warp.columns, 0);
   EXPECT_LT(grid->fit.rmsResidualPx, 0.3);
+}
+
+// Why a warp: the centres miss the best plain lattice by far more than they miss their neighbours'
+// median miss, so what is left is a smooth field, not the centres' noise.
+TEST(SelfCalibration, StanfordFluorescenceResidualIsASmoothField) {
+  LFCAM_REQUIRE_SHARED_DATA("lfm-stanford-fluor", folder);
+  auto image = readImage(folder / "fluor.jpg");
+  ASSERT_TRUE(image.ok()) << image.error().message;
+  CalibrationOptions options = sceneOptions();
+  options.fitCentres = 0;
+  auto calibration = calibrateGridDetailed(*image, options, "fluor.jpg");
+  ASSERT_TRUE(calibration.ok()) << calibration.error().message;
+  const LensletGrid& grid = calibration->grid;
+  std::map<std::pair<int, int>, std::array<double, 2>> misses;  // inliers' misses of the plain lattice
+  double plain = 0;
+  for (const DetectedCentre& c : calibration->centres) {
+    if (!c.inlier) continue;
+    const auto p = grid.latticeCentre(c.i, c.j);
+    misses[{c.i, c.j}] = {c.x - p[0], c.y - p[1]};
+    plain += (c.x - p[0]) * (c.x - p[0]) + (c.y - p[1]) * (c.y - p[1]);
+  }
+  plain = std::sqrt(plain / misses.size());
+  double local = 0;
+  int counted = 0;
+  for (const auto& [at, miss] : misses) {
+    std::vector<double> xs, ys;
+    for (int dj = -2; dj <= 2; ++dj)
+      for (int di = -2; di <= 2; ++di) {
+        const auto other = misses.find({at.first + di, at.second + dj});
+        if ((di || dj) && other != misses.end()) xs.push_back(other->second[0]), ys.push_back(other->second[1]);
+      }
+    if (xs.size() < 8) continue;
+    std::nth_element(xs.begin(), xs.begin() + xs.size() / 2, xs.end());
+    std::nth_element(ys.begin(), ys.begin() + ys.size() / 2, ys.end());
+    const double dx = miss[0] - xs[xs.size() / 2], dy = miss[1] - ys[ys.size() / 2];
+    local += dx * dx + dy * dy, ++counted;
+  }
+  local = std::sqrt(local / counted);
+  std::printf(
+      "fluor.jpg: %zu inliers miss the plain lattice by %.3f px RMS, their neighbours' median miss by %.3f "
+      "px RMS (%d with 8 or more neighbours); warped grid %.3f px\n",
+      misses.size(), plain, local, counted, grid.fit.rmsResidualPx);
+  EXPECT_GT(plain, 0.5);
+  EXPECT_LT(local, 0.15);
 }
 
 // The capture alone against its radiometry frame (dark frame subtracted): pitch within 0.05%,

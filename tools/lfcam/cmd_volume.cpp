@@ -7,9 +7,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
-#include <sstream>
 
 #include "commands.hpp"
 #include "core/parallel.hpp"
@@ -49,14 +47,6 @@ class InterruptGuard {
   struct sigaction previous_ {};
 };
 
-Result<std::string> readText(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return makeError(ErrorCode::Io, path + ": cannot open");
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
 // The default cache: beside the frame, named by its settings (psfCacheName).
 std::string defaultPsfPath(const std::string& frame, const LfmVolumeRequest& request) {
   return (std::filesystem::path(frame).parent_path() / psfCacheName(request)).string();
@@ -67,74 +57,48 @@ std::string defaultPsfPath(const std::string& frame, const LfmVolumeRequest& req
 void addVolumeCommand(CLI::App& app, Job& job) {
   struct Options {
     InputOptions input;
-    std::string opticsFile, objective, output, psf, solver = "rl";
-    std::optional<double> wavelength, tubeLens, pitch, microlensFocalLength, pixelSize, umPerSlice, zCenter, background,
-        tolerance, tv, psfEnergy;
-    std::optional<int> slices, supersample, iterations;
+    LfmVolumeSettings settings;
+    std::string output, psf;
     bool noCache = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand(
       "volume", "reconstruct a 3D volume from a light-field microscope frame (Richardson-Lucy, wave optics)");
   addInputOptions(*command, options->input);
-  command->add_option("--optics", options->opticsFile,
+  command->add_option("--optics", options->settings.opticsFile,
                       "microscope settings: napari-LF's metadata.txt, or a JSON object of its calibrate keys");
-  command->add_option("--objective", options->objective,
+  command->add_option("--objective", options->settings.objective,
                       "MAGx/NA/MEDIUM, e.g. 60x/1.2/water (medium: water, oil, "
                       "glycerol, air or a refractive index)");
-  command->add_option("--wavelength", options->wavelength, "emission wavelength, nm");
-  command->add_option("--tube-lens", options->tubeLens, "tube lens focal length, mm (default 200)");
-  command->add_option("--pitch", options->pitch, "microlens pitch, um");
-  command->add_option("--microlens-focal-length", options->microlensFocalLength, "microlens focal length, um");
-  command->add_option("--pixel-size", options->pixelSize, "camera pixel size, um");
-  command->add_option("--slices", options->slices, "number of z-slices");
-  command->add_option("--um-per-slice", options->umPerSlice, "slice spacing in the specimen, um (default 1)");
-  command->add_option("--z-center", options->zCenter, "depth of the middle slice from the focal plane, um (default 0)");
-  command->add_option("--supersample", options->supersample,
+  command->add_option("--wavelength", options->settings.wavelengthNm, "emission wavelength, nm");
+  command->add_option("--tube-lens", options->settings.tubeLensMm, "tube lens focal length, mm (default 200)");
+  command->add_option("--pitch", options->settings.pitchUm, "microlens pitch, um");
+  command->add_option("--microlens-focal-length", options->settings.microlensFocalLengthUm,
+                      "microlens focal length, um");
+  command->add_option("--pixel-size", options->settings.pixelSizeUm, "camera pixel size, um");
+  command->add_option("--slices", options->settings.slices, "number of z-slices");
+  command->add_option("--um-per-slice", options->settings.umPerSlice, "slice spacing in the specimen, um (default 1)");
+  command->add_option("--z-center", options->settings.zCenterUm,
+                      "depth of the middle slice from the focal plane, um (default 0)");
+  command->add_option("--supersample", options->settings.supersample,
                       "voxels across a lenslet (napari-LF's supersample; "
                       "default 1)");
-  command->add_option("--solver", options->solver, "rl (Richardson-Lucy, default) or backprojection");
-  command->add_option("--iterations", options->iterations, "Richardson-Lucy iterations (default 8)");
-  command->add_option("--tolerance", options->tolerance, "stop when the volume changes by less than this fraction");
-  command->add_option("--background", options->background, "background level in the frame's units (default 0)");
-  command->add_option("--tv", options->tv, "total-variation regularisation weight, in [0, 1) (default 0)");
+  command->add_option("--solver", options->settings.solver, "rl (Richardson-Lucy, default) or backprojection");
+  command->add_option("--iterations", options->settings.iterations, "Richardson-Lucy iterations (default 8)");
+  command->add_option("--tolerance", options->settings.tolerance,
+                      "stop when the volume changes by less than this fraction");
+  command->add_option("--background", options->settings.background,
+                      "background level in the frame's units (default 0)");
+  command->add_option("--tv", options->settings.tvWeight,
+                      "total-variation regularisation weight, in [0, 1) (default 0)");
   command->add_option("--psf", options->psf, "PSF cache file (default: lfcam-psf-<settings>.h5 beside the frame)");
   command->add_flag("--no-psf-cache", options->noCache, "compute the PSF and keep it nowhere");
-  command->add_option("--psf-energy", options->psfEnergy, "fraction of each PSF's energy kept (default 0.95)");
+  command->add_option("--psf-energy", options->settings.psfEnergy, "fraction of each PSF's energy kept (default 0.95)");
   command->add_option("-o,--output", options->output, "output volume: NAME.tif (32-bit stack) or NAME.h5")->required();
   command->callback([options, &job] {
     job = [options]() -> Status {
       const Options& o = *options;
-      LfmVolumeRequest request;
-      if (!o.opticsFile.empty()) {
-        LFCAM_ASSIGN_OR_RETURN(const std::string text, readText(o.opticsFile));
-        LFCAM_ASSIGN_OR_RETURN(request, parseLfmSettings(text, o.opticsFile, request));
-      }
-      if (!o.objective.empty()) LFCAM_TRY(parseObjective(o.objective, request.optics));
-      if (o.wavelength) request.optics.wavelengthNm = *o.wavelength;
-      if (o.tubeLens) request.optics.tubeFocalLengthMm = *o.tubeLens;
-      if (o.pitch) request.optics.microlensPitchUm = *o.pitch;
-      if (o.microlensFocalLength) request.optics.microlensFocalLengthUm = *o.microlensFocalLength;
-      if (o.pixelSize) request.optics.pixelSizeUm = *o.pixelSize;
-      if (o.slices) request.slices = *o.slices;
-      if (o.umPerSlice) request.umPerSlice = *o.umPerSlice;
-      if (o.zCenter) request.zCenterUm = *o.zCenter;
-      if (o.supersample) request.supersample = *o.supersample;
-      if (o.iterations) request.reconstruct.iterations = *o.iterations;
-      if (o.tolerance) request.reconstruct.tolerance = *o.tolerance;
-      if (o.background) request.reconstruct.background = *o.background;
-      if (o.tv) request.reconstruct.tvWeight = *o.tv;
-      if (o.psfEnergy) request.psfEnergy = *o.psfEnergy;
-      if (o.solver == "backprojection")
-        request.reconstruct.solver = LfmSolver::BackProjection;
-      else if (o.solver != "rl")
-        return makeError(ErrorCode::Usage, "--solver: expected rl or backprojection, got '" + o.solver + "'");
-      if (o.opticsFile.empty() && o.objective.empty())
-        return makeError(ErrorCode::Usage, "--optics or --objective: the microscope is needed");
-      if (!o.slices && request.slices == 0)
-        return makeError(ErrorCode::Usage, "--slices: how many z-slices (or num_slices in --optics)");
-      if (Status checked = checkVolumeRequest(request); !checked)
-        return makeError(ErrorCode::Usage, checked.error().message);
+      LFCAM_ASSIGN_OR_RETURN(LfmVolumeRequest request, volumeRequestFrom(o.settings));
       LFCAM_TRY(checkVolumePath(o.output));
       if (!o.noCache) request.psfPath = o.psf.empty() ? defaultPsfPath(o.input.path, request) : o.psf;
       // Beside a frame in a read-only folder (a shared data set) the default cache cannot be kept.

@@ -3,6 +3,7 @@
 // and the solver, then a volume from a decoded frame.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,10 +39,21 @@ struct LfmVolumeRequest {
 Result<LfmVolumeRequest> parseLfmSettings(const std::string& text, const std::string& where,
                                           const LfmVolumeRequest& defaults = {});
 
-// An objective as "60x/1.2/water" (the command line's --objective): its magnification, NA and
-// immersion (water, oil, glycerol, air, or a refractive index) into `optics`; a usage error for
-// anything else, in the same words for every front end.
-Status parseObjective(const std::string& text, LfmOptics& optics);
+// What a front end was given (the command line's flags, Python's keywords): a settings file and the
+// values that override it. Empty strings and absent values leave the file's (or the default).
+struct LfmVolumeSettings {
+  std::string opticsFile;     // napari-LF's metadata.txt or lfcam's optics JSON (parseLfmSettings)
+  std::string objective;      // "MAGx/NA/MEDIUM" as "60x/1.2/water" (water, oil, glycerol, air, an index)
+  std::string solver = "rl";  // "rl" or "backprojection"
+  std::optional<double> wavelengthNm, tubeLensMm, pitchUm, microlensFocalLengthUm, pixelSizeUm, umPerSlice, zCenterUm,
+      background, tolerance, tvWeight, psfEnergy;
+  std::optional<int> slices, supersample, iterations;
+};
+
+// The request they make: the file, then the objective, then each value; one line, in the command
+// line's words, for an unreadable file, a bad objective or solver, no microscope (neither file nor
+// objective), no slice count, and checkVolumeRequest's refusals. psfPath is left to the caller.
+Result<LfmVolumeRequest> volumeRequestFrom(const LfmVolumeSettings& settings);
 
 // The PSF cache's file name for these settings, "lfcam-psf-<hash of the settings>.h5": the default
 // cache beside a frame (lfcam volume) or in a batch's output folder, so that a time series shares
