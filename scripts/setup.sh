@@ -19,6 +19,7 @@ packages=(
   zlib1g-dev libzstd-dev  # bench/native_codec_bench: the codecs it could have used instead
   libeigen3-dev        # least-squares fits (lenslet grid)
   nlohmann-json3-dev   # metadata, scene and grid JSON
+  libpugixml-dev       # Raytrix calibration XML (focused plenoptic cameras)
   libcli11-dev         # the command line
   libtbb-dev           # threads
   libhwy-dev           # SIMD with run-time dispatch

@@ -1,6 +1,8 @@
 // LfmOptics: its validation's one-line refusals and napari-LF's metadata.txt.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "lfcam/lfm/optics.hpp"
 
 namespace lfcam {

@@ -1,0 +1,84 @@
+// FocusedCalibration: where the micro-images of a focused plenoptic camera (plenoptic 2.0:
+// Lumsdaine and Georgiev 2009; Raytrix) lie on the image, which lens type made each, and which way
+// up they are.
+//
+// In such a camera each microlens images a small part of the main lens's image, sharply, onto the
+// sensor; a point of that image at virtual depth v is seen by the micro-images around it, in the
+// one centred at C at
+//   S = C + orientation * (Q - C) / v
+// where Q is the point as the main lens's centre sees it, in the image's pixel coordinates on the
+// lattice of micro-image centres (the rendered photograph's frame), and orientation is +1 when the
+// micro-images stand upright (Galilean: the main lens's image lies behind the microlenses, as in
+// Raytrix cameras) and -1 when they are inverted (Keplerian: it lies in front of them, as in
+// Lumsdaine and Georgiev's camera). Neighbouring micro-images D pixels apart see the point
+// D / v pixels apart: v is what the image measures (Raytrix's virtual depth), a / b for a main-lens
+// image a millimetres from microlenses b from the sensor (to within (F + b) / (F - a), F the
+// main lens to the microlenses; simulate's focusedTruth computes it exactly).
+//
+// Pixel coordinates as image.hpp's: pixel (x, y) covers [x, x+1) x [y, y+1).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lfcam/calibrate/lenslet_grid.hpp"
+#include "lfcam/core/result.hpp"
+
+namespace lfcam {
+
+enum class MicroImageOrientation { Upright, Inverted };
+
+// A kind of microlens of a multi-focus array (Raytrix: three focal lengths, so that some kind is
+// sharp at every depth).
+struct LensType {
+  // Lattice offset of this kind's lenses from the reference lens, in lens pitches, in Raytrix's
+  // frame (x right, y up): (0, 0), (1, 0) and (-1, 0) on a Raytrix array.
+  std::array<double, 2> offset{0, 0};
+  // Virtual depths this kind images sharply.
+  double minVirtualDepth = 1, maxVirtualDepth = 100;
+};
+
+struct FocusedCalibration {
+  // Micro-image centres: pitchX is the micro-image diameter D (Raytrix's "diameter", centre to
+  // centre), pitchY D sqrt(3) / 2 on a hexagonal array.
+  LensletGrid grid;
+  std::array<int, 2> referenceLens{0, 0};    // (i, j) of the lens the lens types' offsets start from
+  double borderPx = 0;                       // the rim of each micro-image left out (Raytrix's lens_border)
+  std::optional<double> totalCoveringPlane;  // Raytrix's tcp: the virtual depth seen by every point
+  std::vector<LensType> lensTypes;           // one, or three on a multi-focus array
+  MicroImageOrientation orientation = MicroImageOrientation::Upright;
+  int imageWidth = 0, imageHeight = 0;  // the image it describes
+
+  double diameterPx() const { return grid.pitchX; }
+  // Index into lensTypes of lens (i, j) of the grid.
+  int lensType(int i, int j) const;
+  // +1 upright, -1 inverted (the formula above).
+  double orientationSign() const { return orientation == MicroImageOrientation::Upright ? 1.0 : -1.0; }
+};
+
+// Raytrix's calibration XML (<RayCalibData>, docs/formats.md) and a JSON document of the same
+// contents (its elements as keys, lens_type as an array "lens_types"), for an image of width x
+// height pixels: Raytrix gives the reference lens's centre from the image's centre, y up. lfcam's
+// own additions, both optional: the micro-images' orientation (default upright, as Raytrix's) and
+// nothing else. `where` names the source in errors.
+Result<FocusedCalibration> parseRayCalibXml(const std::string& text, const std::string& where, int width, int height);
+Result<FocusedCalibration> parseFocusedCalibrationJson(const std::string& text, const std::string& where, int width,
+                                                       int height);
+// By the file's extension: .xml or .json.
+Result<FocusedCalibration> readFocusedCalibration(const std::filesystem::path& path, int width, int height);
+
+std::string rayCalibXml(const FocusedCalibration& calibration);
+std::string focusedCalibrationJson(const FocusedCalibration& calibration);
+// By the extension, atomically.
+Status writeFocusedCalibration(const std::filesystem::path& path, const FocusedCalibration& calibration);
+
+// The grid of micro-images whose centres lie in a width x height image, given the reference lens's
+// centre (pixels), the diameter, the packing and the rotation (radians, x towards y); the
+// reference lens is recorded in `referenceLens`.
+FocusedCalibration focusedGrid(std::array<double, 2> referenceCentrePx, double diameterPx, Packing packing,
+                               double rotationRad, int width, int height);
+
+}  // namespace lfcam
