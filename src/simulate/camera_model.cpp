@@ -29,6 +29,14 @@ std::array<int, 2> CameraModel::microlensCounts() const {
   return {columns, rows};
 }
 
+int MicrolensArray::lensType(int i, int j) const {
+  if (typeFocalLengthsMm.size() <= 1) return 0;
+  // Twice (across - sqrt(3) down) in pitches (hexagonal; across - down on a square lattice): an
+  // integer whose class mod 3 differs between any two neighbours, a proper 3-colouring.
+  const long colour = packing == Packing::Hexagonal ? 2 * long(i) + (j & 1) - 3 * long(j) : long(i) - long(j);
+  return int(((colour % 3) + 3) % 3);
+}
+
 std::array<double, 2> CameraModel::microlensCentreMm(int i, int j) const {
   const MicrolensArray& m = *microlenses;
   const auto [columns, rows] = microlensCounts();
@@ -91,6 +99,18 @@ Status CameraModel::validate(const std::string& where) const {
     if (!(m.focalLengthMm > 0)) return bad("camera.microlenses.focal_length_mm", "must be positive");
     if (!(m.separationMm() > 0)) return bad("camera.microlenses.to_sensor_mm", "must be positive");
     if (!(m.fillFactor > 0 && m.fillFactor <= 1)) return bad("camera.microlenses.fill_factor", "must be in (0, 1]");
+    if (!m.typeFocalLengthsMm.empty()) {
+      if (m.typeFocalLengthsMm.size() != 3)
+        return bad("camera.microlenses.focal_lengths_mm", "expected three lens types");
+      int shorter = 0;
+      for (const double f : m.typeFocalLengthsMm) {
+        if (!(f > 0)) return bad("camera.microlenses.focal_lengths_mm", "must be positive");
+        shorter += f < m.separationMm();
+      }
+      if (shorter != 0 && shorter != 3)
+        return bad("camera.microlenses.focal_lengths_mm",
+                   "all shorter (Keplerian) or all longer (Galilean) than to_sensor_mm, not some of each");
+    }
     if (m.pitchMm < 0.5 * s.pixelPitchMm) return bad("camera.microlenses.pitch_mm", "smaller than half a pixel");
     const auto counts = microlensCounts();
     if (double(counts[0]) * counts[1] > 1e8) return bad("camera.microlenses.columns", "too many microlenses");
@@ -145,6 +165,12 @@ Result<CameraModel> cameraFromJson(const nlohmann::json& json, const CameraModel
       LFCAM_TRY(o.number("rotation_deg", m.rotationDeg, -360, 360));
       LFCAM_TRY(o.numbers("offset_mm", m.offsetMm, -1e4, 1e4));
       LFCAM_TRY(o.optionalNumber("to_sensor_mm", m.toSensorMm, 0, 1e4, true));
+      if (o.has("focal_lengths_mm")) {
+        std::array<double, 3> focal{};
+        LFCAM_TRY(o.numbers("focal_lengths_mm", focal, 1e-6, 1e4));
+        m.typeFocalLengthsMm.assign(focal.begin(), focal.end());
+      }
+      o.markSeen("focal_lengths_mm");
       LFCAM_TRY(o.number("fill_factor", m.fillFactor, 0, 1, true));
       LFCAM_TRY(o.integer("columns", m.columns, 0, 100000));
       LFCAM_TRY(o.integer("rows", m.rows, 0, 100000));
@@ -247,6 +273,7 @@ nlohmann::json cameraToJson(const CameraModel& camera) {
                         {"fill_factor", m.fillFactor},
                         {"columns", columns},
                         {"rows", rows}};
+  if (!m.typeFocalLengthsMm.empty()) out["microlenses"]["focal_lengths_mm"] = m.typeFocalLengthsMm;
   // The lattice of microlens image centres in the raw (turned by 180 degrees), in pixels: what a
   // calibration from the white image recovers, in grid.json's terms (lenslet_grid.hpp).
   const LensletGrid grid = gridFromCamera(camera);

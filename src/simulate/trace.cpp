@@ -163,8 +163,9 @@ struct TraceOptics {
   double F = 0, apertureRadius = 0, pixel = 0, halfW = 0, halfH = 0;
   bool lightField = false;
   // Microlens array.
-  double beta = 0, fm = 0, pitch = 0, rowPitch = 0, cosR = 1, sinR = 0, offX = 0, offY = 0;
+  double beta = 0, pitch = 0, rowPitch = 0, cosR = 1, sinR = 0, offX = 0, offY = 0;
   bool hex = false;
+  const MicrolensArray* array = nullptr;  // each microlens's focal length (lens types)
   int columns = 0, rows = 0;
   double imageScale = 1;   // microlens centre -> image centre on the sensor
   double activeHalfA = 0;  // half extents of the sampled rectangle of one microlens (local frame)
@@ -208,7 +209,7 @@ TraceOptics prepareOptics(const CameraModel& camera) {
   const MicrolensArray& m = *camera.microlenses;
   o.lightField = true;
   o.beta = m.separationMm();
-  o.fm = m.focalLengthMm;
+  o.array = &m;
   o.pitch = m.pitchMm;
   o.rowPitch = m.rowPitchMm();
   o.cosR = std::cos(m.rotationDeg * M_PI / 180);
@@ -232,7 +233,11 @@ TraceOptics prepareOptics(const CameraModel& camera) {
   }
   // x - imageCentre = delta (1 - beta/fm + beta/F) - beta u / F, delta in the active cell,
   // u in the aperture; plus the pixel's half diagonal.
-  const double k = std::abs(1 - o.beta / o.fm + o.beta / o.F);
+  double k = 0;
+  for (int type = 0; type < m.lensTypes(); ++type) {
+    const double fm = m.typeFocalLengthsMm.empty() ? m.focalLengthMm : m.typeFocalLengthsMm[std::size_t(type)];
+    k = std::max(k, std::abs(1 - o.beta / fm + o.beta / o.F));
+  }
   o.reach = std::hypot(o.activeHalfA, o.activeHalfB) * k + o.beta / o.F * o.apertureRadius + o.pixel * 0.7072;
   o.searchI = int(std::ceil(o.reach / (o.pitch * o.imageScale))) + 1;
   o.searchJ = int(std::ceil(o.reach / (o.rowPitch * o.imageScale))) + 1;
@@ -290,6 +295,7 @@ double pixelIrradiance(const TraceOptics& o, const PreparedScene& scene, int px,
       const double ex = lx * o.imageScale - cx, ey = ly * o.imageScale - cy;
       if (ex * ex + ey * ey > o.reach * o.reach) continue;
       // E = (1 / beta^2) * integral over the microlens of L cos^4 (paraxial inside the camera).
+      const double fm = o.array->focalLengthOf(i, j);
       double sum = 0;
       for (int k = 0; k < count; ++k) {
         const double x = x0 + ((k % n) + rng.uniform()) * inv * o.pixel;
@@ -305,8 +311,8 @@ double pixelIrradiance(const TraceOptics& o, const PreparedScene& scene, int px,
         }
         const double mx = lx + o.cosR * a - o.sinR * b, my = ly + o.sinR * a + o.cosR * b;
         // Sensor -> microlens (slope in), thin microlens, -> main lens at distance F.
-        const double sx = (mx - x) / o.beta - (mx - lx) / o.fm;
-        const double sy = (my - y) / o.beta - (my - ly) / o.fm;
+        const double sx = (mx - x) / o.beta - (mx - lx) / fm;
+        const double sy = (my - y) / o.beta - (my - ly) / fm;
         const double ux = mx + o.F * sx, uy = my + o.F * sy;
         if (ux * ux + uy * uy > r2) continue;  // stopped by the main lens's aperture
         const double d2 = (ux - mx) * (ux - mx) + (uy - my) * (uy - my);

@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "lfcam/core/result.hpp"
 #include "lfcam/core/sensor_layout.hpp"
@@ -64,7 +65,21 @@ struct MicrolensArray {
   // Microlenses across and down; 0: as many as fit on the sensor.
   int columns = 0, rows = 0;
 
+  // A multi-focus array (Raytrix): the focal lengths of three lens types, which the lattice's
+  // 3-colouring assigns (lensType: neighbours are always of the other two types). Empty: one type,
+  // focalLengthMm. With the sensor off the microlenses' focus (toSensorMm != focal length) the
+  // camera is a focused plenoptic one (plenoptic 2.0): each microlens images the main lens's image
+  // a = f b / |b - f| in front of it (b > f: Keplerian, inverted micro-images) or behind it
+  // (b < f: Galilean, upright, as Raytrix's), b = toSensorMm.
+  std::vector<double> typeFocalLengthsMm;
+
   double fNumber() const { return focalLengthMm / pitchMm; }
+  int lensTypes() const { return typeFocalLengthsMm.empty() ? 1 : int(typeFocalLengthsMm.size()); }
+  // Type of microlens (i, j) of the simulator's lattice (camera_model.hpp's indices).
+  int lensType(int i, int j) const;
+  double focalLengthOf(int i, int j) const {
+    return typeFocalLengthsMm.empty() ? focalLengthMm : typeFocalLengthsMm[std::size_t(lensType(i, j))];
+  }
   double separationMm() const { return toSensorMm.value_or(focalLengthMm); }
   double rowPitchMm() const { return packing == Packing::Square ? pitchMm : pitchMm * 0.8660254037844386; }
 };

@@ -1,0 +1,94 @@
+// A small simulated focused plenoptic camera and scenes placed at chosen virtual depths, for the
+// tests of src/focused (their ground truth comes from the simulator: simulate/focused_truth.hpp).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "lfcam/simulate/camera_model.hpp"
+#include "lfcam/simulate/focused_truth.hpp"
+#include "lfcam/simulate/scene.hpp"
+#include "lfcam/simulate/simulate.hpp"
+
+namespace lfcam::test {
+
+struct FocusedCameraSpec {
+  int width = 640, height = 480;
+  double micro = 20;       // micro-image pitch, pixels
+  bool galilean = true;    // Raytrix's (upright micro-images); else Keplerian (inverted)
+  bool multiFocus = true;  // three lens types, else one
+  Packing packing = Packing::Hexagonal;
+};
+
+// 5.5 um pixels, a 50 mm main lens, microlenses 0.4 mm from the sensor; Galilean: the microlenses'
+// plane conjugate to 2 m, the three types sharp near v = 3, 4.5 and 7; Keplerian: conjugate to
+// 0.6 m, one type sharp near v = 3 (or three near 2.5, 4 and 6). The main lens's image-side
+// f-number matches the microlenses' pitch, so micro-images nearly touch.
+inline CameraModel focusedCamera(const FocusedCameraSpec& spec = {}) {
+  CameraModel camera;
+  camera.sensor.width = spec.width;
+  camera.sensor.height = spec.height;
+  camera.sensor.pixelPitchMm = 0.0055;
+  camera.sensor.colorFilter = ColorFilter::Mono;
+  camera.sensor.noise = false;
+  camera.mainLens.focalLengthMm = 50;
+  camera.mainLens.focusDistanceMm = spec.galilean ? 2000 : 600;
+  MicrolensArray m;
+  m.packing = spec.packing;
+  m.toSensorMm = 0.4;
+  const double b = 0.4, F = camera.mainLens.imageDistanceMm();
+  m.pitchMm = spec.micro * camera.sensor.pixelPitchMm / (1 + b / F);
+  // A lens sharp at virtual depth v (nearly a / b): Galilean f = b v / (v - 1), Keplerian b v / (v + 1).
+  auto focal = [&](double v) { return spec.galilean ? b * v / (v - 1) : b * v / (v + 1); };
+  if (spec.multiFocus)
+    m.typeFocalLengthsMm = spec.galilean ? std::vector<double>{focal(3), focal(4.5), focal(7)}
+                                         : std::vector<double>{focal(2.5), focal(4), focal(6)};
+  m.focalLengthMm = spec.multiFocus ? m.typeFocalLengthsMm[0] : focal(3);
+  camera.microlenses = m;
+  camera.mainLens.setImageSideFNumber(1.04 * b / m.pitchMm);
+  return camera;
+}
+
+// A fronto-parallel plane at virtual depth v filling the field of view (times `extent`), with a
+// grey value-noise texture whose features are `featurePx` photograph pixels at pixelsPerLens.
+inline Plane focusedPlane(const CameraModel& camera, const std::string& name, double v, double extent, double featurePx,
+                          double pixelsPerLens, std::uint64_t seed) {
+  const double z = depthOfFocusedVirtualDepth(camera, v);
+  const double F = camera.mainLens.imageDistanceMm(), b = camera.microlenses->separationMm();
+  // Image pixels -> the microlenses' plane -> the object at z through the main lens's centre.
+  const double objectPerImagePx = camera.sensor.pixelPitchMm * F / (F + b) * z / F;
+  Plane plane;
+  plane.name = name;
+  plane.centreMm = {0, 0, z};
+  plane.widthMm = extent * camera.sensor.width * objectPerImagePx;
+  plane.heightMm = extent * camera.sensor.height * objectPerImagePx;
+  plane.texture.kind = TextureKind::Noise;
+  plane.texture.dark = {0.1f, 0.1f, 0.1f};
+  plane.texture.light = {0.9f, 0.9f, 0.9f};
+  const double micro = camera.microlenses->pitchMm * (1 + b / F) / camera.sensor.pixelPitchMm;  // D
+  plane.texture.periodMm = featurePx * objectPerImagePx * micro / pixelsPerLens;
+  plane.texture.seed = seed;
+  return plane;
+}
+
+// Three planes: the background at v_far, and two cards nearer the camera (larger v on a Galilean
+// camera, smaller on a Keplerian one) over parts of it.
+inline Scene focusedLayers(const CameraModel& camera, const std::array<double, 3>& virtualDepths,
+                           double pixelsPerLens) {
+  Scene scene;
+  scene.name = "focused layers";
+  scene.camera = camera;
+  scene.background = {0.5f, 0.5f, 0.5f};
+  scene.planes.push_back(focusedPlane(camera, "background", virtualDepths[0], 1.6, 4, pixelsPerLens, 1));
+  Plane left = focusedPlane(camera, "left card", virtualDepths[1], 0.45, 3, pixelsPerLens, 2);
+  left.centreMm[0] = -0.3 * left.widthMm / 0.45;
+  Plane right = focusedPlane(camera, "right card", virtualDepths[2], 0.4, 3, pixelsPerLens, 3);
+  right.centreMm[0] = 0.3 * right.widthMm / 0.4;
+  right.centreMm[1] = 0.15 * right.heightMm / 0.4;
+  scene.planes.push_back(left);
+  scene.planes.push_back(right);
+  return scene;
+}
+
+}  // namespace lfcam::test
