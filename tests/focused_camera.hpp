@@ -2,7 +2,9 @@
 // tests of src/focused (their ground truth comes from the simulator: simulate/focused_truth.hpp).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -89,6 +91,41 @@ inline Scene focusedLayers(const CameraModel& camera, const std::array<double, 3
   scene.planes.push_back(left);
   scene.planes.push_back(right);
   return scene;
+}
+
+inline constexpr double kFocusedPixelsPerLens = 5;
+
+// One simulated capture (noise free, devignetted by its white image) with its truth.
+struct FocusedCapture {
+  CameraModel camera;
+  FocusedCalibration calibration;
+  Image image;  // radiance: the capture over the white image
+  FocusedTruth truth;
+};
+
+inline FocusedCapture simulateFocused(const test::FocusedCameraSpec& spec, const std::array<double, 3>& virtualDepths) {
+  FocusedCapture c;
+  c.camera = focusedCamera(spec);
+  const Scene scene = focusedLayers(c.camera, virtualDepths, kFocusedPixelsPerLens);
+  const SensorCapture capture = simulateCapture(scene, c.camera, {.samplesPerPixel = 16});
+  const SensorCapture white =
+      simulateCapture(builtinScene("white", c.camera).value(), c.camera, {.samplesPerPixel = 16});
+  float brightest = 0;
+  for (const float x : white.irradiance.pixels()) brightest = std::max(brightest, x);
+  c.image = Image(spec.width, spec.height, 1);
+  for (std::size_t k = 0; k < c.image.pixels().size(); ++k) {
+    const float w = white.irradiance.pixels()[k];
+    c.image.pixels()[k] = w > 0.05f * brightest ? capture.irradiance.pixels()[k] / w : 0.0f;
+  }
+  c.calibration = focusedCalibrationFromCamera(c.camera).value();
+  c.truth = focusedTruth(scene, c.camera, focusedPhotoFrame(c.calibration, kFocusedPixelsPerLens)).value();
+  return c;
+}
+
+// The Galilean multi-focus camera looking at layers at virtual depths 3.2, 4.6 and 6, simulated once.
+inline const FocusedCapture& galileanCapture() {
+  static const auto capture = std::make_unique<FocusedCapture>(simulateFocused({}, {3.2, 4.6, 6.0}));
+  return *capture;
 }
 
 }  // namespace lfcam::test

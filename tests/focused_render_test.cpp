@@ -2,47 +2,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <memory>
 
 #include "focused_camera.hpp"
+#include "lfcam/focused/focused_depth.hpp"
 #include "lfcam/focused/focused_render.hpp"
+#include "lfcam/focused/seam_energy.hpp"
 
 namespace lfcam {
 namespace {
-
-constexpr double kPixelsPerLens = 5;
-
-// One simulated capture (noise free, devignetted by its white image) with its truth.
-struct FocusedCapture {
-  CameraModel camera;
-  FocusedCalibration calibration;
-  Image image;  // radiance: the capture over the white image
-  FocusedTruth truth;
-};
-
-FocusedCapture simulateFocused(const test::FocusedCameraSpec& spec, const std::array<double, 3>& virtualDepths) {
-  FocusedCapture c;
-  c.camera = test::focusedCamera(spec);
-  const Scene scene = test::focusedLayers(c.camera, virtualDepths, kPixelsPerLens);
-  const SensorCapture capture = simulateCapture(scene, c.camera, {.samplesPerPixel = 16});
-  const SensorCapture white =
-      simulateCapture(builtinScene("white", c.camera).value(), c.camera, {.samplesPerPixel = 16});
-  float brightest = 0;
-  for (const float x : white.irradiance.pixels()) brightest = std::max(brightest, x);
-  c.image = Image(spec.width, spec.height, 1);
-  for (std::size_t k = 0; k < c.image.pixels().size(); ++k) {
-    const float w = white.irradiance.pixels()[k];
-    c.image.pixels()[k] = w > 0.05f * brightest ? capture.irradiance.pixels()[k] / w : 0.0f;
-  }
-  c.calibration = focusedCalibrationFromCamera(c.camera).value();
-  c.truth = focusedTruth(scene, c.camera, focusedPhotoFrame(c.calibration, kPixelsPerLens)).value();
-  return c;
-}
-
-const FocusedCapture& galileanCapture() {
-  static const auto capture = std::make_unique<FocusedCapture>(simulateFocused({}, {3.2, 4.6, 6.0}));
-  return *capture;
-}
 
 // PSNR (peak 1) of channel 0 of `a` against `b`'s, leaving out `margin` pixels at each side.
 double psnr(const Image& a, const Image& b, int margin) {
@@ -58,15 +25,45 @@ double psnr(const Image& a, const Image& b, int margin) {
 }
 
 TEST(FocusedRender, TotalFocusWithTheTrueDepthsMatchesTheIdealPhotograph) {
-  const FocusedCapture& c = galileanCapture();
+  const test::FocusedCapture& c = test::galileanCapture();
   FocusedRenderRequest request;
-  request.pixelsPerLens = kPixelsPerLens;
+  request.pixelsPerLens = test::kFocusedPixelsPerLens;
   request.virtualDepthMap = &c.truth.virtualDepth;
   auto photo = renderFocused(c.image, c.calibration, request);
   ASSERT_TRUE(photo) << photo.error().message;
-  const double db = psnr(*photo, c.truth.allInFocus, int(kPixelsPerLens));
+  const double db = psnr(*photo, c.truth.allInFocus, int(test::kFocusedPixelsPerLens));
   std::printf("total focus with the true virtual depths: PSNR %.2f dB\n", db);
   EXPECT_GT(db, 30);
+}
+
+TEST(FocusedRender, TotalFocusFromEstimatedDepthsHasNoSeamsWhereFixedPatchesDo) {
+  const test::FocusedCapture& c = test::galileanCapture();
+  FocusedDepthRequest depthRequest;
+  depthRequest.pixelsPerLens = test::kFocusedPixelsPerLens;
+  auto depth = estimateFocusedDepth(c.image, c.calibration, depthRequest);
+  ASSERT_TRUE(depth) << depth.error().message;
+  FocusedRenderRequest request;
+  request.pixelsPerLens = test::kFocusedPixelsPerLens;
+  request.virtualDepthMap = &depth->virtualDepth;
+  auto totalFocus = renderFocused(c.image, c.calibration, request);
+  ASSERT_TRUE(totalFocus) << totalFocus.error().message;
+  // Lumsdaine and Georgiev's patches, sized for the middle layer.
+  request.virtualDepthMap = nullptr;
+  request.virtualDepth = 4.6;
+  request.nearestLensOnly = true;
+  auto patches = renderFocused(c.image, c.calibration, request);
+  ASSERT_TRUE(patches) << patches.error().message;
+  const int margin = int(test::kFocusedPixelsPerLens);
+  const double ideal = seamEnergy(c.truth.allInFocus, c.calibration, test::kFocusedPixelsPerLens);
+  const double seamsTotalFocus = seamEnergy(*totalFocus, c.calibration, test::kFocusedPixelsPerLens) / ideal;
+  const double seamsPatches = seamEnergy(*patches, c.calibration, test::kFocusedPixelsPerLens) / ideal;
+  std::printf(
+      "total focus from estimated depths: PSNR %.2f dB, seam energy %.2f x the ideal's; fixed patches: "
+      "PSNR %.2f dB, seam energy %.2f x\n",
+      psnr(*totalFocus, c.truth.allInFocus, margin), seamsTotalFocus, psnr(*patches, c.truth.allInFocus, margin),
+      seamsPatches);
+  EXPECT_GT(psnr(*totalFocus, c.truth.allInFocus, margin), 28);
+  EXPECT_LT(seamsTotalFocus, 0.1 * seamsPatches);
 }
 
 }  // namespace

@@ -8,40 +8,10 @@
 
 #include "core/bilinear.hpp"
 #include "core/parallel.hpp"
+#include "focused/micro_image_views.hpp"
 #include "io/io_support.hpp"
 
 namespace lfcam {
-
-namespace {
-
-// The micro-images whose centres lie within `radius` of an image point, as lattice indices.
-class LensNeighbourhood {
- public:
-  explicit LensNeighbourhood(const LensletGrid& grid)
-      : grid_(grid), cos_(std::cos(grid.rotationRad)), sin_(std::sin(grid.rotationRad)) {}
-
-  template <class Visit>
-  void forEach(double x, double y, double radius, Visit&& visit) const {
-    const double dx = x - grid_.origin[0], dy = y - grid_.origin[1];
-    const double across = (cos_ * dx + sin_ * dy) / grid_.pitchX, down = (-sin_ * dx + cos_ * dy) / grid_.pitchY;
-    const int j0 = std::max(0, int(std::floor(down - radius / grid_.pitchY)) - 1);
-    const int j1 = std::min(grid_.rows - 1, int(std::ceil(down + radius / grid_.pitchY)) + 1);
-    const int i0 = std::max(0, int(std::floor(across - radius / grid_.pitchX)) - 1);
-    const int i1 = std::min(grid_.columns - 1, int(std::ceil(across + radius / grid_.pitchX)) + 1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const auto c = grid_.centre(i, j);
-        const double ex = x - c[0], ey = y - c[1];
-        if (ex * ex + ey * ey <= radius * radius) visit(i, j, c);
-      }
-  }
-
- private:
-  const LensletGrid& grid_;
-  double cos_, sin_;
-};
-
-}  // namespace
 
 Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibration,
                             const FocusedRenderRequest& request) {
@@ -81,10 +51,7 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
                                              " is needed");
   }
 
-  const double sign = calibration.orientationSign();
-  const double radius = request.aperture * usable;
-  const double shiftX = request.viewpoint[0] * usable, shiftY = request.viewpoint[1] * usable;
-  const LensNeighbourhood lenses(calibration.grid);
+  const focused_detail::MicroImageViews views(calibration, request.aperture, request.viewpoint);
   const int channels = image.channels();
   Image photo(frame.width, frame.height, channels);
 
@@ -96,42 +63,30 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
         const double v = request.virtualDepthMap ? request.virtualDepthMap->at(px, int(py), 0) : request.virtualDepth;
         std::fill(sum.begin(), sum.end(), 0.0);
         double total = 0;
-        auto add = [&](double sx, double sy, double weight) {
+        auto add = [&](const focused_detail::MicroImageSample& s, double weight) {
           for (int c = 0; c < channels; ++c)
             sum[std::size_t(c)] +=
-                weight * bilinearSample(image.plane(c), image.width(), image.height(), sx - 0.5, sy - 0.5);
+                weight * bilinearSample(image.plane(c), image.width(), image.height(), s.x - 0.5, s.y - 0.5);
           total += weight;
         };
-        if (!(v > 0) || !std::isfinite(v)) {
-          for (int c = 0; c < channels; ++c) photo.at(px, int(py), c) = 0;
-          continue;
+        if (v > 0 && std::isfinite(v)) {
+          // On a multi-focus array, the types sharp at v when there are any.
+          bool anySharp = false;
+          if (request.sharpLensTypes && calibration.lensTypes.size() > 1)
+            for (const LensType& type : calibration.lensTypes)
+              anySharp |= v >= type.minVirtualDepth && v <= type.maxVirtualDepth;
+          const auto nearest = views.forEach(q[0], q[1], v, [&](const focused_detail::MicroImageSample& s) {
+            if (request.nearestLensOnly) return;
+            if (anySharp) {
+              const LensType& type = calibration.lensTypes[std::size_t(calibration.lensType(s.i, s.j))];
+              if (v < type.minVirtualDepth || v > type.maxVirtualDepth) return;
+            }
+            const double w = 1 - s.rho * s.rho;  // smoothly to 0 at the disc's rim: no seams
+            add(s, w * w);
+          });
+          // Basic rendering, or no disc holds S: the micro-image nearest it.
+          if (total == 0 && nearest.i >= 0) add(nearest, 1);
         }
-        // The micro-image whose disc centre is nearest to S, the fallback where no disc holds S.
-        double nearest = std::numeric_limits<double>::infinity();
-        std::array<double, 2> nearestS{0, 0};
-        bool anySharp = false;
-        if (!request.nearestLensOnly && request.sharpLensTypes && calibration.lensTypes.size() > 1)
-          for (const LensType& type : calibration.lensTypes)
-            anySharp |= v >= type.minVirtualDepth && v <= type.maxVirtualDepth;
-        // S lies in the disc when |Q - C - sign v shift| <= v radius.
-        const double cx = q[0] - sign * v * shiftX, cy = q[1] - sign * v * shiftY;
-        lenses.forEach(cx, cy, std::max(v * radius, calibration.diameterPx()),
-                       [&](int i, int j, const std::array<double, 2>& c) {
-                         const double sx = c[0] + sign * (q[0] - c[0]) / v, sy = c[1] + sign * (q[1] - c[1]) / v;
-                         const double rho = std::hypot(sx - c[0] - shiftX, sy - c[1] - shiftY) / radius;
-                         if (rho < nearest) {
-                           nearest = rho;
-                           nearestS = {sx, sy};
-                         }
-                         if (request.nearestLensOnly || rho >= 1) return;
-                         if (anySharp) {
-                           const LensType& type = calibration.lensTypes[std::size_t(calibration.lensType(i, j))];
-                           if (v < type.minVirtualDepth || v > type.maxVirtualDepth) return;
-                         }
-                         const double w = 1 - rho * rho;
-                         add(sx, sy, w * w);
-                       });
-        if (total == 0 && std::isfinite(nearest)) add(nearestS[0], nearestS[1], 1);
         for (int c = 0; c < channels; ++c)
           photo.at(px, int(py), c) = total > 0 ? float(sum[std::size_t(c)] / total) : 0.0f;
       }
