@@ -68,13 +68,13 @@ TEST(FocusedCalibration, ReadsRaytrixXmlAsPlenopticToolboxPlacesIt) {
   EXPECT_EQ(grid.rows, int(std::floor((240 + 7.25) / grid.pitchY)) + int(std::floor((240 - 7.25) / grid.pitchY)) + 1);
 }
 
-TEST(FocusedCalibration, LensTypesColourTheLatticeAsTheirOffsetsSay) {
+TEST(FocusedCalibration, LensTypesLieAtTheReferenceLessTheirOffsets) {
   const auto calibration = parseRayCalibXml(raytrixLikeXml(), "c.xml", 640, 480);
   ASSERT_TRUE(calibration) << calibration.error().message;
   const auto [i0, j0] = calibration->referenceLens;
   EXPECT_EQ(calibration->lensType(i0, j0), 0);
-  EXPECT_EQ(calibration->lensType(i0 + 1, j0), 1);  // offset (1, 0)
-  EXPECT_EQ(calibration->lensType(i0 - 1, j0), 2);  // offset (-1, 0)
+  EXPECT_EQ(calibration->lensType(i0 - 1, j0), 1);  // offset (1, 0): at the reference less (1, 0)
+  EXPECT_EQ(calibration->lensType(i0 + 1, j0), 2);  // offset (-1, 0)
   EXPECT_EQ(calibration->lensType(i0 + 3, j0), 0);
   // Every lens's six neighbours are of the two other types, three of each.
   const LensletGrid& grid = calibration->grid;

@@ -41,8 +41,9 @@ int FocusedCalibration::lensType(int i, int j) const {
                                  (j - referenceLens[1]) * rowStep);
   const int wanted = colourClass(colour);
   for (std::size_t t = 0; t < lensTypes.size(); ++t)
-    // The types' offsets are in Raytrix's frame, y up.
-    if (colourClass(colourOf(grid.packing, lensTypes[t].offset[0], -lensTypes[t].offset[1])) == wanted) return int(t);
+    // A type's lenses lie at the reference lens less its offset (Raytrix's frame, y up), as
+    // PlenopticToolbox 2.0 places them and as the R42 capture's sharpness shows (LensTypes test).
+    if (colourClass(-colourOf(grid.packing, lensTypes[t].offset[0], -lensTypes[t].offset[1])) == wanted) return int(t);
   return 0;
 }
 

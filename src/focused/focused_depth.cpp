@@ -65,8 +65,8 @@ Result<FocusedDepth> estimateFocusedDepth(const Image& image, const FocusedCalib
                                            std::to_string(image.height()) + ", its calibration describes " +
                                            std::to_string(calibration.imageWidth) + "x" +
                                            std::to_string(calibration.imageHeight));
-  if (!(request.minVirtualDepth >= 1 && request.maxVirtualDepth > request.minVirtualDepth &&
-        request.maxVirtualDepth <= 1000))
+  const double maxVirtualDepth = request.maxVirtualDepth > 0 ? request.maxVirtualDepth : calibration.diameterPx();
+  if (!(request.minVirtualDepth >= 1 && maxVirtualDepth > request.minVirtualDepth && maxVirtualDepth <= 1000))
     return makeError(ErrorCode::Usage, "virtual depth range: expected 1 <= min < max <= 1000");
   if (!(request.disparityStepPx > 0.01) || !(request.pixelsPerLens >= 1) ||
       request.pixelsPerLens > calibration.diameterPx() || request.windowRadius < 0)
@@ -76,7 +76,7 @@ Result<FocusedDepth> estimateFocusedDepth(const Image& image, const FocusedCalib
   const double d = calibration.diameterPx();
   // Labels evenly spaced in disparity D / v, from the farthest-apart views (small v) down.
   std::vector<double> labels;
-  for (double disparity = d / request.minVirtualDepth; disparity >= d / request.maxVirtualDepth - 1e-9;
+  for (double disparity = d / request.minVirtualDepth; disparity >= d / maxVirtualDepth - 1e-9;
        disparity -= request.disparityStepPx)
     labels.push_back(disparity);
   const FocusedPhotoFrame frame = focusedPhotoFrame(calibration, request.pixelsPerLens);
@@ -133,7 +133,7 @@ Result<FocusedDepth> estimateFocusedDepth(const Image& image, const FocusedCalib
           if (c != kNoEvidence) worst = std::max(worst, c);
         }
         if (bestCost == kNoEvidence) {
-          result.virtualDepth.at(px, int(py), 0) = float(request.maxVirtualDepth);
+          result.virtualDepth.at(px, int(py), 0) = float(maxVirtualDepth);
           continue;
         }
         double disparity = labels[best];

@@ -92,14 +92,15 @@ Result<FocusedCalibration> focusedCalibrationFromCamera(const CameraModel& camer
   calibration.orientation =
       m.focalLengthOf(0, 0) < b ? MicroImageOrientation::Inverted : MicroImageOrientation::Upright;
   // Raw lens (i, j) is the simulator's (columns - 1 - i, rows - 1 - j): the raw is turned by 180
-  // degrees. Raytrix's types are named by their offsets (0, 0), (1, 0) and (-1, 0) from the reference.
+  // degrees. Raytrix's types are named by offsets (0, 0), (1, 0) and (-1, 0): a type's lenses lie
+  // at the reference lens less its offset (focused_calibration.hpp).
   const auto [i0, j0] = calibration.referenceLens;
   auto simulatorFocalLength = [&](int i, int j) { return m.focalLengthOf(grid.columns - 1 - i, grid.rows - 1 - j); };
   const int offsets[3] = {0, 1, -1};
   for (int t = 0; t < m.lensTypes(); ++t) {
     LensType type;
     type.offset = {double(offsets[t]), 0};
-    const auto range = sharpVirtualDepths(camera, simulatorFocalLength(i0 + offsets[t], j0), 2.0);
+    const auto range = sharpVirtualDepths(camera, simulatorFocalLength(i0 - offsets[t], j0), 2.0);
     type.minVirtualDepth = range[0];
     type.maxVirtualDepth = std::max(range[0], range[1]);
     calibration.lensTypes.push_back(type);

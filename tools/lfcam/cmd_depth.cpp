@@ -3,6 +3,7 @@
 // centre (pixels per view step, HCI convention), from the correspondence and defocus cues of the light field
 // (depth.hpp); every setting of depth_knobs.hpp as a flag, which wins over the options file. With the optics
 // known, distances in mm (--metric, --distance) and a coloured point cloud (--ply, point_cloud.hpp).
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -10,17 +11,51 @@
 #include <variant>
 
 #include "commands.hpp"
+#include "focused_input.hpp"
 #include "lfcam/edof/depth.hpp"
 #include "lfcam/edof/depth_knobs.hpp"
 #include "lfcam/edof/point_cloud.hpp"
+#include "lfcam/focused/focused_depth.hpp"
 #include "lfcam/io/color_map.hpp"
 #include "lfcam/io/image_io.hpp"
 
 namespace lfcam::cli {
 
+namespace {
+
+// A focused plenoptic capture: its virtual depth on the photograph's frame (focused_depth.hpp).
+template <class Options>
+Status focusedDepth(const Options& options, const CLI::App& command) {
+  if (options.metric || !options.distance.empty() || !options.ply.empty() || !options.optionsFile.empty())
+    return makeError(ErrorCode::Usage, options.input.path +
+                                           ": a focused plenoptic capture gives virtual depth; --metric, --distance, "
+                                           "--ply and --options are for light fields");
+  for (const DepthKnob& knob : depthKnobs())
+    if (command.count(std::string("--") + knob.name) > 0)
+      return makeError(ErrorCode::Usage, options.input.path + ": --" + knob.name +
+                                             " is for light fields, not for a "
+                                             "focused plenoptic capture");
+  LFCAM_ASSIGN_OR_RETURN(auto capture, loadFocusedInput(options.input, options.focused));
+  FocusedDepthRequest request;
+  request.pixelsPerLens = pixelsPerLens(options.focused, capture.calibration);
+  auto depth = estimateFocusedDepth(capture.image, capture.calibration, request);
+  if (!depth) return makeError(depth.error().code, options.input.path + ": " + depth.error().message);
+  LFCAM_TRY(writeImage(options.output, depth->virtualDepth));
+  if (!options.confidence.empty()) LFCAM_TRY(writeImage(options.confidence, depth->confidence));
+  if (!options.png.empty()) {
+    float lo = 1e30f, hi = 0;
+    for (const float v : depth->virtualDepth.pixels()) lo = std::min(lo, v), hi = std::max(hi, v);
+    LFCAM_TRY(writeImage(options.png, colorMap(depth->virtualDepth, lo, hi)));
+  }
+  return {};
+}
+
+}  // namespace
+
 void addDepthCommand(CLI::App& app, Job& job) {
   struct Options {
     InputOptions input;
+    FocusedOptions focused;
     std::string output, confidence, png, distance, ply, optionsFile;
     bool metric = false;
     double minConfidence = 0;
@@ -30,6 +65,7 @@ void addDepthCommand(CLI::App& app, Job& job) {
   CLI::App* command = app.add_subcommand(
       "depth", "disparity map of the centre view (pixels per view step), and distance when the optics are known");
   addInputOptions(*command, options->input);
+  addFocusedOptions(*command, options->focused);
   command->add_option("-o,--output", options->output, "disparity map (.pfm as the HCI benchmark, .exr, .tif)")
       ->required();
   command->add_option("--confidence", options->confidence, "confidence map in [0, 1] (.pfm, .exr, .tif, .png)");
@@ -67,6 +103,7 @@ void addDepthCommand(CLI::App& app, Job& job) {
         if (!file->empty() && !folder.empty() && !std::filesystem::is_directory(folder, ec))
           return makeError(ErrorCode::Usage, *file + ": the folder " + folder.string() + " does not exist");
       }
+      if (isFocusedInput(options->input, options->focused)) return focusedDepth(*options, *command);
       DepthOptions depthOptions;
       if (!options->optionsFile.empty()) LFCAM_TRY(readDepthOptions(options->optionsFile, depthOptions));
       for (const DepthKnob& knob : depthKnobs())  // a flag given wins over the file

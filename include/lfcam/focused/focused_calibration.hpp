@@ -34,8 +34,10 @@ enum class MicroImageOrientation { Upright, Inverted };
 // A kind of microlens of a multi-focus array (Raytrix: three focal lengths, so that some kind is
 // sharp at every depth).
 struct LensType {
-  // Lattice offset of this kind's lenses from the reference lens, in lens pitches, in Raytrix's
-  // frame (x right, y up): (0, 0), (1, 0) and (-1, 0) on a Raytrix array.
+  // Raytrix's name of this kind: a lattice offset in lens pitches (x right, y up), (0, 0), (1, 0)
+  // or (-1, 0). Its lenses lie at the reference lens less the offset: the reference's right-hand
+  // neighbour is of the kind (-1, 0), as PlenopticToolbox 2.0 reads it and as a Raytrix R42
+  // capture's sharpness shows.
   std::array<double, 2> offset{0, 0};
   // Virtual depths this kind images sharply.
   double minVirtualDepth = 1, maxVirtualDepth = 100;
