@@ -37,6 +37,16 @@ int MicrolensArray::lensType(int i, int j) const {
   return int(((colour % 3) + 3) % 3);
 }
 
+bool CameraModel::focusedPlenoptic() const {
+  if (!microlenses) return false;
+  for (int type = 0; type < microlenses->lensTypes(); ++type) {
+    // (type, 0) runs through every type: neighbours along a row differ.
+    const double f = microlenses->focalLengthOf(type, 0);
+    if (std::abs(microlenses->separationMm() - f) <= 0.01 * f) return false;
+  }
+  return true;
+}
+
 std::array<double, 2> CameraModel::microlensCentreMm(int i, int j) const {
   const MicrolensArray& m = *microlenses;
   const auto [columns, rows] = microlensCounts();

@@ -14,6 +14,9 @@
 #include "lfcam/io/image_io.hpp"
 #include "lfcam/io/light_field_io.hpp"
 #include "lfcam/simulate/simulate.hpp"
+
+#include "lfcam/focused/focused_calibration.hpp"
+#include "lfcam/simulate/focused_truth.hpp"
 #include "simulate/camera_json.hpp"
 #include "simulate/tracing.hpp"
 
@@ -213,7 +216,20 @@ Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, 
     json["scene"] = scene.name;
     json["samples_per_pixel"] = options.samplesPerPixel;
     json["rays_traced"] = capture.rays;
-    if (camera.microlenses) {
+    if (camera.focusedPlenoptic()) {
+      LFCAM_ASSIGN_OR_RETURN(const FocusedCalibration calibration, focusedCalibrationFromCamera(camera));
+      const double pixelsPerLens = std::max(1.0, std::round(calibration.diameterPx() / 4));
+      LFCAM_TRY(writeFocusedCalibration(temporary / "raw.xml", calibration));
+      json["focused"] = {{"calibration", "raw.xml"},
+                         {"pixels_per_lens", pixelsPerLens},
+                         {"ideal", "ideal.pfm: the all-in-focus photograph on that frame (linear RGB)"},
+                         {"virtual_depth", "virtual_depth.pfm: the virtual depth of each of its pixels"}};
+      if (outputs.groundTruth) {
+        LFCAM_ASSIGN_OR_RETURN(auto truth, focusedTruth(scene, camera, focusedPhotoFrame(calibration, pixelsPerLens)));
+        LFCAM_TRY(writeImage(temporary / "ideal.pfm", truth.allInFocus));
+        LFCAM_TRY(writeImage(temporary / "virtual_depth.pfm", truth.virtualDepth));
+      }
+    } else if (camera.microlenses) {
       const ViewGrid grid = viewGrid(camera);
       json["light_field"] = {
           {"file", "ideal.lf.h5"},
@@ -226,7 +242,7 @@ Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, 
           {"depth", "depth.pfm: mm along z to the surface seen by the central ray through each microlens; inf: none"}};
     }
     LFCAM_TRY(writeText(temporary / "camera.json", json.dump(2) + "\n"));
-    if (outputs.groundTruth && camera.microlenses) {
+    if (outputs.groundTruth && camera.microlenses && !camera.focusedPlenoptic()) {
       LFCAM_ASSIGN_OR_RETURN(auto depth, idealDepth(scene, camera));
       LFCAM_TRY(writeImage(temporary / "depth.pfm", depth));
       LFCAM_ASSIGN_OR_RETURN(auto lf, idealLightField(scene, camera));

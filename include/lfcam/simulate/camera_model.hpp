@@ -114,6 +114,9 @@ struct CameraModel {
   Sensor sensor;
 
   bool conventional() const { return !microlenses; }
+  // A focused plenoptic camera (plenoptic 2.0): every lens type's focus at least 1 % off the
+  // sensor, so that it images a plane of the main lens's image (virtual depth under 100).
+  bool focusedPlenoptic() const;
   // Microlens counts after applying the "as many as fit" default (square: sensor size divided
   // by the pitch of the microlens images, floor).
   std::array<int, 2> microlensCounts() const;

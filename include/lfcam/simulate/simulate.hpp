@@ -82,8 +82,11 @@ Result<Image> idealDepth(const Scene& scene, const CameraModel& camera);
 Result<Image> idealDepthOfView(const Scene& scene, const CameraModel& camera, int u, int v);
 
 struct CaptureOutputs {
-  bool white = true;                  // white.png
-  bool groundTruth = true;            // depth.pfm and ideal.lf.h5 (light-field mode only)
+  bool white = true;  // white.png
+  // depth.pfm and ideal.lf.h5 (light-field mode); for a focused plenoptic camera raw.xml beside the
+  // raw, and ideal.pfm and virtual_depth.pfm on the frame of a quarter of the micro-image diameter
+  // in pixels per lens (simulate/focused_truth.hpp).
+  bool groundTruth = true;
   std::string rawExtension = ".png";  // or ".tiff"
 };
 
