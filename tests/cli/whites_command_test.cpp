@@ -3,7 +3,12 @@
 // hold and for a truncated archive, nothing written then.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <chrono>
 #include <filesystem>
+#include <thread>
 
 #include "cli_support.hpp"
 #include "lytro_caldata.hpp"
@@ -80,6 +85,18 @@ TEST(WhitesCommand, IndexesAndEveryDecodeSaysWhichWhiteAndWhy) {
   auto spec = runLfcam({"batch", "--spec", at("spec.json")}, dir.path());
   ASSERT_EQ(spec.exitStatus, 0) << spec.err;
   EXPECT_TRUE(fs::exists(dir / "spec-batch" / "capture" / "refocus_0.png"));
+
+  // The viewer decodes the raw the same way, saying which white, before it serves.
+  const pid_t viewer = startLfcam({"view", at("capture.lfr"), "--whites", at("whites.json"), "--port", "0"},
+                                  dir / "view.out", dir / "view.err");
+  ASSERT_GT(viewer, 0);
+  for (int k = 0; k < 200 && readBytes(dir / "view.out").find("serving") == std::string::npos; ++k)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ::kill(viewer, SIGTERM);
+  ::waitpid(viewer, nullptr, 0);
+  EXPECT_NE(readBytes(dir / "view.out").find("serving"), std::string::npos) << readBytes(dir / "view.err");
+  EXPECT_NE(readBytes(dir / "view.err").find("white: " + at("caldata-B5143909630.tar") + ":MOD_0001.RAW"),
+            std::string::npos);
 }
 
 TEST(WhitesCommand, AnotherCamerasCaptureIsRefusedUnlessAnyCamera) {

@@ -10,6 +10,7 @@
 #include "lfcam/calibrate/white_database.hpp"
 #include "lfcam/decode/decode_files.hpp"
 #include "lytro_caldata.hpp"
+#include "raw_io/lytro_container.hpp"
 #include "raw_io/lytro_setting.hpp"
 #include "test_support.hpp"
 
@@ -135,6 +136,40 @@ TEST(WhiteDatabase, IndexesBothGenerationsAndChoosesTheNearestZoomThenFocus) {
   chosen = chooseWhite(*reread, capture(kF01, 990, 580), 160, 128, false, "capture.lfp");
   ASSERT_TRUE(chosen);
   EXPECT_EQ(chosen->white.white, dir / "f01" / "MOD_0000.RAW");
+}
+
+TEST(WhiteDatabase, ReadsAFirstGenerationBackupAcrossItsVolumes) {
+  LFCAM_REQUIRE_SHARED_DATA("lytro-metadata", metadata);
+  test::TempDir dir;
+  fs::create_directories(dir / "backup");
+  // Each white's .RAW in one volume and its .TXT in the next, as files named by the camera.
+  const auto [raw0, txt0] = test::lytroWhiteFiles(false, {kF01, 981, 582, 1, 0.02});
+  const auto [raw1, txt1] = test::lytroWhiteFiles(false, {kF01, 600, 400, 3, 0.02});
+  const auto volume = [&](const fs::path& path, const std::vector<std::pair<std::string, std::string>>& files,
+                          const char* next) {
+    nlohmann::json toc = {{"files", nlohmann::json::array()}};
+    if (next) toc["nextFile"] = next;
+    std::vector<LytroSection> sections;
+    for (const auto& [name, bytes] : files) {
+      sections.push_back(makeLytroSection(LytroSectionKind::Component, bytes));
+      toc["files"].push_back({{"name", name}, {"dataRef", sections.back().name}});
+    }
+    ASSERT_TRUE(writeLytroContainer(path, makeLytroContainer(toc, std::move(sections))));
+  };
+  volume(dir / "backup" / "data.C.0", {{"C:\\T1CALIB\\MOD_0000.RAW", raw0}, {"C:\\T1CALIB\\MOD_0001.TXT", txt1}},
+         "data.C.1");
+  volume(dir / "backup" / "data.C.1", {{"C:\\T1CALIB\\MOD_0000.TXT", txt0}, {"C:\\T1CALIB\\MOD_0001.RAW", raw1}},
+         nullptr);
+  const auto [database, notes] = index({dir / "backup"}, dir / "whites.json");
+  ASSERT_TRUE(database) << database.error().message;
+  ASSERT_EQ(database->whites.size(), 2u) << notes;
+  EXPECT_EQ(database->whites[0].name, (dir / "backup" / "data.C.1").string() + ":C:/T1CALIB/MOD_0001.RAW");
+  EXPECT_EQ(*database->whites[1].setting.zoomStep, 981);
+  EXPECT_EQ(database->whites[1].setting.model, "F01");
+  for (const WhiteRecord& white : database->whites) {
+    EXPECT_EQ(white.white.parent_path(), dir / "whites.cache");
+    EXPECT_TRUE(fs::exists(fs::path(white.white).replace_extension(".TXT")));
+  }
 }
 
 TEST(WhiteDatabase, RefusesAnotherCameraUnlessAskedAndACaptureWithoutSteps) {
