@@ -54,7 +54,8 @@ Status writeBytes(const fs::path& path, const std::vector<std::uint8_t>& bytes) 
 
 // Whites the index cannot use, each passed over with a note: no serial or step, another sensor size
 // than most of the camera's, the shorter exposure of two at one setting.
-std::vector<Candidate> usable(std::vector<Candidate> candidates, const std::function<void(const std::string&)>& say) {
+std::vector<Candidate> usable(std::vector<Candidate> candidates,
+                              const std::function<void(const std::string&)>& passOver) {
   std::vector<Candidate> kept;
   for (Candidate& c : candidates) {
     const CameraSetting& s = c.description.setting;
@@ -63,7 +64,7 @@ std::vector<Candidate> usable(std::vector<Candidate> candidates, const std::func
                           : !s.focusStep   ? "focus step"
                                            : nullptr;
     if (missing)
-      say(c.name() + ": its metadata gives no " + missing + ", passed over");
+      passOver(c.name() + ": its metadata gives no " + missing + ", passed over");
     else
       kept.push_back(std::move(c));
   }
@@ -76,9 +77,9 @@ std::vector<Candidate> usable(std::vector<Candidate> candidates, const std::func
     const auto common = std::max_element(counts.begin(), counts.end(),
                                          [](const auto& a, const auto& b) { return a.second < b.second; });
     if (common->first != std::pair{c.description.width, c.description.height}) {
-      say(c.name() + ": a white of " + sizeText(c.description.width, c.description.height) + " pixels where camera " +
-          c.description.setting.serial + "'s others are " + sizeText(common->first.first, common->first.second) +
-          ", passed over");
+      passOver(c.name() + ": a white of " + sizeText(c.description.width, c.description.height) +
+               " pixels where camera " + c.description.setting.serial + "'s others are " +
+               sizeText(common->first.first, common->first.second) + ", passed over");
       continue;
     }
     const CameraSetting& s = c.description.setting;
@@ -91,8 +92,8 @@ std::vector<Candidate> usable(std::vector<Candidate> candidates, const std::func
     }
     Candidate& other = result[found->second];
     const bool longer = s.exposureS.value_or(0) > other.description.setting.exposureS.value_or(0);
-    say((longer ? other.name() : c.name()) + ": a shorter exposure at the zoom and focus of " +
-        (longer ? c.name() : other.name()) + ", passed over");
+    passOver((longer ? other.name() : c.name()) + ": a shorter exposure at the zoom and focus of " +
+             (longer ? c.name() : other.name()) + ", passed over");
     if (longer) other = std::move(c);
   }
   std::sort(result.begin(), result.end(), [](const Candidate& a, const Candidate& b) {
@@ -107,9 +108,9 @@ std::vector<Candidate> usable(std::vector<Candidate> candidates, const std::func
 
 Result<WhiteDatabase> indexWhites(const std::vector<fs::path>& sources, const fs::path& index,
                                   const ProgressCallback& progress,
-                                  const std::function<void(const std::string&)>& note) {
-  const auto say = [&](const std::string& line) {
-    if (note) note(line);
+                                  const std::function<void(const std::string&, bool)>& note) {
+  const auto passOver = [&](const std::string& line) {
+    if (note) note(line, true);
   };
   fs::path cache = index;
   cache.replace_extension(".cache");
@@ -117,7 +118,7 @@ Result<WhiteDatabase> indexWhites(const std::vector<fs::path>& sources, const fs
   std::vector<Candidate> candidates;
   for (const fs::path& source : sources) {
     LFCAM_ASSIGN_OR_RETURN(auto listing, findCaldataWhites(source));
-    for (const std::string& warning : listing.warnings) say(warning);
+    for (const std::string& warning : listing.warnings) passOver(warning);
     for (CaldataWhite& white : listing.whites) {
       // A folder holding an earlier index: its copies are not whites of their own.
       if (fs::absolute(white.pixels.file).lexically_normal().parent_path() == cacheFolder) continue;
@@ -125,7 +126,7 @@ Result<WhiteDatabase> indexWhites(const std::vector<fs::path>& sources, const fs
       candidates.push_back({std::move(white), std::move(description)});
     }
   }
-  const std::vector<Candidate> whites = usable(std::move(candidates), say);
+  const std::vector<Candidate> whites = usable(std::move(candidates), passOver);
   if (whites.empty())
     return makeError(ErrorCode::Format, index.string() + ": no white left to index (the notes above say why)");
 
@@ -137,7 +138,7 @@ Result<WhiteDatabase> indexWhites(const std::vector<fs::path>& sources, const fs
       LFCAM_ASSIGN_OR_RETURN(auto raw, readCaldataWhite(c.white));
       auto grid = calibrateGrid(raw, CalibrationOptions{}, c.name());
       if (!grid) {
-        say(grid.error().message + ", passed over");
+        passOver(grid.error().message + ", passed over");
         continue;
       }
       const std::string stem = cacheStem(k, c.white);
@@ -158,10 +159,12 @@ Result<WhiteDatabase> indexWhites(const std::vector<fs::path>& sources, const fs
         }
       }
       const CameraSetting& s = record.setting;
-      say(record.name + ": camera " + s.serial + (s.model.empty() ? "" : " (" + s.model + ")") + ", zoom step " +
-          stepText(*s.zoomStep) + ", focus step " + stepText(*s.focusStep) + ", " +
-          sizeText(record.width, record.height) + ", grid pitch " + stepText(grid->pitchX) + " px, residual " +
-          stepText(record.residualPx) + " px RMS");
+      if (note)
+        note(record.name + ": camera " + s.serial + (s.model.empty() ? "" : " (" + s.model + ")") + ", zoom step " +
+                 stepText(*s.zoomStep) + ", focus step " + stepText(*s.focusStep) + ", " +
+                 sizeText(record.width, record.height) + ", grid pitch " + stepText(grid->pitchX) + " px, residual " +
+                 stepText(record.residualPx) + " px RMS",
+             false);
       database.whites.push_back(std::move(record));
       if (progress) progress(double(k + 1) / double(whites.size()));
     }

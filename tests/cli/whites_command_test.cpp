@@ -107,9 +107,10 @@ TEST(WhitesCommand, AnotherCamerasCaptureIsRefusedUnlessAnyCamera) {
   auto index = runLfcam({"whites", "index", dir.path().string(), "-o", at("whites.json")}, dir.path());
   ASSERT_EQ(index.exitStatus, 0) << index.err;
   // The capture in the folder is no white: passed over, saying so.
-  EXPECT_NE(index.out.find("capture.lfr: a Lytro container of a picture, not of a white image, passed over"),
+  EXPECT_NE(index.err.find("lfcam: warning: " + at("capture.lfr") +
+                           ": a Lytro container of a picture, not of a white image, passed over"),
             std::string::npos)
-      << index.out;
+      << index.err;
   auto refused =
       runLfcam({"decode", at("capture.lfr"), "--whites", at("whites.json"), "-o", at("out.lf.h5")}, dir.path());
   EXPECT_EQ(refused.exitStatus, 2);
@@ -126,6 +127,20 @@ TEST(WhitesCommand, AnotherCamerasCaptureIsRefusedUnlessAnyCamera) {
       {"decode", at("capture.lfr"), "--whites", at("whites.json"), "--white", at("capture.lfr"), "-o", at("x.lf.h5")},
       dir.path());
   EXPECT_EQ(both.exitStatus, 2) << both.err;
+
+  // A raw whose metadata gives no lens setting (a PNG without a side-car) cannot be given a white.
+  ASSERT_EQ(runLfcam({"simulate", "chart", "--size", "64", "--samples", "1", "--no-ground-truth", "-o", at("plain")},
+                     dir.path())
+                .exitStatus,
+            0);
+  auto unknown =
+      runLfcam({"decode", at("plain/raw.png"), "--whites", at("whites.json"), "-o", at("p.lf.h5")}, dir.path());
+  EXPECT_EQ(unknown.exitStatus, 1);
+  EXPECT_EQ(unknown.errLines(), 1) << unknown.err;
+  EXPECT_NE(unknown.err.find(at("plain/raw.png") + ": its metadata gives no zoom step, so no white of "),
+            std::string::npos)
+      << unknown.err;
+  EXPECT_FALSE(fs::exists(dir / "p.lf.h5"));
 }
 
 TEST(WhitesCommand, TruncatedArchiveFailsInOneLineAndWritesNothing) {

@@ -54,7 +54,9 @@ struct Indexed {
 
 Indexed index(const std::vector<fs::path>& sources, const fs::path& output) {
   std::string notes;
-  auto database = indexWhites(sources, output, {}, [&](const std::string& line) { notes += line + "\n"; });
+  auto database = indexWhites(sources, output, {}, [&](const std::string& line, bool passedOver) {
+    if (passedOver) notes += line + "\n";
+  });
   return {std::move(database), notes};
 }
 

@@ -33,7 +33,12 @@ void addWhitesCommand(CLI::App& app, Job& job) {
       ProgressBar bar("calibrating white images");
       LFCAM_ASSIGN_OR_RETURN(auto database, indexWhites(
                                                 sources, options->output, [&](double fraction) { bar(fraction); },
-                                                [](const std::string& line) { std::printf("%s\n", line.c_str()); }));
+                                                [](const std::string& line, bool passedOver) {
+                                                  if (passedOver)
+                                                    std::fprintf(stderr, "lfcam: warning: %s\n", line.c_str());
+                                                  else
+                                                    std::printf("%s\n", line.c_str());
+                                                }));
       std::printf("%s: %zu whites (%s)\n", options->output.c_str(), database.whites.size(), database.madeBy.c_str());
       return {};
     };

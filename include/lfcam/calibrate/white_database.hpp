@@ -44,11 +44,11 @@ struct WhiteDatabase {
 std::string whiteCalibrationVersion();
 
 // Sources: folders (searched recursively) or files. `note` receives one line per white indexed
-// and per file passed over. Format errors name the file (a damaged or truncated archive, a file
-// that holds no white, no white left to index); nothing is written then.
+// (passedOver false) and per file passed over (true), each naming the file. Format errors name the file (a damaged or
+// truncated archive, a file that holds no white, no white left to index); nothing is written then.
 Result<WhiteDatabase> indexWhites(const std::vector<std::filesystem::path>& sources, const std::filesystem::path& index,
                                   const ProgressCallback& progress = {},
-                                  const std::function<void(const std::string&)>& note = {});
+                                  const std::function<void(const std::string& line, bool passedOver)>& note = {});
 
 // Format error naming the index when it is not one, or when another lfcam made its grids.
 Result<WhiteDatabase> readWhiteDatabase(const std::filesystem::path& index);
