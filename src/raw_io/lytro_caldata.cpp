@@ -72,8 +72,12 @@ Status scanTar(const fs::path& path, const std::string& wanted, std::vector<std:
         return makeError(ErrorCode::Format,
                          path.string() + ":" + name + ": member of " + std::to_string(size) + " bytes");
       bytes->resize(std::size_t(size));
-      if (archive_read_data(reader.get(), bytes->data(), bytes->size()) != la_ssize_t(size))
-        return tarError(path, reader.get());
+      // libarchive may hand a member over in several pieces; none before the end is a truncation.
+      for (std::size_t done = 0; done < bytes->size();) {
+        const la_ssize_t got = archive_read_data(reader.get(), bytes->data() + done, bytes->size() - done);
+        if (got <= 0) return tarError(path, reader.get());
+        done += std::size_t(got);
+      }
       return {};
     }
     if (archive_read_data_skip(reader.get()) != ARCHIVE_OK) return tarError(path, reader.get());
