@@ -62,20 +62,25 @@ void bindBatch(py::module_& m) {
                                return texts;
                              })
       .def_property_readonly("output", [](const BatchPlan& plan) { return plan.output.string(); })
-      .def_property_readonly("white", [](const BatchPlan& plan) { return plan.white.string(); })
+      .def_property_readonly("white", [](const BatchPlan& plan) { return plan.white.image.string(); })
+      .def_property_readonly("whites", [](const BatchPlan& plan) { return plan.white.database.string(); })
+      .def_property_readonly("any_camera", [](const BatchPlan& plan) { return plan.white.anyCamera; })
       .def_property_readonly("report", [](const BatchPlan& plan) { return plan.report.string(); });
   m.def("_split_batch_steps", &splitBatchSteps, "Steps from a comma-separated string (splitBatchSteps).");
   m.def(
       "_batch_plan",
       [](std::vector<std::string> inputs, std::string output, std::vector<std::string> steps, std::string white,
-         std::string report) {
+         std::string report, std::string whites, bool anyCamera) {
         return valueOrThrow(planBatch({.inputs = std::move(inputs),
                                        .steps = std::move(steps),
                                        .output = std::move(output),
                                        .white = std::move(white),
-                                       .report = std::move(report)}));
+                                       .whites = std::move(whites),
+                                       .report = std::move(report),
+                                       .anyCamera = anyCamera}));
       },
-      py::arg("inputs"), py::arg("output"), py::arg("steps"), py::arg("white"), py::arg("report"));
+      py::arg("inputs"), py::arg("output"), py::arg("steps"), py::arg("white"), py::arg("report"),
+      py::arg("whites") = "", py::arg("any_camera") = false);
   m.def(
       "_batch_run_local",
       [](const BatchPlan& plan, int jobs, const py::object& progress) {
@@ -92,13 +97,16 @@ void bindBatch(py::module_& m) {
   m.def(
       "_batch_capture",
       [](const std::string& input, const std::string& name, const std::vector<std::string>& stepTexts,
-         const std::string& white, const std::string& output, const std::string& base) {
+         const std::string& white, const std::string& output, const std::string& base, const std::string& whites,
+         bool anyCamera) {
         const std::vector<BatchStep> steps = valueOrThrow(parseBatchSteps(stepTexts, base));
+        const BatchWhite decoding{.image = white, .database = whites, .anyCamera = anyCamera};
         const BatchOutcome outcome =
-            interruptible([&] { return runBatchCapture({.input = input, .name = name}, steps, white, output); });
+            interruptible([&] { return runBatchCapture({.input = input, .name = name}, steps, decoding, output); });
         return outcomeToDict(outcome);
       },
-      py::arg("input"), py::arg("name"), py::arg("steps"), py::arg("white"), py::arg("output"), py::arg("base") = "");
+      py::arg("input"), py::arg("name"), py::arg("steps"), py::arg("white"), py::arg("output"), py::arg("base") = "",
+      py::arg("whites") = "", py::arg("any_camera") = false);
   m.def(
       "_batch_finish",
       [](const BatchPlan& plan, const std::vector<py::dict>& dicts) {

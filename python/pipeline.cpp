@@ -13,6 +13,7 @@
 #include "interruptible.hpp"
 #include "lfcam/calibrate/calibrate.hpp"
 #include "lfcam/calibrate/lenslet_grid.hpp"
+#include "lfcam/calibrate/white_database.hpp"
 #include "lfcam/decode/decode_files.hpp"
 #include "lfcam/edof/all_in_focus.hpp"
 #include "lfcam/edof/depth.hpp"
@@ -144,8 +145,14 @@ void bindPipeline(py::module_& m) {
       "decode",
       [](const std::string& raw, std::string white, std::string dark, std::string grid,
          std::optional<std::string> bayer, std::optional<double> blackLevel, int views, const std::string& demosaic,
-         const std::string& sampling, const py::object& progress) {
-        RawFiles files{.raw = raw, .white = white, .dark = dark, .grid = grid, .blackLevel = blackLevel};
+         const std::string& sampling, const py::object& progress, std::string whites, bool anyCamera) {
+        RawFiles files{.raw = raw,
+                       .white = white,
+                       .dark = dark,
+                       .grid = grid,
+                       .whites = whites,
+                       .anyCamera = anyCamera,
+                       .blackLevel = blackLevel};
         if (bayer) files.bayer = colorFilterNamed(*bayer);
         files.decode.views = views;
         files.decode.demosaic = choice<DemosaicMethod>({{"mhc", DemosaicMethod::MalvarHeCutler},
@@ -161,8 +168,28 @@ void bindPipeline(py::module_& m) {
       py::arg("raw"), py::kw_only(), py::arg("white") = "", py::arg("dark") = "", py::arg("grid") = "",
       py::arg("bayer") = py::none(), py::arg("black_level") = py::none(), py::arg("views") = 0,
       py::arg("demosaic") = "mhc", py::arg("sampling") = "subpixel", py::arg("progress") = py::none(),
+      py::arg("whites") = "", py::arg("any_camera") = false,
       "Decodes a raw lenslet image into a light field; the grid is calibrated from the white image when no grid "
-      "file is given. progress: as read's.");
+      "file is given. whites: a white-image database (lfcam whites index) choosing the white and grid of the raw's "
+      "camera nearest its zoom and focus (any camera's with any_camera); the light field's source names it. "
+      "progress: as read's.");
+  m.def(
+      "choose_white",
+      [](const Path& raw, const Path& whites, bool anyCamera) {
+        const WhiteChoice choice = interruptible([&] {
+          const RawImage image = valueOrThrow(readRaw(raw));
+          return valueOrThrow(chooseWhite(whites, image, anyCamera, raw.string()));
+        });
+        py::dict result;
+        result["name"] = choice.white.name;
+        result["white"] = choice.white.white.string();
+        result["grid"] = choice.white.grid.string();
+        result["reason"] = choice.reason;
+        return result;
+      },
+      py::arg("raw"), py::arg("whites"), py::kw_only(), py::arg("any_camera") = false,
+      "The white a white-image database chooses for a raw, as lfcam info --whites says: a dict of name, white, "
+      "grid and reason.");
 
   py::class_<DepthMap>(m, "DepthMap", "A disparity map of the centre view and its confidence.")
       .def_readonly("disparity", &DepthMap::disparity)  // a view: kept alive by its DepthMap

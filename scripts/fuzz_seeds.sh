@@ -102,6 +102,15 @@ if [ -d "$data" ]; then
   done
   [ -f "$data/hci-antinous/gt_disp_lowres.pfm" ] && seed pfm "$data/hci-antinous/gt_disp_lowres.pfm"
   for f in "$data"/lfm-guv/*.tif; do [ -f "$f" ] && seed lenslet_image "$f"; done
+  # Lytro calibration data: a real white image's .TXT beside a short .RAW, loose and in a tar archive.
+  if [ -f "$data/lytro-metadata/MOD_0015.TXT" ]; then
+    mkdir -p "$scratch/caldata"
+    cp "$data/lytro-metadata/MOD_0015.TXT" "$scratch/caldata/MOD_0000.TXT"
+    head -c 4096 /dev/zero > "$scratch/caldata/MOD_0000.RAW"
+    tar -cf "$scratch/caldata.tar" -C "$scratch/caldata" MOD_0000.RAW MOD_0000.TXT
+    mv "$scratch/caldata.tar" "$scratch/caldata/"
+    pack "$scratch/caldata" caldata loose-and-tar
+  fi
   # Small real view folders: four views of each set.
   if [ -d "$data/lytro-f01-flower" ]; then
     mkdir -p "$scratch/flower"

@@ -27,6 +27,7 @@ packages=(
   libfftw3-dev         # Fourier slice refocusing
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev  # MP4 animations (H.264 by libx264)
   libssl-dev           # SHA-1 of Lytro container sections
+  libarchive-dev       # tar archives of Lytro calibration data (lfcam whites index)
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-14 libclang-rt-14-dev  # sanitizer build and libFuzzer targets (scripts/test_sanitized.sh, scripts/fuzz.sh)
   libcpp-httplib-dev   # the viewer's local web server (header-only)

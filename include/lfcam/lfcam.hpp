@@ -10,6 +10,7 @@
 #include "lfcam/batch/batch_run.hpp"
 #include "lfcam/calibrate/calibrate.hpp"
 #include "lfcam/calibrate/lenslet_grid.hpp"
+#include "lfcam/calibrate/white_database.hpp"
 #include "lfcam/core/image.hpp"
 #include "lfcam/core/light_field.hpp"
 #include "lfcam/core/progress.hpp"

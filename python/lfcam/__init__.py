@@ -13,7 +13,7 @@ many captures, on this machine or on a Dask cluster (`lfcam batch`, docs/batch.m
 Errors raise lfcam.UsageError (a wrong argument) or lfcam.Error (a file or input that fails),
 with the command line's one-line messages.
 """
-from ._lfcam import (AllInFocus, DepthMap, Error, Image, LensletGrid, LightField, UsageError, calibrate, decode,
+from ._lfcam import (AllInFocus, DepthMap, Error, Image, LensletGrid, LightField, UsageError, calibrate, choose_white, decode,
                      denoise, depth, edof, observer, photo_fields, read, read_image, refocus, score, simulate, stack, volume, write, write_image)
 
 
@@ -26,5 +26,5 @@ def __getattr__(name):
 
 
 __all__ = ["AllInFocus", "DepthMap", "Error", "Image", "LensletGrid", "LightField", "UsageError", "batch",
-           "calibrate", "decode", "denoise", "depth", "edof", "observer", "photo_fields", "read", "read_image", "refocus", "score", "simulate",
+           "calibrate", "choose_white", "decode", "denoise", "depth", "edof", "observer", "photo_fields", "read", "read_image", "refocus", "score", "simulate",
            "stack", "volume", "write", "write_image"]

@@ -1,6 +1,6 @@
 # Type stub of the package lfcam (python/), so that editors complete and check its calls.
 from os import PathLike
-from typing import Callable, Optional, Sequence, Union
+from typing import Callable, Dict, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -83,7 +83,9 @@ def calibrate(white: _Path, *, metadata: Optional[_Path] = None, pinhole: bool =
               bayer: Optional[str] = None, black_level: Optional[float] = None) -> LensletGrid: ...
 def decode(raw: str, *, white: str = "", dark: str = "", grid: str = "", bayer: Optional[str] = None,
            black_level: Optional[float] = None, views: int = 0, demosaic: str = "mhc",
-           sampling: str = "subpixel", progress: _Progress = None) -> LightField: ...
+           sampling: str = "subpixel", progress: _Progress = None, whites: str = "",
+           any_camera: bool = False) -> LightField: ...
+def choose_white(raw: _Path, whites: _Path, *, any_camera: bool = False) -> Dict[str, str]: ...
 # The keywords of refocus and stack are the photograph request's fields (photo_fields(), the
 # command line's flags): tests/python checks this list against that table.
 def refocus(light_field: LightField, slope: Optional[float] = None, *, alpha: Optional[float] = None,

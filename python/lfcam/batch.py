@@ -42,7 +42,8 @@ class BatchError(Error):
         self.report = report
 
 
-def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, progress=None):
+def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, progress=None, whites=None,
+        any_camera=False):
     """Applies `steps` to every capture of `inputs` and returns the report (a dict, as batch-report.json).
 
     inputs: a path or a list of them: light-field files or folders, raws (with `white`), folders of
@@ -52,6 +53,8 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
         photo:NAME?FIELD=TEXT&... (any photograph: lfcam.photo_fields()), volume:SETTINGS (a microscope
         volume.tif; SETTINGS as lfcam volume --optics takes them; the PSF computed once into OUTDIR).
     white: the inputs are raw lenslet images of this white image, decoded on the way.
+    whites: ... or of the white a white-image database (lfcam whites index) chooses for each capture's
+        camera, zoom and focus; any_camera: among every camera's whites.
     jobs: captures at once on this machine (default: half the cores, 1 to 4); not used with `client`.
     report: the report's file (default: OUTDIR/batch-report.json).
     client: a distributed.Client or a scheduler address ("tcp://HOST:8786"): one Dask task per capture.
@@ -66,7 +69,8 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
     if isinstance(steps, str):
         steps = _lfcam._split_batch_steps(steps)
     plan = _lfcam._batch_plan([os.fspath(i) for i in inputs], os.fspath(output), list(steps),
-                              os.fspath(white) if white else "", os.fspath(report) if report else "")
+                              os.fspath(white) if white else "", os.fspath(report) if report else "",
+                              os.fspath(whites) if whites else "", bool(any_camera))
     if client is None:
         total = len(plan.captures)
         by_fraction = progress and (lambda fraction: progress(round(fraction * total), total))
@@ -79,10 +83,10 @@ def run(inputs, output, steps, white=None, jobs=None, report=None, client=None, 
     return result
 
 
-def capture_task(input, name, steps, white, output, base=""):
+def capture_task(input, name, steps, white, output, base="", whites="", any_camera=False):
     """One capture on a Dask worker: the C++ runBatchCapture, the single-machine batch's own code.
     base: the caller's working folder, where the steps' relative paths (volume:SETTINGS) start."""
-    return _lfcam._batch_capture(input, name, steps, white, output, base)
+    return _lfcam._batch_capture(input, name, steps, white, output, base, whites, any_camera)
 
 
 def _connect(address):
@@ -109,10 +113,11 @@ def _run_on_dask(plan, client, progress):
         # keeps the paths as given, as on one machine.
         absolute = os.path.abspath
         white = absolute(plan.white) if plan.white else ""
+        whites = absolute(plan.whites) if plan.whites else ""
         run_id = uuid.uuid4().hex[:8]
         futures = [
             client.submit(capture_task, absolute(input), name, plan.steps, white, absolute(plan.output), os.getcwd(),
-                          key=f"lfcam-batch-{run_id}-{index}-{name}", pure=False, retries=2)
+                          whites, plan.any_camera, key=f"lfcam-batch-{run_id}-{index}-{name}", pure=False, retries=2)
             for index, (input, name) in enumerate(plan.captures)
         ]
         try:
@@ -177,6 +182,8 @@ def main(argv=None):
     parser.add_argument("-o", "--output", required=True)
     parser.add_argument("--steps", required=True, help="comma-separated steps")
     parser.add_argument("--white", default="")
+    parser.add_argument("--whites", default="")
+    parser.add_argument("--any-camera", action="store_true")
     parser.add_argument("--jobs", type=int, default=0)
     parser.add_argument("--report", default="")
     parser.add_argument("--dask", default=None, help="scheduler address, tcp://HOST:8786")
@@ -184,7 +191,7 @@ def main(argv=None):
     bar = _ProgressLine()
     try:
         report = run(args.inputs, args.output, args.steps, white=args.white, jobs=args.jobs, report=args.report,
-                     client=args.dask, progress=bar)
+                     client=args.dask, progress=bar, whites=args.whites, any_camera=args.any_camera)
         failure = None
     except BatchError as e:
         report, failure = e.report, str(e)

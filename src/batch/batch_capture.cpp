@@ -46,12 +46,13 @@ nlohmann::json inputFingerprint(const fs::path& input) {
   return {{"bytes", bytes}, {"modified_ns", std::int64_t(latest.time_since_epoch().count())}};
 }
 
-nlohmann::json doneMarker(const BatchCapture& capture, const std::vector<BatchStep>& steps, const fs::path& white) {
+nlohmann::json doneMarker(const BatchCapture& capture, const std::vector<BatchStep>& steps, const BatchWhite& white) {
   nlohmann::json stepTexts = nlohmann::json::array();
   for (const BatchStep& step : steps) stepTexts.push_back(step.text);
   nlohmann::json marker{{"steps", stepTexts}};
   marker["fingerprint"] = inputFingerprint(capture.input);
-  if (!white.empty()) marker["white"] = inputFingerprint(white);
+  if (!white.image.empty()) marker["white"] = inputFingerprint(white.image);
+  if (!white.database.empty()) marker["whites"] = inputFingerprint(white.database);
   // A volume's settings file edited in place changes the volume as much as the input would.
   for (const BatchStep& step : steps)
     if (step.kind == BatchStep::Kind::Volume) marker["settings"].push_back(inputFingerprint(step.settings));
@@ -105,7 +106,7 @@ Status runStep(const BatchStep& step, const LightField& lightField, const fs::pa
   return {};
 }
 
-Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps, const fs::path& white,
+Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps, const BatchWhite& white,
                 const fs::path& outputFolder, const fs::path& folder, const nlohmann::json& marker) {
   std::error_code ec;
   fs::remove(folder / kBatchDoneMarker, ec);  // half-done until every step has written again
@@ -129,12 +130,15 @@ Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps
 
 }  // namespace
 
-Result<LightField> loadCapture(const fs::path& input, const fs::path& white) {
-  if (white.empty()) return readLightField(input);
-  return decodeRawFiles({.raw = input.string(), .white = white.string()});
+Result<LightField> loadCapture(const fs::path& input, const BatchWhite& white) {
+  if (white.image.empty() && white.database.empty()) return readLightField(input);
+  return decodeRawFiles({.raw = input.string(),
+                         .white = white.image.string(),
+                         .whites = white.database.string(),
+                         .anyCamera = white.anyCamera});
 }
 
-BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps, const fs::path& white,
+BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps, const BatchWhite& white,
                              const fs::path& outputFolder) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path folder = outputFolder / capture.name;

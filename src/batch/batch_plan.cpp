@@ -241,18 +241,23 @@ Result<BatchSpec> readBatchSpec(const fs::path& file) {
       LFCAM_TRY(strings(spec.inputs));
     } else if (key == "steps") {
       LFCAM_TRY(strings(spec.steps));
-    } else if (key == "output" || key == "white" || key == "report" || key == "dask") {
+    } else if (key == "output" || key == "white" || key == "whites" || key == "report" || key == "dask") {
       if (!value.is_string()) return wrongType("a string");
-      (key == "output"  ? spec.output
-       : key == "white" ? spec.white
-       : key == "dask"  ? spec.dask
-                        : spec.report) = value.get<std::string>();
+      (key == "output"   ? spec.output
+       : key == "white"  ? spec.white
+       : key == "whites" ? spec.whites
+       : key == "dask"   ? spec.dask
+                         : spec.report) = value.get<std::string>();
+    } else if (key == "any_camera") {
+      if (!value.is_boolean()) return wrongType("true or false");
+      spec.anyCamera = value.get<bool>();
     } else if (key == "jobs") {
       if (!value.is_number_integer() || value.get<int>() < 1) return wrongType("a whole number from 1");
       spec.jobs = value.get<int>();
     } else {
-      return makeError(ErrorCode::Usage, file.string() + ": unknown key '" + key +
-                                             "' (inputs, steps, output, white, jobs, dask, report)");
+      return makeError(ErrorCode::Usage,
+                       file.string() + ": unknown key '" + key +
+                           "' (inputs, steps, output, white, whites, any_camera, jobs, dask, report)");
     }
   }
   return spec;
@@ -261,12 +266,17 @@ Result<BatchSpec> readBatchSpec(const fs::path& file) {
 Result<BatchPlan> planBatch(const BatchRequest& request) {
   if (request.output.empty()) return makeError(ErrorCode::Usage, "batch: give the output folder with -o");
   if (request.inputs.empty()) return makeError(ErrorCode::Usage, "batch: give at least one INPUT");
-  BatchPlan plan{.output = request.output, .white = request.white};
+  BatchPlan plan{.output = request.output,
+                 .white = {.image = request.white, .database = request.whites, .anyCamera = request.anyCamera}};
   LFCAM_ASSIGN_OR_RETURN(plan.steps, parseBatchSteps(request.steps));
-  if (!request.white.empty() && !fs::is_regular_file(request.white))
-    return makeError(ErrorCode::Usage, request.white + ": --white: no such file");
+  if (!request.white.empty() && !request.whites.empty())
+    return makeError(ErrorCode::Usage, request.whites + ": give --white or --whites, not both");
   std::vector<fs::path> excluded{plan.output};
-  if (!request.white.empty()) excluded.emplace_back(request.white);
+  for (const auto& [file, flag] : {std::pair{&request.white, "--white"}, std::pair{&request.whites, "--whites"}}) {
+    if (file->empty()) continue;
+    if (!fs::is_regular_file(*file)) return makeError(ErrorCode::Usage, *file + ": " + flag + ": no such file");
+    excluded.emplace_back(*file);
+  }
   LFCAM_ASSIGN_OR_RETURN(plan.captures, expandBatchInputs(request.inputs, excluded));
   plan.report = request.report.empty() ? plan.output / "batch-report.json" : fs::path(request.report);
   return plan;

@@ -6,6 +6,7 @@
 
 #include "lfcam/calibrate/calibrate.hpp"
 #include "lfcam/calibrate/lenslet_grid.hpp"
+#include "lfcam/calibrate/white_database.hpp"
 #include "lfcam/raw_io/raw_io.hpp"
 
 namespace lfcam {
@@ -19,6 +20,18 @@ Result<LightField> decodeRawFiles(RawFiles input, const ProgressCallback& progre
   // A dark frame is subtracted instead of any black level, so a given level is then not used.
   if (input.dark.empty()) readOptions.blackLevel = input.blackLevel;
   LFCAM_ASSIGN_OR_RETURN(auto raw, readRaw(input.raw, readOptions));
+  std::string chosen;  // the database's white, for the light field's metadata
+  if (!input.whites.empty()) {
+    if (!input.white.empty() || !input.grid.empty())
+      return makeError(ErrorCode::Usage, input.whites +
+                                             ": a white-image database chooses the white and its grid: "
+                                             "give it or --white/--grid, not both");
+    LFCAM_ASSIGN_OR_RETURN(auto choice, chooseWhite(input.whites, raw, input.anyCamera, input.raw));
+    if (input.onWhiteChosen) input.onWhiteChosen(choice.reason);
+    input.white = choice.white.white.string();
+    input.grid = choice.white.grid.string();
+    chosen = "; white " + choice.white.name + " from " + input.whites;
+  }
   bar(0.1);
   RawImage dark, white;
   if (!input.dark.empty()) {
@@ -58,6 +71,7 @@ Result<LightField> decodeRawFiles(RawFiles input, const ProgressCallback& progre
   if (!input.decode.optics) input.decode.optics = raw.optics;
   auto lf = decodeLightField(raw, grid, input.decode);
   if (!lf) return makeError(lf.error().code, input.raw + ": " + lf.error().message);
+  lf->metadata.source += chosen;
   bar(1.0);
   return lf;
 }

@@ -8,6 +8,7 @@
 #include "lfcam/raw_io/raw_io.hpp"
 #include "raw_io/lytro_metadata.hpp"
 #include "raw_io/lytro_raw.hpp"
+#include "raw_io/lytro_setting.hpp"
 
 namespace lfcam {
 
@@ -30,7 +31,47 @@ std::string refString(const json& frame, const char* key) {
   return it != frame.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
+// The pixels of a packed frame as `metadata` (the frame's, or a document wrapping it) describes them;
+// `name` is the frame's in messages.
+Result<RawImage> rawFromPackedFrame(std::span<const std::uint8_t> bytes, const json& document, const std::string& name,
+                                    const std::string& where) {
+  const json* found = findLytroFrameMetadata(document);
+  const json& metadata = found ? *found : document;  // parsing names what is missing
+  LFCAM_ASSIGN_OR_RETURN(auto format, parseLytroFrameMetadata(metadata, where));
+  const std::size_t pixels = std::size_t(format.width) * std::size_t(format.height);
+  const std::size_t needed = *packedByteCount(format.packing, pixels);  // width, height <= 1e5: no overflow
+  if (bytes.size() < needed)
+    return makeError(ErrorCode::Format, where + ": raw frame" + (name.empty() ? "" : " " + name) + " has " +
+                                            std::to_string(bytes.size()) + " bytes; " + std::to_string(format.width) +
+                                            "x" + std::to_string(format.height) + " pixels of " +
+                                            std::to_string(rawPackingBits(format.packing)) + " bits need " +
+                                            std::to_string(needed));
+  LFCAM_TRY(checkMemory(where, checkedProduct({pixels, sizeof(float) + sizeof(std::uint16_t)}), "the raw frame"));
+  RawImage raw;
+  std::vector<std::uint16_t> samples(pixels);
+  unpackRaw(format.packing, bytes, samples);
+  raw.mosaic = Image(format.width, format.height, 1);
+  float* out = raw.mosaic.plane(0);
+  for (std::size_t k = 0; k < pixels; ++k) out[k] = samples[k];
+  raw.colorFilter = format.colorFilter;
+  raw.blackLevel = format.blackLevel;
+  raw.whiteLevel = format.whiteLevel;
+  raw.lenslet = format.lenslet;
+  raw.whiteBalance = format.whiteBalance;
+  raw.colorMatrix = format.colorMatrix;
+  raw.metadataJson = metadata.dump();
+  return raw;
+}
+
 }  // namespace
+
+Result<RawImage> rawFromLytroCaldata(std::span<const std::uint8_t> pixels, const json& description,
+                                     const std::string& where) {
+  LFCAM_ASSIGN_OR_RETURN(auto raw, rawFromPackedFrame(pixels, description, "", where));
+  raw.setting = lytroCameraSetting(description, nullptr);
+  raw.source = "lytro-caldata";
+  return raw;
+}
 
 Result<RawImage> rawFromLytroContainer(const LytroContainer& container, const std::string& where) {
   const json* frame = container.tableOfContents.is_null() ? nullptr : tocFrame(container.tableOfContents);
@@ -50,28 +91,11 @@ Result<RawImage> rawFromLytroContainer(const LytroContainer& container, const st
   } else {
     return makeError(ErrorCode::Format, where + ": the raw frame has no metadata (metadataRef names no section)");
   }
-  LFCAM_ASSIGN_OR_RETURN(auto format, parseLytroFrameMetadata(metadata, where));
-  const std::size_t pixels = std::size_t(format.width) * std::size_t(format.height);
-  const std::size_t needed = *packedByteCount(format.packing, pixels);  // width, height <= 1e5: no overflow
-  if (image->payload.size() < needed)
-    return makeError(ErrorCode::Format, where + ": raw frame " + image->name + " has " +
-                                            std::to_string(image->payload.size()) + " bytes; " +
-                                            std::to_string(format.width) + "x" + std::to_string(format.height) +
-                                            " pixels of " + std::to_string(rawPackingBits(format.packing)) +
-                                            " bits need " + std::to_string(needed));
-  LFCAM_TRY(checkMemory(where, checkedProduct({pixels, sizeof(float) + sizeof(std::uint16_t)}), "the raw frame"));
-  RawImage raw;
-  std::vector<std::uint16_t> samples(pixels);
-  unpackRaw(format.packing, image->payload, samples);
-  raw.mosaic = Image(format.width, format.height, 1);
-  float* out = raw.mosaic.plane(0);
-  for (std::size_t k = 0; k < pixels; ++k) out[k] = samples[k];
-  raw.colorFilter = format.colorFilter;
-  raw.blackLevel = format.blackLevel;
-  raw.whiteLevel = format.whiteLevel;
-  raw.lenslet = format.lenslet;
-  raw.whiteBalance = format.whiteBalance;
-  raw.colorMatrix = format.colorMatrix;
+  json privateMetadata;
+  if (const LytroSection* section = container.find(refString(*frame, "privateMetadataRef")))
+    privateMetadata = json::parse(section->payload.begin(), section->payload.end(), nullptr, false);
+  LFCAM_ASSIGN_OR_RETURN(auto raw, rawFromPackedFrame(image->payload, metadata, image->name, where));
+  raw.setting = lytroCameraSetting(metadata, privateMetadata.is_object() ? &privateMetadata : nullptr);
   raw.source = container.tableOfContents.contains("frames") ? "lytro-lfr" : "lytro-lfp";
   raw.metadataJson = metadata.dump();
   return raw;
@@ -114,10 +138,16 @@ Result<LytroContainer> makeLytroRawContainer(const RawImage& raw, const LytroWri
     metadata["lfcam"] = std::move(extra);
   }
 
+  const CameraSetting& setting = options.setting;
+  if (setting.zoomStep) metadata["devices"]["lens"]["zoomStep"] = *setting.zoomStep;
+  if (setting.focusStep) metadata["devices"]["lens"]["focusStep"] = *setting.focusStep;
+  if (setting.exposureS) metadata["devices"]["shutter"]["frameExposureDuration"] = *setting.exposureS;
+
   LytroSection image = makeLytroSection(LytroSectionKind::Component, packRaw(format.packing, samples));
   LytroSection meta = makeLytroSection(LytroSectionKind::Component, metadata.dump(1));
-  LytroSection privateMeta =
-      makeLytroSection(LytroSectionKind::Component, json{{"camera", {{"serialNumber", "lfcam-simulator"}}}}.dump(1));
+  LytroSection privateMeta = makeLytroSection(
+      LytroSectionKind::Component,
+      json{{"camera", {{"serialNumber", setting.serial.empty() ? "lfcam-simulator" : setting.serial}}}}.dump(1));
   json frame = {
       {"frame", {{"metadataRef", meta.name}, {"privateMetadataRef", privateMeta.name}, {"imageRef", image.name}}},
       {"parameters",

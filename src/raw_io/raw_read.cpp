@@ -77,6 +77,49 @@ void applyCameraJson(const std::filesystem::path& path, RawImage& raw) {
   raw.metadataJson = json.dump();
 }
 
+// A side-car <stem>.json beside an image naming its camera and lens setting (docs/formats.md, "White
+// images"): what picks a white from a database for a camera that is not a Lytro.
+Status applySideCar(const std::filesystem::path& path, RawImage& raw) {
+  std::filesystem::path file = path;
+  file.replace_extension(".json");
+  std::ifstream in(file);
+  if (!in) return {};
+  const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+  if (json.is_discarded() || !json.is_object() || !json.contains("serial")) return {};
+  CameraSetting& setting = raw.setting;
+  if (!json["serial"].is_string()) return makeError(ErrorCode::Format, file.string() + ": serial: expected a string");
+  setting.serial = json["serial"].get<std::string>();
+  for (const auto& [key, value] :
+       {std::pair{"zoom_step", &setting.zoomStep}, std::pair{"focus_step", &setting.focusStep},
+        std::pair{"exposure_s", &setting.exposureS}}) {
+    if (!json.contains(key)) continue;
+    if (!json[key].is_number()) return makeError(ErrorCode::Format, file.string() + ": " + key + ": expected a number");
+    *value = json[key].get<double>();
+  }
+  setting.model = json.value("model", "");
+  setting.metadataKeys = "side-car";
+  return {};
+}
+
+// A bare packed frame (Lytro calibration data's MOD_*.RAW) described by the .TXT of the same name.
+std::optional<std::filesystem::path> caldataDescription(const std::filesystem::path& path) {
+  if (io::lowerExtension(path) != ".raw") return std::nullopt;
+  for (const char* ext : {".TXT", ".txt"}) {
+    std::filesystem::path partner = path;
+    partner.replace_extension(ext);
+    if (std::filesystem::is_regular_file(partner)) return partner;
+  }
+  return std::nullopt;
+}
+
+Result<RawImage> readCaldataRaw(const std::filesystem::path& path, const std::filesystem::path& description) {
+  LFCAM_ASSIGN_OR_RETURN(auto text, readFileBytes(description, kMaxLytroFileBytes));
+  const nlohmann::json json = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+  if (json.is_discarded()) return makeError(ErrorCode::Format, description.string() + ": not JSON");
+  LFCAM_ASSIGN_OR_RETURN(auto pixels, readFileBytes(path, kMaxLytroFileBytes));
+  return rawFromLytroCaldata(pixels, json, path.string());
+}
+
 Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOptions& options) {
   LFCAM_ASSIGN_OR_RETURN(auto header, readImageHeader(path));
   LFCAM_ASSIGN_OR_RETURN(auto image, readImage(path));
@@ -104,6 +147,7 @@ Result<RawImage> readImageRaw(const std::filesystem::path& path, const RawReadOp
   if (tags.white) raw.whiteLevel = *tags.white;
   raw.source = "image";
   if (options.useCameraJson) applyCameraJson(path, raw);
+  LFCAM_TRY(applySideCar(path, raw));
   return raw;
 }
 
@@ -141,6 +185,8 @@ Result<RawImage> readRaw(const std::filesystem::path& path, const RawReadOptions
   if (looksLikeLytroContainer(path)) {
     LFCAM_ASSIGN_OR_RETURN(auto container, readLytroContainer(path));
     raw = rawFromLytroContainer(container, path.string());
+  } else if (const auto description = caldataDescription(path)) {
+    raw = readCaldataRaw(path, *description);
   } else if (hasCameraRawExtension(path) || !looksLikeImageFile(path)) {
     raw = readCameraRaw(path);
     if (!raw && !hasCameraRawExtension(path))

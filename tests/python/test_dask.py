@@ -130,3 +130,24 @@ def test_a_volume_step_on_the_cluster_shares_one_psf(cluster, tmp_path):
         assert v.read_bytes() == (tmp_path / "local" / v.parent.name / "volume.tif").read_bytes()
     assert local["done"] == 4
     assert without_times(remote) == without_times(local)
+
+
+def test_the_hand_over_takes_a_white_image_database(cluster, tmp_path):
+    """`lfcam batch --whites DB --any-camera --dask`: each worker decodes its raw with the white the
+    database chooses, as the single machine does."""
+    local, _ = cluster
+    capture = tmp_path / "capture"
+    lfcam.simulate("chart", capture, size=128, samples=1, ground_truth=False)
+    (capture / "white.json").write_text(json.dumps({"serial": "MICRO-1", "zoom_step": 300, "focus_step": 0}))
+    (capture / "raw.json").write_text(json.dumps({"serial": "MICRO-2", "zoom_step": 280, "focus_step": 0}))
+    lfcam_cli = os.environ["LFCAM_EXECUTABLE"]
+    subprocess.run([lfcam_cli, "whites", "index", str(capture / "white.png"), "-o", str(tmp_path / "whites.json")],
+                   check=True, capture_output=True)
+    local_report = lfcam.batch.run([str(capture / "raw.png")], tmp_path / "local", "refocus:0",
+                                   whites=tmp_path / "whites.json", any_camera=True)
+    assert local_report["done"] == 1
+    result = subprocess.run([lfcam_cli, "batch", str(capture / "raw.png"), "-o", str(tmp_path / "cli"), "--steps",
+                             "refocus:0", "--whites", str(tmp_path / "whites.json"), "--any-camera", "--dask",
+                             local.scheduler_address], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert files_below(tmp_path / "cli") == files_below(tmp_path / "local")

@@ -1,4 +1,5 @@
-// lfcam batch INPUT... -o OUTDIR --steps STEP[,STEP...] [--white W] [--jobs N] [--dask ADDRESS]
+// lfcam batch INPUT... -o OUTDIR --steps STEP[,STEP...] [--white W | --whites DB [--any-camera]] [--jobs N]
+//             [--dask ADDRESS]
 // [--report FILE] [--spec FILE]: one pipeline applied to every capture, several captures at once,
 // resuming where a previous run stopped (batch_capture.hpp), going on past a bad capture and listing
 // the failures at the end and in the report (OUTDIR/batch-report.json by default). The work is the
@@ -10,6 +11,7 @@
 #include "dask_handover.hpp"
 #include "lfcam/batch/batch_run.hpp"
 #include "progress_bar.hpp"
+#include "raw_input.hpp"
 
 namespace lfcam::cli {
 namespace fs = std::filesystem;
@@ -17,13 +19,15 @@ namespace fs = std::filesystem;
 void addBatchCommand(CLI::App& app, Job& job) {
   struct Options {
     std::vector<std::string> inputs, steps;
-    std::string output, white, report, spec, dask;
+    std::string output, white, whites, report, spec, dask;
+    bool anyCamera = false;
     int jobs = 0;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = app.add_subcommand("batch", "apply steps to many captures in parallel, resuming a previous run");
-  command->add_option("INPUT", options->inputs,
-                      "light-field files or folders, raws (with --white), folders of them, or globs (quoted)");
+  command->add_option(
+      "INPUT", options->inputs,
+      "light-field files or folders, raws (with --white or --whites), folders of them, or globs (quoted)");
   command->add_option("-o,--output", options->output, "output folder: OUTDIR/<input's name>/ per capture");
   command->add_option("--steps", options->steps,
                       "comma-separated: refocus:SLOPE (refocus_SLOPE.png), stack:FROM:TO:N (stack/slice_NNN.png, "
@@ -33,15 +37,17 @@ void addBatchCommand(CLI::App& app, Job& job) {
                       "volume:SETTINGS (volume.tif: a microscope volume, SETTINGS as lfcam volume --optics takes "
                       "them; the PSF computed once into OUTDIR)");
   command->add_option("--white", options->white, "the inputs are raw lenslet images of this white image");
+  addWhitesOptions(*command, options->whites, options->anyCamera);
   command->add_option("--jobs", options->jobs, "captures at once on this machine (default: half the cores, 1 to 4)")
       ->check(CLI::Range(1, 256));
   command->add_option("--dask", options->dask,
                       "run one task per capture on the workers of this Dask scheduler (tcp://HOST:8786); every "
                       "worker must see the inputs and OUTDIR under the same paths (docs/batch.md)");
   command->add_option("--report", options->report, "JSON report (default: OUTDIR/batch-report.json)");
-  command->add_option("--spec", options->spec,
-                      "JSON object standing for the flags: inputs, steps, output, white, jobs, dask, report (flags "
-                      "win)");
+  command->add_option(
+      "--spec", options->spec,
+      "JSON object standing for the flags: inputs, steps, output, white, whites, any_camera, jobs, dask, "
+      "report (flags win)");
   command->callback([options, command, &job] {
     job = [options, command]() -> Status {
       BatchSpec spec;
@@ -59,7 +65,9 @@ void addBatchCommand(CLI::App& app, Job& job) {
                                  .steps = options->steps.empty() ? spec.steps : steps,
                                  .output = flagOr("--output", options->output, spec.output),
                                  .white = flagOr("--white", options->white, spec.white),
-                                 .report = flagOr("--report", options->report, spec.report)};
+                                 .whites = flagOr("--whites", options->whites, spec.whites),
+                                 .report = flagOr("--report", options->report, spec.report),
+                                 .anyCamera = options->anyCamera || spec.anyCamera.value_or(false)};
       LFCAM_ASSIGN_OR_RETURN(auto plan, planBatch(request));
       const std::string dask = flagOr("--dask", options->dask, spec.dask);
       if (!dask.empty()) return handOverToDask(request, dask);

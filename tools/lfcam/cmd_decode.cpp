@@ -1,4 +1,5 @@
-// lfcam decode RAW [--white W] [--dark D] [--black-level N] [--grid grid.json] [--bayer P] [--demosaic M]
+// lfcam decode RAW [--white W | --whites whites.json [--any-camera]] [--dark D] [--black-level N] [--grid grid.json]
+// [--bayer P] [--demosaic M]
 //                  [--sampling S] [--views N] -o OUT.lf.h5: a raw lenslet image -> L(u, v, s, t).
 #include <memory>
 
@@ -22,6 +23,7 @@ void addDecodeCommand(CLI::App& app, Job& job) {
   addBlackLevelOption(*command, options->input.blackLevel);
   command->add_option("--grid", options->input.grid,
                       "grid.json from lfcam calibrate (default: calibrate the white image, without one the raw)");
+  addWhitesOptions(*command, options->input.whites, options->input.anyCamera);
   command->add_option("--bayer", options->bayer, "colour filter of a PNG/TIFF raw: RGGB, BGGR, GRBG, GBRG or mono");
   addDecodeMethodOptions(*command, options->input.decode);
   command->add_option("--views", options->input.decode.views, "views across (default: the microlens pitch, rounded)")

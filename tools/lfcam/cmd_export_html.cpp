@@ -36,8 +36,8 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
   command->add_option("--title", options->page.title, "the page's title");
   command->callback([options, &job] {
     job = [options]() -> Status {
-      // A processed container: its own slices. (A raw frame is decoded like any raw, with --white.)
-      if (options->input.white.empty() && looksLikeLytroContainer(options->input.path)) {
+      // A processed container: its own slices. (A raw frame is decoded like any raw, with --white or --whites.)
+      if (!options->input.decodesRaw() && looksLikeLytroContainer(options->input.path)) {
         LFCAM_ASSIGN_OR_RETURN(auto stack, readLytroRefocusStack(options->input.path));
         return writeLytroLivingPicture(options->output, stack, options->page.title);
       }

@@ -1,5 +1,5 @@
-// lfcam info INPUT [--json]: what a light-field input is, without reading its samples when the
-// format allows.
+// lfcam info INPUT [--json] [--whites whites.json]: what a light-field input is, without reading its
+// samples when the format allows, and for a raw which white decoding it takes.
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -117,12 +117,18 @@ void addInfoCommand(CLI::App& app, Job& job) {
           printFocusedText(json);
         return {};
       }
-      if (looksLikeLytroContainer(options->input.path)) return printLytroInfo(options->input.path, options->json);
+      const bool container = looksLikeLytroContainer(options->input.path);
+      LFCAM_ASSIGN_OR_RETURN(auto white, whiteNote(options->input, container));
+      if (container) return printLytroInfo(options->input.path, options->json, white);
       LFCAM_ASSIGN_OR_RETURN(auto info, probeLightField(options->input.path, options->input.readOptions()));
-      if (options->json)
-        std::printf("%s\n", infoJson(options->input.path, info).dump(2).c_str());
-      else
+      if (options->json) {
+        nlohmann::json json = infoJson(options->input.path, info);
+        if (white) json["white"] = white->json;
+        std::printf("%s\n", json.dump(2).c_str());
+      } else {
         printText(options->input.path, info);
+        if (white) std::printf("  white: %s\n", white->text.c_str());
+      }
       return {};
     };
   });

@@ -57,7 +57,7 @@ void addViewCommand(CLI::App& app, Job& job) {
   command->callback([options, &job] {
     job = [options]() -> Status {
       // A processed Lytro container: its living picture over its own slices (living_picture.hpp).
-      if (options->input.white.empty() && looksLikeLytroContainer(options->input.path)) {
+      if (!options->input.decodesRaw() && looksLikeLytroContainer(options->input.path)) {
         LFCAM_ASSIGN_OR_RETURN(auto stack, readLytroRefocusStack(options->input.path));
         LFCAM_ASSIGN_OR_RETURN(auto page, makeLytroLivingPicture(stack, options->input.path));
         ViewerServer server(servePage(std::move(page)));

@@ -43,6 +43,7 @@ const std::map<std::string, std::string>& examples() {
        "--white ../shared/data/lfm-guv/Radiometry_GUVExperim1.tif "
        "--dark ../shared/data/lfm-guv/DarkFrame_GUVExperim1.tif "
        "--optics ../shared/data/lfm-guv/metadata.txt --slices 5 --iterations 4 -o guv-volume.tif"},
+      {"whites", "lfcam whites index caldata-B5143909630.tar -o whites.json"},
       {"batch",
        "lfcam batch ../shared/data/hci-antinous ../shared/data/lytro-f01-flower -o two-captures "
        "--steps refocus:0.5,stack:-1:1:5"},

@@ -42,6 +42,7 @@ void addDecodeCommand(CLI::App& app, Job& job);
 void addCalibrateCommand(CLI::App& app, Job& job);
 void addBatchCommand(CLI::App& app, Job& job);
 void addVolumeCommand(CLI::App& app, Job& job);
+void addWhitesCommand(CLI::App& app, Job& job);
 void addMemoryLimitOption(CLI::App& app);  // global: --memory-limit / LFCAM_MEMORY_LIMIT
 
 // A light-field input as every command takes it: a path, recognised by content, and the few
@@ -51,8 +52,11 @@ struct InputOptions {
   std::optional<int> lensletViews;
   ViewNumberOrder viewOrder = ViewNumberOrder::Auto;
   std::string white, dark, grid;     // a raw lenslet image, decoded on the way when --white is given
+  std::string whites;                // ... or --whites, a white-image database choosing its white
+  bool anyCamera = false;            // --any-camera: whites of another camera allowed
   std::optional<double> blackLevel;  // its --black-level, DN
   DecodeOptions decode;              // its --demosaic and --sampling (the rest is filled in on the way)
+  bool decodesRaw() const { return !white.empty() || !whites.empty(); }
   LightFieldReadOptions readOptions() const { return {.lensletViews = lensletViews, .viewNumberOrder = viewOrder}; }
 };
 void addInputOptions(CLI::App& command, InputOptions& input);

@@ -45,6 +45,8 @@ Status handOverToDask(const BatchRequest& request, const std::string& scheduler)
   std::vector<std::string> arguments{python,         "-c",      kBootstrap,           "--dask", scheduler, "--output",
                                      request.output, "--steps", joined(request.steps)};
   if (!request.white.empty()) arguments.insert(arguments.end(), {"--white", request.white});
+  if (!request.whites.empty()) arguments.insert(arguments.end(), {"--whites", request.whites});
+  if (request.anyCamera) arguments.emplace_back("--any-camera");
   if (!request.report.empty()) arguments.insert(arguments.end(), {"--report", request.report});
   arguments.emplace_back("--");
   arguments.insert(arguments.end(), request.inputs.begin(), request.inputs.end());

@@ -19,10 +19,10 @@ bool isFocusedInput(const InputOptions& input, const FocusedOptions& focused) {
 }
 
 Result<FocusedCapture> loadFocusedInput(const InputOptions& input, const FocusedOptions& focused) {
-  if (!input.dark.empty() || !input.grid.empty() || input.blackLevel)
+  if (!input.dark.empty() || !input.grid.empty() || !input.whites.empty() || input.blackLevel)
     return makeError(ErrorCode::Usage, input.path +
                                            ": a focused plenoptic capture takes --white, not --dark, "
-                                           "--grid or --black-level");
+                                           "--grid, --whites or --black-level");
   return readFocusedCapture(input.path, {.calibration = focused.calibration, .white = input.white});
 }
 

@@ -21,21 +21,24 @@ void addInputOptions(CLI::App& command, InputOptions& input) {
   command.add_option("--white", input.white, "INPUT is a raw lenslet image: its white image (decoded on the way)");
   command.add_option("--dark", input.dark, "with --white: dark frame of the raw");
   command.add_option("--grid", input.grid, "with --white: grid.json (default: calibrated from the white image)");
+  addWhitesOptions(command, input.whites, input.anyCamera);
   addBlackLevelOption(command, input.blackLevel);
   addDecodeMethodOptions(command, input.decode);
 }
 
 Result<LightField> loadInput(const InputOptions& input) {
-  if (!input.white.empty())
+  if (input.decodesRaw())
     return decodeRawInput({.raw = input.path,
                            .white = input.white,
                            .dark = input.dark,
                            .grid = input.grid,
+                           .whites = input.whites,
+                           .anyCamera = input.anyCamera,
                            .blackLevel = input.blackLevel,
                            .decode = input.decode});
   if (input.blackLevel)
     return makeError(ErrorCode::Usage,
-                     input.path + ": --black-level applies to a raw decoded on the way (with --white)");
+                     input.path + ": --black-level applies to a raw decoded on the way (with --white or --whites)");
   ProgressBar bar("reading " + input.path);
   return readLightField(input.path, input.readOptions(), [&](double fraction) { bar(fraction); });
 }

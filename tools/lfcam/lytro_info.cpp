@@ -7,7 +7,7 @@
 
 namespace lfcam::cli {
 
-Status printLytroInfo(const std::string& path, bool asJson) {
+Status printLytroInfo(const std::string& path, bool asJson, const std::optional<WhiteNote>& white) {
   LFCAM_ASSIGN_OR_RETURN(auto container, readLytroContainer(path));
   const LytroContents contents = describeLytroContainer(container);
   if (asJson) {
@@ -23,8 +23,9 @@ Status printLytroInfo(const std::string& path, bool asJson) {
       if (item.lambda) s["lambda"] = *item.lambda;
       sections.push_back(s);
     }
-    const nlohmann::json out = {
+    nlohmann::json out = {
         {"path", path}, {"format", "lytro-container"}, {"sections", sections}, {"summary", contents.summary}};
+    if (white) out["white"] = white->json;
     std::printf("%s\n", out.dump(2).c_str());
     return {};
   }
@@ -41,6 +42,7 @@ Status printLytroInfo(const std::string& path, bool asJson) {
                   f["lenslet"]["rotation_rad"].get<double>(), f["lenslet"]["offset_px"][0].get<double>(),
                   f["lenslet"]["offset_px"][1].get<double>());
   }
+  if (white) std::printf("  white: %s\n", white->text.c_str());
   for (const LytroItem& item : contents.items) {
     std::printf("  %s %-45s %9zu bytes  %s", lytroSectionKindName(item.section->kind),
                 item.section->name.empty() ? "-" : item.section->name.c_str(), item.section->payload.size(),

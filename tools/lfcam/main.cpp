@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   cli::addCalibrateCommand(app, job);
   cli::addBatchCommand(app, job);
   cli::addVolumeCommand(app, job);
+  cli::addWhitesCommand(app, job);
 
   cli::addExamples(app);
 

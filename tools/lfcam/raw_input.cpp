@@ -1,6 +1,7 @@
 #include "raw_input.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <utility>
@@ -39,6 +40,13 @@ void addBlackLevelOption(CLI::App& command, std::optional<double>& blackLevel) {
           "DN"));
 }
 
+void addWhitesOptions(CLI::App& command, std::string& whites, bool& anyCamera) {
+  command.add_option("--whites", whites,
+                     "white-image database from lfcam whites index: the white of RAW's camera nearest its zoom and "
+                     "focus steps, with its grid (instead of --white and --grid)");
+  command.add_flag("--any-camera", anyCamera, "with --whites: choose among every camera's whites, not only RAW's");
+}
+
 Result<ColorFilter> parseBayerOption(const std::string& text) {
   if (auto filter = parseColorFilterName(text)) return *filter;
   return makeError(ErrorCode::Usage, "--bayer: " + text + " is not one of RGGB, BGGR, GRBG, GBRG, mono");
@@ -46,6 +54,7 @@ Result<ColorFilter> parseBayerOption(const std::string& text) {
 
 Result<LightField> decodeRawInput(RawFiles files) {
   ProgressBar bar("decoding " + files.raw);
+  files.onWhiteChosen = [](const std::string& reason) { std::fprintf(stderr, "white: %s\n", reason.c_str()); };
   return decodeRawFiles(std::move(files), [&](double fraction) { bar(fraction); });
 }
 

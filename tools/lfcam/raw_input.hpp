@@ -21,9 +21,13 @@ void addDecodeMethodOptions(CLI::App& command, DecodeOptions& decode);
 // that decodes a raw on the way).
 void addBlackLevelOption(CLI::App& command, std::optional<double>& blackLevel);
 
+// --whites FILE and --any-camera (decode, and every command that decodes a raw on the way).
+void addWhitesOptions(CLI::App& command, std::string& whites, bool& anyCamera);
+
 // "RGGB", "mono", ... (any case); Usage error naming the option otherwise.
 Result<ColorFilter> parseBayerOption(const std::string& text);
-// decodeRawFiles (decode_files.hpp) with a progress bar on a terminal.
+// decodeRawFiles (decode_files.hpp) with a progress bar on a terminal, saying on stderr which white
+// a database gave.
 Result<LightField> decodeRawInput(RawFiles files);
 
 }  // namespace lfcam::cli

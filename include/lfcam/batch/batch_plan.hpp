@@ -59,8 +59,9 @@ Result<std::vector<BatchCapture>> expandBatchInputs(const std::vector<std::strin
 // The flags a spec file may stand for; those absent stay empty.
 struct BatchSpec {
   std::vector<std::string> inputs, steps;
-  std::optional<std::string> output, white, report, dask;
+  std::optional<std::string> output, white, whites, report, dask;
   std::optional<int> jobs;
+  std::optional<bool> anyCamera;  // "any_camera"
 };
 // A JSON object of those keys; an unknown key or wrong type is a Usage error naming the file and the key.
 Result<BatchSpec> readBatchSpec(const std::filesystem::path& file);
@@ -68,15 +69,25 @@ Result<BatchSpec> readBatchSpec(const std::filesystem::path& file);
 // A whole batch as given (flags or spec already merged), and as checked and expanded.
 struct BatchRequest {
   std::vector<std::string> inputs, steps;
-  std::string output, white, report;  // report empty: OUTDIR/batch-report.json
+  std::string output, white, whites, report;  // report empty: OUTDIR/batch-report.json
+  bool anyCamera = false;
+};
+// How the captures are decoded: raws of one white image, or raws whose white a white-image database
+// (white_database.hpp) chooses capture by capture (of any camera with anyCamera); neither: the
+// inputs are light fields.
+struct BatchWhite {
+  std::filesystem::path image, database;
+  bool anyCamera = false;
 };
 struct BatchPlan {
   std::vector<BatchCapture> captures;
   std::vector<BatchStep> steps;
-  std::filesystem::path output, white, report;
+  std::filesystem::path output, report;
+  BatchWhite white;
 };
-// Usage errors for a missing output, input or step, an unknown step, a white image that is not a
-// file, a glob that matches nothing; the white image and OUTDIR are never taken as captures.
+// Usage errors for a missing output, input or step, an unknown step, a white image or database
+// that is not a file (or both given), a glob that matches nothing; the white image, the database
+// and OUTDIR are never taken as captures.
 Result<BatchPlan> planBatch(const BatchRequest& request);
 
 }  // namespace lfcam

@@ -22,17 +22,17 @@ struct BatchOutcome {
 
 // One capture, as a cluster's worker runs it: its steps run on the light field read once, each
 // output written atomically under OUTDIR/<name>/, then a done-marker written last. The marker
-// records the steps and the size and modification time of the input and the white image (not
+// records the steps and the size and modification time of the input and the white image or database (not
 // their paths, so workers that see the same files under other names agree), so a rerun skips a
 // capture only when these still match and every output is there; anything else is redone from the
 // start. Idempotent: the same capture run twice, even at once, leaves each output old or whole; the
 // single-machine batch and a Dask worker both call this, so their outputs are the same bytes.
-// `white` (may be empty): the inputs are raw lenslet images of this white image, decoded on the way.
-BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps,
-                             const std::filesystem::path& white, const std::filesystem::path& outputFolder);
+// `white` (may be empty): the inputs are raw lenslet images, decoded on the way with it (batch_plan.hpp).
+BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps, const BatchWhite& white,
+                             const std::filesystem::path& outputFolder);
 
-// A capture's light field: read, or decoded when `white` is given.
-Result<LightField> loadCapture(const std::filesystem::path& input, const std::filesystem::path& white);
+// A capture's light field: read, or decoded when `white` names an image or a database.
+Result<LightField> loadCapture(const std::filesystem::path& input, const BatchWhite& white);
 
 // The work every capture shares, done once in OUTDIR (created) before the captures are dispatched,
 // here or to a cluster: each volume step's PSF cache (batchPsfPath) computed from the first capture

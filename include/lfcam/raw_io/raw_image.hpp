@@ -25,6 +25,19 @@ struct LensletHint {
   Packing packing = Packing::Square;
 };
 
+// Which camera took a frame and how its lens stood, as its metadata says: what picks the white image
+// of the same camera, zoom and focus from a database (white_database.hpp). Steps are the lens
+// motors' positions; what is unknown stays empty.
+struct CameraSetting {
+  std::string serial, model, firmware;
+  std::optional<double> zoomStep, focusStep;
+  std::optional<double> exposureS;  // frame exposure, seconds
+  // Which metadata layout the values came from: "lytro-frame" (devices.lens.zoomStep, ... of the
+  // first generation and of Illum white images), "lytro-public" (zoomStep, ... at the top of an
+  // Illum picture's public metadata), "side-car" (a JSON file beside an image); "" when none.
+  std::string metadataKeys;
+};
+
 struct RawImage {
   // One channel, width x height photosites, values in DN (not scaled to [0, 1]).
   Image mosaic;
@@ -36,6 +49,7 @@ struct RawImage {
   std::optional<std::array<double, 9>> colorMatrix;   // camera RGB -> linear sRGB, row-major
   // The main lens and microlens geometry, when the metadata states it (the simulator's camera.json).
   std::optional<Optics> optics;
+  CameraSetting setting;
   // Where the raw came from ("lytro-lfp", "lytro-lfr", "simulator", "libraw", "image") and the
   // frame metadata as the file gave it, as JSON text ("" when it gave none), for `lfcam info`.
   std::string source;

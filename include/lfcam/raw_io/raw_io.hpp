@@ -62,12 +62,15 @@ struct LytroWriteOptions {
   double pixelPitchMm = 0.0014;  // the Lytro sensors' 1.4 um unless the caller knows better
   bool modulationFrame = false;  // a white image (Lytro's "modulation" frame)
   std::string extraJson;         // a JSON value stored in the frame metadata under "lfcam" when not empty
+  // The camera's serial (private metadata; default "lfcam-simulator") and lens setting
+  // (devices.lens.zoomStep, focusStep; devices.shutter.frameExposureDuration), as the cameras write them.
+  CameraSetting setting;
 };
 
 // A Lytro container holding `raw` (integer DN in [0, 65535]) with real-style metadata: F01 style
 // packs 12-bit big-endian when every value fits 12 bits, Illum style 10-bit little-endian when they
 // fit 10 bits; otherwise 16-bit little-endian (as Lytro's own simulator wrote). readRaw of the file
-// returns the same mosaic, levels, Bayer pattern, lenslet hint, white balance and colour matrix.
+// returns the same mosaic, levels, Bayer pattern, lenslet hint, white balance, colour matrix and setting.
 Status writeLytroRaw(const std::filesystem::path& path, const RawImage& raw, const LytroWriteOptions& options);
 
 // `lfcam simulate --container`: from raw.png (or .tiff), white.* and camera.json in `folder`,
