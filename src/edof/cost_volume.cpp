@@ -255,15 +255,18 @@ void joinOneDimensional(float* lowest, const std::vector<const float*>& oneDimen
   });
 }
 
-void aggregatePlanes(const edof::GuidedFilter& filter, float* planes, std::size_t count, std::size_t n) {
-  parallelFor(0, count, 1, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> filtered(n);
+void aggregatePlanes(const edof::GuidedFilter& filter, const std::vector<const float*>& in,
+                     const std::vector<float*>& out) {
+  parallelFor(0, in.size(), 1, [&](std::size_t begin, std::size_t end) {
     edof::GuidedFilter::Scratch scratch;
-    for (std::size_t k = begin; k < end; ++k) {
-      filter.apply(planes + k * n, filtered.data(), scratch);
-      std::copy(filtered.begin(), filtered.end(), planes + k * n);
-    }
+    for (std::size_t k = begin; k < end; ++k) filter.apply(in[k], out[k], scratch);
   });
+}
+
+void aggregatePlanes(const edof::GuidedFilter& filter, float* planes, std::size_t count, std::size_t n) {
+  std::vector<float*> each(count);
+  for (std::size_t k = 0; k < count; ++k) each[k] = planes + k * n;
+  aggregatePlanes(filter, {each.begin(), each.end()}, each);
 }
 
 namespace {
@@ -348,13 +351,17 @@ edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double
           }
         });
       }
-    aggregatePlanes(filter, slice(first, 0), std::size_t(last - first) * perLabel, n);
-    if (subsetsApart)
-      for (int l = first; l < last; ++l) {
-        lowestSubset(slice(l, 0), halves, n, n, cost.data() + std::size_t(l) * n);
-        for (std::size_t j = 0; j < oneDimensional.size(); ++j)
-          std::copy(slice(l, halves + j), slice(l, halves + j) + n, oneDimensional[j].data() + std::size_t(l) * n);
+    // Aggregated in place, the one-dimensional subsets' slices straight into their volumes.
+    std::vector<const float*> in;
+    std::vector<float*> out;
+    for (int l = first; l < last; ++l)
+      for (std::size_t i = 0; i < perLabel; ++i) {
+        in.push_back(slice(l, i));
+        out.push_back(i < halves || !subsetsApart ? slice(l, i) : oneDimensional[i - halves].data() + std::size_t(l) * n);
       }
+    aggregatePlanes(filter, in, out);
+    if (subsetsApart)
+      for (int l = first; l < last; ++l) lowestSubset(slice(l, 0), halves, n, n, cost.data() + std::size_t(l) * n);
   }
   if (gate)
     joinOneDimensional(cost.data(), {oneDimensional[0].data(), oneDimensional[1].data()}, labels, n, noise.variance);
