@@ -23,7 +23,7 @@
 //      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--no-first-round-cost-check]
 //      [--no-offset-slope-correction] [--offset-shrink] [--no-offset-residual-check]
 //      [--no-one-dimensional-gate] [--match-at-reference] [--no-coarse-cost] [--scene TEXT] [--stages]
-//      [--timings] [--benchmark_filter=...]
+//      [--timings] [--scale] [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared. Given
 //                       more than once, each scene is scored with each file in turn (its row named
@@ -36,6 +36,8 @@
 //                       last pass, DepthExperiment::observeStage); with --write, DIR/<scene>-<stage>.pfm
 //   --timings           instead of the table: each stage's time on antinous, pass by pass (median of 5),
 //                       and the memory floor's bandwidth (design.md, "Depth": the profile)
+//   --scale             instead of the table: the time and scores of layered planes of 15 x 15 views of
+//                       625 x 434 pixels (a Lytro Illum's) and of their central 5 x 5 views
 //   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what
 //                       aggregating them apart brings
 //   --no-noise-correction  without the noise variance that interpolation removes added back
@@ -78,7 +80,7 @@
 
 namespace {
 
-using lfcam::LightField;
+using lfcam::LightField, lfcam::LightFieldShape;
 
 // The real data: LFCAM_DATA_DIR, as the tests take it, else the folder beside the repository.
 const std::string kFolder =
@@ -357,13 +359,37 @@ void printTimings(int runs) {
               floor.medianBandwidth() / 1e9);
 }
 
+// How the time grows (issue 51): the layered planes at the size of a Lytro Illum's views (625 x 434)
+// with 15 x 15 views and with its central 5 x 5, each timed once and scored.
+void printScale() {
+  const lfcam::LayeredPlanesLightField illum =
+      lfcam::renderLayeredPlanes(lfcam::defaultLayeredPlanesScene(15, 625, 1, 434));
+  LightFieldShape shape = illum.lightField.shape();
+  shape.nu = shape.nv = 5;
+  LightField centre(shape);
+  centre.metadata = illum.lightField.metadata;
+  for (int v = 0; v < 5; ++v)
+    for (int u = 0; u < 5; ++u) centre.setSubApertureImage(u, v, illum.lightField.subApertureImage(u + 5, v + 5));
+  std::printf("%-8s %9s %7s %8s %9s %9s\n", "views", "pixels", "labels", "seconds", "ns/label", "BP(0.07)");
+  for (const LightField* lightField : {&illum.lightField, static_cast<const LightField*>(&centre)}) {
+    const auto start = std::chrono::steady_clock::now();
+    auto depth = lfcam::estimateDepth(*lightField);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!depth) return (void)std::fprintf(stderr, "depth_bench: %s\n", depth.error().message.c_str());
+    const auto scores = lfcam::scoreHci(depth->disparity, illum.disparity);
+    const double pixels = double(lightField->ns()) * lightField->nt();
+    std::printf("%2dx%-5d %9.0f %7d %8.2f %9.1f %9.2f\n", lightField->nu(), lightField->nv(), pixels, depth->labels,
+                seconds, 1e9 * seconds / (pixels * depth->labels), scores ? scores->badPix007 : NAN);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   // The table's own flags, taken out before the benchmark library reads the rest.
   std::vector<Candidate> candidates;
   lfcam::edof::DepthExperiment experiment;
-  bool heldOut = true, stages = false, timings = false;
+  bool heldOut = true, stages = false, timings = false, scale = false;
   std::string folder, only;
   int kept = 1, size = 128;
   for (int i = 1; i < argc; ++i) {
@@ -378,6 +404,8 @@ int main(int argc, char** argv) {
       stages = true;
     } else if (argument == "--timings") {
       timings = true;
+    } else if (argument == "--scale") {
+      scale = true;
     } else if (argument == "--write" && i + 1 < argc) {
       folder = argv[++i];
     } else if (argument == "--gradient" && i + 1 < argc) {
@@ -423,6 +451,7 @@ int main(int argc, char** argv) {
   argc = kept;
   if (candidates.empty()) candidates.push_back({"defaults", {}});
   if (timings) return printTimings(5), 0;
+  if (scale) return printScale(), 0;
   printScores(candidates, experiment, heldOut, folder, size, only, stages);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
