@@ -49,6 +49,20 @@ LFCAM_CLONES void accumulateSquaredDifference(const float* __restrict sample, co
   }
 }
 
+// A subset's mean squared difference over its `views`, less the interpolation-bias term (the
+// reference's second differences xx, yy, xy weighted by wx, wy, wxy), plus the noise it removes.
+LFCAM_CLONES void subsetMean(const float* __restrict sum, int views, const float* __restrict xx,
+                             const float* __restrict yy, const float* __restrict xy, float wx, float wy, float wxy,
+                             float noiseLoss, int count, float* __restrict out) {
+  for (int x = 0; x < count; ++x) out[x] = sum[x] / views - (wx * xx[x] + wy * yy[x] + wxy * xy[x]) + noiseLoss;
+}
+
+// The same without the bias term (its weights 0).
+LFCAM_CLONES void subsetMean(const float* __restrict sum, int views, float noiseLoss, int count,
+                             float* __restrict out) {
+  for (int x = 0; x < count; ++x) out[x] = sum[x] / views + noiseLoss;
+}
+
 }  // namespace
 
 SecondDifferences secondDifferences(const float* plane, int ns, int nt) {
@@ -154,16 +168,15 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
         }
         for (int y = y0; y < y1; ++y) {
           const std::size_t row = std::size_t(y) * ns;
-          for (int x = 0; x < ns; ++x) {
-            const float cxx = locking > 0 ? secondDiff.xx[row + x] : 0.0f,
-                        cyy = locking > 0 ? secondDiff.yy[row + x] : 0.0f,
-                        cxy = locking > 0 ? secondDiff.xy[row + x] : 0.0f;
-            for (std::size_t i = 0; i < subsets.size(); ++i) {
-              const int h = subsets[i];
-              const float mean = accumulator[(std::size_t(h) * blockRows + (y - y0)) * ns + x] / viewsIn[h] -
-                                 (wx[h] * cxx + wy[h] * cyy + wxy[h] * cxy) + noiseLoss[h];
-              out[(std::size_t(l - labelBegin) * subsets.size() + i) * n + row + x] = mean;
-            }
+          for (std::size_t i = 0; i < subsets.size(); ++i) {
+            const int h = subsets[i];
+            const float* sum = accumulator.data() + (std::size_t(h) * blockRows + (y - y0)) * ns;
+            float* target = out + (std::size_t(l - labelBegin) * subsets.size() + i) * n + row;
+            if (locking > 0)
+              subsetMean(sum, viewsIn[h], secondDiff.xx.data() + row, secondDiff.yy.data() + row,
+                         secondDiff.xy.data() + row, wx[h], wy[h], wxy[h], noiseLoss[h], ns, target);
+            else
+              subsetMean(sum, viewsIn[h], noiseLoss[h], ns, target);
           }
         }
       }
@@ -173,13 +186,22 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
 
 }  // namespace
 
+namespace {
+
+// lowestSubset over pixels [0, count): a plane at a time, so that the loop over pixels vectorises.
+LFCAM_CLONES void lowestOfPlanes(const float* __restrict first, std::size_t subsets, std::size_t stride,
+                                 std::size_t count, float* __restrict out) {
+  for (std::size_t p = 0; p < count; ++p) out[p] = std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < subsets; ++i)
+    for (std::size_t p = 0; p < count; ++p) out[p] = std::min(out[p], first[i * stride + p]);
+  for (std::size_t p = 0; p < count; ++p) out[p] = std::isfinite(out[p]) ? out[p] : 0.0f;
+}
+
+}  // namespace
+
 void lowestSubset(const float* first, std::size_t subsets, std::size_t stride, std::size_t n, float* out) {
   parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) {
-      float best = std::numeric_limits<float>::infinity();
-      for (std::size_t i = 0; i < subsets; ++i) best = std::min(best, first[i * stride + p]);
-      out[p] = std::isfinite(best) ? best : 0.0f;
-    }
+    lowestOfPlanes(first + begin, subsets, stride, end - begin, out + begin);
   });
 }
 
