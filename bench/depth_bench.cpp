@@ -349,8 +349,8 @@ void printTimings(int runs) {
   }
   double total = 0;
   for (const Stage& stage : stages) total += lfcam::medianOf(stage.seconds);
-  std::printf("%-8s %-12s %9s %7s   (median of %d runs; passes 1-%d: half resolution, last: full)\n", "pass",
-              "stage", "seconds", "share", runs, int(stages.empty() ? 0 : std::stoi(stages.back().pass.substr(5))) - 1);
+  std::printf("%-8s %-12s %9s %7s   (median of %d runs; passes 1-%d: half resolution, last: full)\n", "pass", "stage",
+              "seconds", "share", runs, int(stages.empty() ? 0 : std::stoi(stages.back().pass.substr(5))) - 1);
   for (const Stage& stage : stages) {
     const double seconds = lfcam::medianOf(stage.seconds);
     std::printf("%-8s %-12s %9.3f %6.1f%%\n", stage.pass.c_str(), stage.name.c_str(), seconds, 100 * seconds / total);
