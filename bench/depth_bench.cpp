@@ -23,7 +23,7 @@
 //      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--no-first-round-cost-check]
 //      [--no-offset-slope-correction] [--offset-shrink] [--no-offset-residual-check]
 //      [--no-one-dimensional-gate] [--match-at-reference] [--no-coarse-cost] [--scene TEXT] [--stages]
-//      [--benchmark_filter=...]
+//      [--timings] [--scale] [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared. Given
 //                       more than once, each scene is scored with each file in turn (its row named
@@ -34,6 +34,10 @@
 //   --write DIR         also each scene's map, truth and centre view: DIR/<scene>.pfm, -truth.pfm, -centre.png
 //   --stages            under each row, the scores of the map each stage left (the full resolution's
 //                       last pass, DepthExperiment::observeStage); with --write, DIR/<scene>-<stage>.pfm
+//   --timings           instead of the table: each stage's time on antinous, pass by pass (median of 5),
+//                       and the memory floor's bandwidth (design.md, "Depth": the profile)
+//   --scale             instead of the table: the time and scores of layered planes of 15 x 15 views of
+//                       625 x 434 pixels (a Lytro Illum's) and of their central 5 x 5 views
 //   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what
 //                       aggregating them apart brings
 //   --no-noise-correction  without the noise variance that interpolation removes added back
@@ -62,6 +66,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/memory_floor.hpp"
 #include "depth_scenes.hpp"
 #include "edof/depth_experiment.hpp"
 #include "lfcam/edof/all_in_focus.hpp"
@@ -75,7 +80,7 @@
 
 namespace {
 
-using lfcam::LightField;
+using lfcam::LightField, lfcam::LightFieldShape;
 
 // The real data: LFCAM_DATA_DIR, as the tests take it, else the folder beside the repository.
 const std::string kFolder =
@@ -315,13 +320,76 @@ void printScores(const std::vector<Candidate>& candidates, const lfcam::edof::De
     run(rowName("hci-antinous (held out)", candidate), antinous(), candidate.options, *truth);
 }
 
+// Where estimateDepth's time goes on antinous (DepthExperiment::stageEnded): each stage's wall
+// seconds per pass (the half-resolution passes, then full resolution), the median of `runs`, and its
+// share; then the memory floor's bandwidth, measured between the runs (memory_floor.hpp).
+void printTimings(int runs) {
+  const LightField& lightField = antinous();
+  struct Stage {
+    std::string pass, name;
+    std::vector<double> seconds;
+  };
+  std::vector<Stage> stages;
+  lfcam::MemoryFloor floor(1.0);
+  for (int run = 0; run < runs; ++run) {
+    floor.measure();
+    std::size_t index = 0;
+    int pass = 0;
+    auto last = std::chrono::steady_clock::now();
+    lfcam::edof::DepthExperiment timed;
+    timed.stageEnded = [&](const std::string& name) {
+      const auto now = std::chrono::steady_clock::now();
+      if (name == "views") ++pass;
+      if (index == stages.size()) stages.push_back({"pass " + std::to_string(pass), name, {}});
+      stages[index++].seconds.push_back(std::chrono::duration<double>(now - last).count());
+      last = now;
+    };
+    if (auto depth = lfcam::edof::estimateDepth(lightField, {}, timed); !depth)
+      return (void)std::fprintf(stderr, "depth_bench: %s\n", depth.error().message.c_str());
+  }
+  double total = 0;
+  for (const Stage& stage : stages) total += lfcam::medianOf(stage.seconds);
+  std::printf("%-8s %-12s %9s %7s   (median of %d runs; passes 1-%d: half resolution, last: full)\n", "pass", "stage",
+              "seconds", "share", runs, int(stages.empty() ? 0 : std::stoi(stages.back().pass.substr(5))) - 1);
+  for (const Stage& stage : stages) {
+    const double seconds = lfcam::medianOf(stage.seconds);
+    std::printf("%-8s %-12s %9.3f %6.1f%%\n", stage.pass.c_str(), stage.name.c_str(), seconds, 100 * seconds / total);
+  }
+  std::printf("%-21s %9.3f\nmemory floor: %.1f GB/s (read + write, threaded copy, median)\n", "total", total,
+              floor.medianBandwidth() / 1e9);
+}
+
+// How the time grows (issue 51): the layered planes at the size of a Lytro Illum's views (625 x 434)
+// with 15 x 15 views and with its central 5 x 5, each timed once and scored.
+void printScale() {
+  const lfcam::LayeredPlanesLightField illum =
+      lfcam::renderLayeredPlanes(lfcam::defaultLayeredPlanesScene(15, 625, 1, 434));
+  LightFieldShape shape = illum.lightField.shape();
+  shape.nu = shape.nv = 5;
+  LightField centre(shape);
+  centre.metadata = illum.lightField.metadata;
+  for (int v = 0; v < 5; ++v)
+    for (int u = 0; u < 5; ++u) centre.setSubApertureImage(u, v, illum.lightField.subApertureImage(u + 5, v + 5));
+  std::printf("%-8s %9s %7s %8s %9s %9s\n", "views", "pixels", "labels", "seconds", "ns/label", "BP(0.07)");
+  for (const LightField* lightField : {&illum.lightField, static_cast<const LightField*>(&centre)}) {
+    const auto start = std::chrono::steady_clock::now();
+    auto depth = lfcam::estimateDepth(*lightField);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!depth) return (void)std::fprintf(stderr, "depth_bench: %s\n", depth.error().message.c_str());
+    const auto scores = lfcam::scoreHci(depth->disparity, illum.disparity);
+    const double pixels = double(lightField->ns()) * lightField->nt();
+    std::printf("%2dx%-5d %9.0f %7d %8.2f %9.1f %9.2f\n", lightField->nu(), lightField->nv(), pixels, depth->labels,
+                seconds, 1e9 * seconds / (pixels * depth->labels), scores ? scores->badPix007 : NAN);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   // The table's own flags, taken out before the benchmark library reads the rest.
   std::vector<Candidate> candidates;
   lfcam::edof::DepthExperiment experiment;
-  bool heldOut = true, stages = false;
+  bool heldOut = true, stages = false, timings = false, scale = false;
   std::string folder, only;
   int kept = 1, size = 128;
   for (int i = 1; i < argc; ++i) {
@@ -334,6 +402,10 @@ int main(int argc, char** argv) {
       only = argv[++i];
     } else if (argument == "--stages") {
       stages = true;
+    } else if (argument == "--timings") {
+      timings = true;
+    } else if (argument == "--scale") {
+      scale = true;
     } else if (argument == "--write" && i + 1 < argc) {
       folder = argv[++i];
     } else if (argument == "--gradient" && i + 1 < argc) {
@@ -378,6 +450,8 @@ int main(int argc, char** argv) {
   }
   argc = kept;
   if (candidates.empty()) candidates.push_back({"defaults", {}});
+  if (timings) return printTimings(5), 0;
+  if (scale) return printScale(), 0;
   printScores(candidates, experiment, heldOut, folder, size, only, stages);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

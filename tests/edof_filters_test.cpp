@@ -177,7 +177,7 @@ TEST(QuadraticFitFilter, KeepsACurvedSurfaceWhereABoxMeanSags) {
     }
 }
 
-TEST(GuidedFilter, MatchesTheFormulaWithPlainMeansOnRandomInputs) {
+TEST(GuidedFilter, MatchesTheFormulaWithPlainMeansOnRandomInputsInPlaceToo) {
   std::mt19937 generator(12);
   std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
   for (int trial = 0; trial < 30; ++trial) {
@@ -190,6 +190,9 @@ TEST(GuidedFilter, MatchesTheFormulaWithPlainMeansOnRandomInputs) {
     const GuidedFilter filter(guide.data(), width, height, radius, epsilon);
     GuidedFilter::Scratch scratch;
     filter.apply(in.data(), out.data(), scratch);
+    std::vector<float> inPlace(in);  // the cost volume's slices are filtered in place
+    filter.apply(inPlace.data(), inPlace.data(), scratch);
+    ASSERT_EQ(inPlace, out) << "trial " << trial;
     // He et al. 2010, algorithm 1, with plain means.
     std::vector<float> squares(n);
     for (std::size_t i = 0; i < n; ++i) product[i] = guide[i] * in[i], squares[i] = guide[i] * guide[i];

@@ -49,6 +49,23 @@ LFCAM_CLONES void accumulateSquaredDifference(const float* __restrict sample, co
   }
 }
 
+// A subset's mean squared difference over its `views`, less the interpolation-bias term (the
+// reference's second differences xx, yy, xy weighted by wx, wy, wxy), plus the noise it removes,
+// less the defocus cue (`energy` times `weight`).
+LFCAM_CLONES void subsetMean(const float* __restrict sum, int views, const float* __restrict xx,
+                             const float* __restrict yy, const float* __restrict xy, float wx, float wy, float wxy,
+                             float noiseLoss, const float* __restrict energy, float weight, int count,
+                             float* __restrict out) {
+  for (int x = 0; x < count; ++x)
+    out[x] = sum[x] / views - (wx * xx[x] + wy * yy[x] + wxy * xy[x]) + noiseLoss - weight * energy[x];
+}
+
+// The same without the bias term (its weights 0).
+LFCAM_CLONES void subsetMean(const float* __restrict sum, int views, float noiseLoss, const float* __restrict energy,
+                             float weight, int count, float* __restrict out) {
+  for (int x = 0; x < count; ++x) out[x] = sum[x] / views + noiseLoss - weight * energy[x];
+}
+
 }  // namespace
 
 SecondDifferences secondDifferences(const float* plane, int ns, int nt) {
@@ -87,8 +104,10 @@ namespace {
 // difference over each subset of views with views, out[((l - labelBegin) * subsets + i) * n + p]
 // (subsetsWithViews' order). `locking` scales the interpolation-bias term removed (0: none); the
 // noise variance that interpolation removes is added back (ViewNoise, interpolation_terms.hpp).
+// Less `weight` times the defocus cue energy[l * n + p] (none without `energy`), in the same pass.
 void correspondenceCost(const LightField& grey, const std::vector<double>& disparities, int labelBegin, int labelEnd,
-                        double locking, const edof::ViewNoise& noise, bool fromReference, float* out) {
+                        double locking, const edof::ViewNoise& noise, bool fromReference, const float* energy,
+                        float weight, float* out) {
   const int ns = grey.ns(), nt = grey.nt();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
   const std::vector<StarView> views = starViews(grey, referenceU, referenceV, fromReference);
@@ -114,7 +133,7 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
     std::vector<float> padded(std::size_t(ns) + 2 * pad), sample(ns);
     const int channels = grey.channels();
     std::vector<float> reference(std::size_t(channels) * blockRows * ns);
-    std::vector<float> accumulator(std::size_t(kHalves) * blockRows * ns);
+    std::vector<float> accumulator(std::size_t(kHalves) * blockRows * ns), noEnergy(energy ? 0 : ns, 0.0f);
     for (std::size_t block = begin; block < end; ++block) {
       const int y0 = int(block) * blockRows, y1 = std::min(nt, y0 + blockRows);
       for (int l = labelBegin; l < labelEnd; ++l) {
@@ -154,16 +173,16 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
         }
         for (int y = y0; y < y1; ++y) {
           const std::size_t row = std::size_t(y) * ns;
-          for (int x = 0; x < ns; ++x) {
-            const float cxx = locking > 0 ? secondDiff.xx[row + x] : 0.0f,
-                        cyy = locking > 0 ? secondDiff.yy[row + x] : 0.0f,
-                        cxy = locking > 0 ? secondDiff.xy[row + x] : 0.0f;
-            for (std::size_t i = 0; i < subsets.size(); ++i) {
-              const int h = subsets[i];
-              const float mean = accumulator[(std::size_t(h) * blockRows + (y - y0)) * ns + x] / viewsIn[h] -
-                                 (wx[h] * cxx + wy[h] * cyy + wxy[h] * cxy) + noiseLoss[h];
-              out[(std::size_t(l - labelBegin) * subsets.size() + i) * n + row + x] = mean;
-            }
+          for (std::size_t i = 0; i < subsets.size(); ++i) {
+            const int h = subsets[i];
+            const float* sum = accumulator.data() + (std::size_t(h) * blockRows + (y - y0)) * ns;
+            float* target = out + (std::size_t(l - labelBegin) * subsets.size() + i) * n + row;
+            const float* energyRow = energy ? energy + std::size_t(l) * n + row : noEnergy.data();
+            if (locking > 0)
+              subsetMean(sum, viewsIn[h], secondDiff.xx.data() + row, secondDiff.yy.data() + row,
+                         secondDiff.xy.data() + row, wx[h], wy[h], wxy[h], noiseLoss[h], energyRow, weight, ns, target);
+            else
+              subsetMean(sum, viewsIn[h], noiseLoss[h], energyRow, weight, ns, target);
           }
         }
       }
@@ -173,13 +192,22 @@ void correspondenceCost(const LightField& grey, const std::vector<double>& dispa
 
 }  // namespace
 
+namespace {
+
+// lowestSubset over pixels [0, count): a plane at a time, so that the loop over pixels vectorises.
+LFCAM_CLONES void lowestOfPlanes(const float* __restrict first, std::size_t subsets, std::size_t stride,
+                                 std::size_t count, float* __restrict out) {
+  for (std::size_t p = 0; p < count; ++p) out[p] = std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < subsets; ++i)
+    for (std::size_t p = 0; p < count; ++p) out[p] = std::min(out[p], first[i * stride + p]);
+  for (std::size_t p = 0; p < count; ++p) out[p] = std::isfinite(out[p]) ? out[p] : 0.0f;
+}
+
+}  // namespace
+
 void lowestSubset(const float* first, std::size_t subsets, std::size_t stride, std::size_t n, float* out) {
   parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) {
-      float best = std::numeric_limits<float>::infinity();
-      for (std::size_t i = 0; i < subsets; ++i) best = std::min(best, first[i * stride + p]);
-      out[p] = std::isfinite(best) ? best : 0.0f;
-    }
+    lowestOfPlanes(first + begin, subsets, stride, end - begin, out + begin);
   });
 }
 
@@ -255,15 +283,18 @@ void joinOneDimensional(float* lowest, const std::vector<const float*>& oneDimen
   });
 }
 
-void aggregatePlanes(const edof::GuidedFilter& filter, float* planes, std::size_t count, std::size_t n) {
-  parallelFor(0, count, 1, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> filtered(n);
+void aggregatePlanes(const edof::GuidedFilter& filter, const std::vector<const float*>& in,
+                     const std::vector<float*>& out) {
+  parallelFor(0, in.size(), 1, [&](std::size_t begin, std::size_t end) {
     edof::GuidedFilter::Scratch scratch;
-    for (std::size_t k = begin; k < end; ++k) {
-      filter.apply(planes + k * n, filtered.data(), scratch);
-      std::copy(filtered.begin(), filtered.end(), planes + k * n);
-    }
+    for (std::size_t k = begin; k < end; ++k) filter.apply(in[k], out[k], scratch);
   });
+}
+
+void aggregatePlanes(const edof::GuidedFilter& filter, float* planes, std::size_t count, std::size_t n) {
+  std::vector<float*> each(count);
+  for (std::size_t k = 0; k < count; ++k) each[k] = planes + k * n;
+  aggregatePlanes(filter, {each.begin(), each.end()}, each);
 }
 
 namespace {
@@ -326,35 +357,31 @@ edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double
                                       : edof::CostVolume();
   for (int first = 0; first < labels; first += kChunk) {
     const int last = std::min(labels, first + kChunk);
-    correspondenceCost(grey, disparities, first, last, locking, noise, fromReference, planes.data());
+    // The defocus cue taken off each subset's slice (the lowest subset less it, when taken first).
+    correspondenceCost(grey, disparities, first, last, locking, noise, fromReference,
+                       energy.empty() ? nullptr : energy.data(), float(defocusWeight), planes.data());
     if (!subsetsApart)
       for (int l = first; l < last; ++l)
         lowestSubset(planes.data() + std::size_t(l - first) * subsets * n, subsets, n, n,
                      cost.data() + std::size_t(l) * n);
-    // The slices the defocus cue is taken from and the guided filter applied to.
+    // The slices the guided filter is applied to.
     const std::size_t perLabel = subsetsApart ? subsets : 1;
     auto slice = [&](int l, std::size_t i) {
       return subsetsApart ? planes.data() + (std::size_t(l - first) * subsets + i) * n
                           : cost.data() + std::size_t(l) * n;
     };
-    if (defocusWeight > 0)
-      for (int l = first; l < last; ++l) {
-        const float weight = float(defocusWeight);
-        const float* labelEnergy = energy.data() + std::size_t(l) * n;
-        parallelFor(0, perLabel, 1, [&](std::size_t begin, std::size_t end) {
-          for (std::size_t i = begin; i < end; ++i) {
-            float* target = slice(l, i);
-            for (std::size_t p = 0; p < n; ++p) target[p] -= weight * labelEnergy[p];
-          }
-        });
+    // Aggregated in place, the one-dimensional subsets' slices straight into their volumes.
+    std::vector<const float*> in;
+    std::vector<float*> out;
+    for (int l = first; l < last; ++l)
+      for (std::size_t i = 0; i < perLabel; ++i) {
+        in.push_back(slice(l, i));
+        out.push_back(i < halves || !subsetsApart ? slice(l, i)
+                                                  : oneDimensional[i - halves].data() + std::size_t(l) * n);
       }
-    aggregatePlanes(filter, slice(first, 0), std::size_t(last - first) * perLabel, n);
+    aggregatePlanes(filter, in, out);
     if (subsetsApart)
-      for (int l = first; l < last; ++l) {
-        lowestSubset(slice(l, 0), halves, n, n, cost.data() + std::size_t(l) * n);
-        for (std::size_t j = 0; j < oneDimensional.size(); ++j)
-          std::copy(slice(l, halves + j), slice(l, halves + j) + n, oneDimensional[j].data() + std::size_t(l) * n);
-      }
+      for (int l = first; l < last; ++l) lowestSubset(slice(l, 0), halves, n, n, cost.data() + std::size_t(l) * n);
   }
   if (gate)
     joinOneDimensional(cost.data(), {oneDimensional[0].data(), oneDimensional[1].data()}, labels, n, noise.variance);

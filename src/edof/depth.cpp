@@ -211,12 +211,21 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
                      experiment.defocusCeiling, experiment.oneDimensionalGate, experiment.matchAtReference);
   if (coarseIn && !coarseIn->volume.empty() && noise.variance > 0 && experiment.noisyCoarseCost)
     addCoarseCost(*coarseIn, grey, noise, cost);
+  if (experiment.stageEnded) experiment.stageEnded("cost");
 
-  // Pixel-major for the optimisation.
+  // Pixel-major for the optimisation, kBlock pixels at a time: a block's run in every label's plane
+  // read in order, its part of the volume (kBlock x labels floats) staying in cache while written
+  // across (a pixel at a time, the label planes' reads strided over the whole volume, took twice as long).
   edof::CostVolume volume(n * labels);
-  parallelFor(0, n, 4096, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p)
-      for (int l = 0; l < labels; ++l) volume[p * labels + l] = cost[std::size_t(l) * n + p];
+  constexpr std::size_t kBlock = 256;
+  parallelFor(0, (n + kBlock - 1) / kBlock, 4, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t block = begin; block < end; ++block) {
+      const std::size_t first = block * kBlock, last = std::min(n, first + kBlock);
+      for (int l = 0; l < labels; ++l) {
+        const float* plane = cost.data() + std::size_t(l) * n;
+        for (std::size_t p = first; p < last; ++p) volume[p * labels + l] = plane[p];
+      }
+    }
   });
   if (experiment.observeStage) {
     std::vector<float> lowest(n);
@@ -245,6 +254,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   };
   writeDisparities(label, result.disparity);
   const auto observe = [&](const std::string& stage) {
+    if (experiment.stageEnded) experiment.stageEnded(stage);
     if (experiment.observeStage) experiment.observeStage(stage, result.disparity);
   };
   observe("optimised");
@@ -333,6 +343,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
     const double depthOfMinimum = meanCost[p] - volume[p * labels + chosen] / gain[p];
     result.confidence.plane(0)[p] = float(std::clamp(1.0 - std::exp(-std::max(depthOfMinimum, 0.0) / scale), 0.0, 1.0));
   }
+  if (experiment.stageEnded) experiment.stageEnded("confidence");
   return result;
 }
 
@@ -471,6 +482,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
       if (pass > 0)
         removeViewOffsets(small, first, std::max(options.offsetRadius / 2, 1), options.offsetEpsilon / 4,
                           experiment.offsetSlopeCorrection, experiment.offsetShrink, experiment.matchAtReference);
+      if (experiment.stageEnded) experiment.stageEnded("views");
       CoarseCost* keep = pass + 1 == options.offsetPasses ? &coarse : nullptr;
       first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual, nullptr, keep)
                   .disparity;
@@ -484,6 +496,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
                       experiment.offsetSlopeCorrection, experiment.offsetShrink, experiment.matchAtReference,
                       checked ? &kept : nullptr);
   }
+  if (experiment.stageEnded) experiment.stageEnded("views");
   DepthMap map = depthStages(colours, grey, guide, disparities, options, experiment, {}, &residual, &coarse);
   map.prefilterSigma = std::max(prefilter, 0.0);
   map.viewResidual = prefilter > 0 ? 0.0 : residual.median;  // of the views as given only
@@ -491,6 +504,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
   // more than clean views do (noise, or texture finer than the pixels), smoothed and matched again.
   if (prefilter < 0 && residual.median > kNoisyResidual) {
     blurViews(grey, kNoisyPrefilterSigma);
+    if (experiment.stageEnded) experiment.stageEnded("views");
     const double asGiven = map.viewResidual;
     const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
     const bool atReference = experiment.matchAtReference;

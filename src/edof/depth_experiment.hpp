@@ -73,6 +73,10 @@ struct DepthExperiment {
   // "refined N", "filled N", "reclaimed N", "median N". Where an error enters:
   // `depth_bench --stages`.
   std::function<void(const std::string& stage, const Image& disparity)> observeStage;
+  // Told as each stage ends, in the order they run, so that a caller can time them (`depth_bench
+  // --timings`): "views" (a pass's views made ready: luminance, offsets, smoothing), "cost" (stages 2-3), "optimised",
+  // per round "refined N", "filled N", "reclaimed N", "median N", then "confidence"; every pass.
+  std::function<void(const std::string& stage)> stageEnded;
 };
 
 Result<DepthMap> estimateDepth(const LightField& lightField, const DepthOptions& options,

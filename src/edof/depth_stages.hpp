@@ -73,7 +73,9 @@ bool gatesOneDimensional(const std::vector<int>& subsets, bool wanted);
 void joinOneDimensional(float* lowest, const std::vector<const float*>& oneDimensional, int slices, std::size_t n,
                         double noiseVariance);
 
-// Aggregation: each of `count` planes of n pixels replaced by its guided filter, in parallel.
+// Aggregation: each plane in[k] filtered into out[k] (which may be in[k]) by the guided filter, in parallel.
+void aggregatePlanes(const GuidedFilter& filter, const std::vector<const float*>& in, const std::vector<float*>& out);
+// Each of `count` planes of n pixels replaced by its guided filter.
 void aggregatePlanes(const GuidedFilter& filter, float* planes, std::size_t count, std::size_t n);
 
 // Steps 2-3: per label, the correspondence cost of each subset of views less the defocus cue,

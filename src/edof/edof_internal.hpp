@@ -64,6 +64,7 @@ class GuidedFilter {
   struct Scratch {
     std::vector<float> a, b, rows, product, meanIn, meanProduct;
   };
+  // `out` may be `in`: every read of it comes before the first write.
   void apply(const float* in, float* out) const;
   void apply(const float* in, float* out, Scratch& scratch) const;
 

@@ -49,48 +49,52 @@ CostVolume semiGlobalMatching(const CostVolume& cost, int width, int height, int
     return std::max(p1, p2 / (1.0f + step / edgeScale));
   };
 
-  const int directions[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
-  for (const auto& direction : directions) {
-    const int dx = direction[0], dy = direction[1];
-    if (dy == 0) {
-      // Along rows: rows are independent.
-      parallelFor(0, std::size_t(height), 8, [&](std::size_t begin, std::size_t end) {
-        std::vector<float> a(L), b(L);
-        for (std::size_t y = begin; y < end; ++y) {
-          float *prev = a.data(), *cur = b.data();
-          for (int i = 0; i < width; ++i) {
-            const int x = dx > 0 ? i : width - 1 - i;
-            const std::size_t p = y * width + x;
-            if (i == 0) {
-              startPath(&cost[p * L], cur, &sum[p * L], labels);
-            } else {
-              const std::size_t q = y * width + (x - dx);
-              pathStep(&cost[p * L], prev, cur, &sum[p * L], labels, p1, jumpPenalty(p, q));
-            }
-            std::swap(prev, cur);
+  // Along rows: rows are independent.
+  for (const int dx : {1, -1})
+    parallelFor(0, std::size_t(height), 8, [&](std::size_t begin, std::size_t end) {
+      std::vector<float> a(L), b(L);
+      for (std::size_t y = begin; y < end; ++y) {
+        float *prev = a.data(), *cur = b.data();
+        for (int i = 0; i < width; ++i) {
+          const int x = dx > 0 ? i : width - 1 - i;
+          const std::size_t p = y * width + x;
+          if (i == 0) {
+            startPath(&cost[p * L], cur, &sum[p * L], labels);
+          } else {
+            const std::size_t q = y * width + (x - dx);
+            pathStep(&cost[p * L], prev, cur, &sum[p * L], labels, p1, jumpPenalty(p, q));
           }
+          std::swap(prev, cur);
         }
-      });
-      continue;
-    }
-    // Across rows: one row after another, the pixels of a row in parallel.
-    std::vector<float> previousRow(std::size_t(width) * L), currentRow(std::size_t(width) * L);
+      }
+    });
+  // Across rows, down then up: one row after another, the pixels of a row in parallel, the three
+  // paths that arrive from the row before (straight, from the left, from the right) in one sweep,
+  // so that the volume is read once per sweep rather than once per path (the optimisation is
+  // bound by memory).
+  constexpr int kAcross[3] = {0, 1, -1};
+  const std::size_t rowFloats = std::size_t(width) * L;
+  for (const int dy : {1, -1}) {
+    std::vector<float> previousRows(3 * rowFloats), currentRows(3 * rowFloats);
     for (int i = 0; i < height; ++i) {
       const int y = dy > 0 ? i : height - 1 - i;
       parallelFor(0, std::size_t(width), 64, [&](std::size_t begin, std::size_t end) {
         for (std::size_t x = begin; x < end; ++x) {
           const std::size_t p = std::size_t(y) * width + x;
-          const long px = long(x) - dx;
-          float* cur = &currentRow[x * L];
-          if (i == 0 || px < 0 || px >= width) {
-            startPath(&cost[p * L], cur, &sum[p * L], labels);
-          } else {
-            const std::size_t q = std::size_t(y - dy) * width + std::size_t(px);
-            pathStep(&cost[p * L], &previousRow[std::size_t(px) * L], cur, &sum[p * L], labels, p1, jumpPenalty(p, q));
+          for (int path = 0; path < 3; ++path) {
+            const long px = long(x) - kAcross[path];
+            float* cur = &currentRows[path * rowFloats + x * L];
+            if (i == 0 || px < 0 || px >= width) {
+              startPath(&cost[p * L], cur, &sum[p * L], labels);
+            } else {
+              const std::size_t q = std::size_t(y - dy) * width + std::size_t(px);
+              pathStep(&cost[p * L], &previousRows[path * rowFloats + std::size_t(px) * L], cur, &sum[p * L], labels,
+                       p1, jumpPenalty(p, q));
+            }
           }
         }
       });
-      std::swap(previousRow, currentRow);
+      std::swap(previousRows, currentRows);
     }
   }
   return sum;

@@ -19,10 +19,12 @@ constexpr double kOffsetSlopeLimit = 0.5;
 // reference's gradient along the view's baseline, times -1: an error e moves the view's samples by
 // -e (u, v)) times the error, fitted to all views at once by least squares over a box of `radius`,
 // with an offset and a gain per view free in it (a sheen adds to the texture and scales it), so
-// that only texture decides. Clamped to +-kOffsetSlopeLimit.
-template <typename Warp, typename Slope, typename IsReference>
-std::vector<float> mapError(const LightField& grey, const std::vector<float>& reference, int radius, const Warp& warp,
-                            const Slope& slope, const IsReference& isReference) {
+// that only texture decides. Clamped to +-kOffsetSlopeLimit. `differences`: each view's, warped,
+// less the reference (none for the reference).
+template <typename Slope, typename IsReference>
+std::vector<float> mapError(const LightField& grey, const std::vector<float>& reference, int radius,
+                            const std::vector<std::vector<float>>& differences, const Slope& slope,
+                            const IsReference& isReference) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   std::vector<float> meanReference(n), meanSquare(n), square(n);
@@ -35,7 +37,7 @@ std::vector<float> mapError(const LightField& grey, const std::vector<float>& re
   std::vector<double> groupCovariance[kSumGroups], groupVariance[kSumGroups];
   const std::size_t views = grey.shape().views();
   parallelFor(0, kSumGroups, 1, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> difference(n), g(n), product(n), mean[6];
+    std::vector<float> g(n), product(n), mean[6];
     for (auto& m : mean) m.resize(n);
     const auto boxOfProduct = [&](const std::vector<float>& a, const std::vector<float>& b, std::vector<float>& out) {
       for (std::size_t i = 0; i < n; ++i) product[i] = a[i] * b[i];
@@ -48,8 +50,7 @@ std::vector<float> mapError(const LightField& grey, const std::vector<float>& re
       for (std::size_t view = group; view < views; view += kSumGroups) {
         if (isReference(view)) continue;
         const int u = int(view % grey.nu()), v = int(view / grey.nu());
-        warp(u, v, difference.data());
-        for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
+        const std::vector<float>& difference = differences[view];
         slope(u, v, g.data());
         boxFilter(difference.data(), mean[0].data(), ns, nt, radius);
         boxFilter(g.data(), mean[1].data(), ns, nt, radius);
@@ -122,20 +123,31 @@ void removeViewOffsets(LightField& grey, const Image& disparity, int radius, dou
     for (std::size_t i = 0; i < n; ++i) out[i] = -(uc * dx[i] + vc * dy[i]);
   };
   if (slopes) centralDifferences(reference.data(), ns, nt, 1.0f, dx.data(), dy.data());
-  if (slopeCorrected) error = mapError(grey, reference, radius, warp, slope, isReference);
+  // Each view warped once, for both the map's error and the offsets (a view's worth of memory each).
+  std::vector<std::vector<float>> differences(grey.shape().views());
+  parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t view = begin; view < end; ++view) {
+      if (isReference(view)) continue;
+      std::vector<float>& difference = differences[view];
+      difference.resize(n);
+      warp(int(view % grey.nu()), int(view / grey.nu()), difference.data());
+      for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
+    }
+  });
+  if (slopeCorrected) error = mapError(grey, reference, radius, differences, slope, isReference);
   const edof::GuidedFilter filter(disparity.plane(0), ns, nt, radius, epsilon);
   parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> difference(n), offset(n), g(dx.size());
+    std::vector<float> offset(n), g(dx.size());
     edof::GuidedFilter::Scratch scratch;
     for (std::size_t view = begin; view < end; ++view) {
       if (isReference(view)) continue;
       const int u = int(view % grey.nu()), v = int(view / grey.nu());
-      warp(u, v, difference.data());
-      for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
+      std::vector<float>& difference = differences[view];
       if (slopes) slope(u, v, g.data());
       if (slopeCorrected)
         for (std::size_t i = 0; i < n; ++i) difference[i] -= error[i] * g[i];
       filter.apply(difference.data(), offset.data(), scratch);
+      difference = std::vector<float>();  // done with
       if (shrunk)
         for (std::size_t i = 0; i < n; ++i) {
           const double squared = double(offset[i]) * offset[i], explained = kOffsetMapErrorPx * g[i];

@@ -52,9 +52,9 @@
 //     narrower than the band, after it everywhere.
 //  7. Confidence: 1 - exp(-(mean cost - chosen cost) / m), m that margin's mean over the image.
 //
-// Cost: about labels x 34 bilinear passes over ns x nt and 8 optimisation passes of labels x ns x
-// nt, and the half-resolution passes about half as much again; memory 2 x labels x ns x nt floats
-// (bench/depth_bench.cpp: time, and the scores table).
+// Cost: about labels x 34 bilinear passes over ns x nt and 8 optimisation paths (4 sweeps) over
+// labels x ns x nt, and the half-resolution passes about half as much again; memory 2 x labels x ns
+// x nt floats (bench/depth_bench.cpp: time, each stage's with --timings, and the scores table).
 #pragma once
 
 #include <optional>

@@ -1,7 +1,8 @@
 // HugePageAllocator: the allocator of the large sample buffers (LightField, depth's cost volumes
-// edof::CostVolume). Buffers of 4 MiB or more are aligned to 2 MiB and first touched on every
-// thread: zeroed and faulted in from one thread, depth's cost volumes took a third of its CPU
-// (design.md, speed). Smaller buffers come from operator new as usual.
+// edof::CostVolume). Buffers of 4 MiB or more are mappings of their own, aligned to 2 MiB and
+// faulted in up front on every thread, a call per part rather than a fault per page (on a virtual
+// machine each fault is a trip to the host: `lfcam depth` on antinous 287 k faults and 2.7 s of
+// system time before, 57 k and 0.9 s after). Smaller buffers come from operator new as usual.
 // Transparent huge pages are opt-in: with LFCAM_HUGE_PAGES=1 in the environment, the buffers that
 // ask for them (Pages::Huge, the light fields) are marked for them (madvise), since a refocus reads
 // hundreds of short row runs scattered over the whole light field, and with 4 KiB pages nearly
@@ -11,7 +12,7 @@
 // same user time, system time 1.42 -> 0.62 s, wall 0.93x with its light fields on ordinary pages),
 // and a refocus of antinous ran as fast on either (`refocus_bench`, BM_RefocusPages, ratio 0.998;
 // design.md, speed). Where the kernel refuses huge pages, memory is the same, only aligned.
-// Every buffer comes zeroed (large ones by that first touch), and construct() without a value
+// Every buffer comes zeroed (large ones as fresh mappings), and construct() without a value
 // leaves it so: std::vector<T, HugePageAllocator<T>>(n) is then zero without a second pass over
 // memory that was just written. That holds for fresh allocations only: a vector that shrinks and
 // then grows again within its capacity would get back stale values, so the owners (LightField,
