@@ -12,6 +12,7 @@
 #include "calibrate/grid_json.hpp"
 #include "core/atomic_file.hpp"
 #include "core/json_reader.hpp"
+#include "core/text_file.hpp"
 
 namespace lfcam {
 
@@ -165,14 +166,7 @@ Result<LensletGrid> readGrid(const std::filesystem::path& path) {
 }
 
 Status writeGrid(const std::filesystem::path& path, const LensletGrid& grid) {
-  const std::string text = gridToJson(grid).dump(2) + "\n";
-  return writeFileAtomically(path, [&](const std::filesystem::path& temporary) -> Status {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) return makeError(ErrorCode::Io, path.string() + ": cannot write");
-    return {};
-  });
+  return writeTextFileAtomically(path, gridToJson(grid).dump(2) + "\n");
 }
 
 }  // namespace lfcam

@@ -60,11 +60,7 @@ void fillUnconfident(Image& depth, const Image& confidence, double minConfidence
 
 Result<FocusedDepth> estimateFocusedDepth(const Image& image, const FocusedCalibration& calibration,
                                           const FocusedDepthRequest& request) {
-  if (image.width() != calibration.imageWidth || image.height() != calibration.imageHeight)
-    return makeError(ErrorCode::Usage, "the image is " + std::to_string(image.width()) + "x" +
-                                           std::to_string(image.height()) + ", its calibration describes " +
-                                           std::to_string(calibration.imageWidth) + "x" +
-                                           std::to_string(calibration.imageHeight));
+  LFCAM_TRY(focused_detail::checkImageSize(image, calibration));
   const double maxVirtualDepth = request.maxVirtualDepth > 0 ? request.maxVirtualDepth : calibration.diameterPx();
   if (!(request.minVirtualDepth >= 1 && maxVirtualDepth > request.minVirtualDepth && maxVirtualDepth <= 1000))
     return makeError(ErrorCode::Usage, "virtual depth range: expected 1 <= min < max <= 1000");

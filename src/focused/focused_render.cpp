@@ -15,11 +15,7 @@ namespace lfcam {
 
 Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibration,
                             const FocusedRenderRequest& request) {
-  if (image.width() != calibration.imageWidth || image.height() != calibration.imageHeight)
-    return makeError(ErrorCode::Usage, "the image is " + std::to_string(image.width()) + "x" +
-                                           std::to_string(image.height()) + ", its calibration describes " +
-                                           std::to_string(calibration.imageWidth) + "x" +
-                                           std::to_string(calibration.imageHeight));
+  LFCAM_TRY(focused_detail::checkImageSize(image, calibration));
   if (!(request.pixelsPerLens >= 1 && request.pixelsPerLens <= calibration.diameterPx()))
     return makeError(ErrorCode::Usage, "pixels per lens must be in [1, " +
                                            io::shortestNumber(calibration.diameterPx()) +

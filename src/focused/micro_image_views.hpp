@@ -8,10 +8,22 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include "lfcam/core/image.hpp"
 
 #include "lfcam/focused/focused_calibration.hpp"
 
 namespace lfcam::focused_detail {
+
+// Usage error unless `image` is the size `calibration` describes.
+inline Status checkImageSize(const Image& image, const FocusedCalibration& calibration) {
+  if (image.width() == calibration.imageWidth && image.height() == calibration.imageHeight) return {};
+  return makeError(ErrorCode::Usage, "the image is " + std::to_string(image.width()) + "x" +
+                                         std::to_string(image.height()) + ", its calibration describes " +
+                                         std::to_string(calibration.imageWidth) + "x" +
+                                         std::to_string(calibration.imageHeight));
+}
 
 struct MicroImageSample {
   int i = 0, j = 0;     // the micro-image
