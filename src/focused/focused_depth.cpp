@@ -113,7 +113,7 @@ Result<FocusedDepth> estimateFocusedDepth(const Image& image, const FocusedCalib
   });
 
   FocusedDepth result{Image(w, h, 1), Image(w, h, 1), {}};
-  // Texture: the variance of the centre-most samples around each pixel, the scale a cost is read on.
+  // The least cost per pixel; confidence 1 - least / greatest (how much worse the other labels are).
   parallelFor(0, std::size_t(h), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t py = begin; py < end; ++py)
       for (int px = 0; px < w; ++px) {

@@ -7,7 +7,7 @@
 // each candidate v (labels evenly spaced in that disparity D / v) the cost of a pixel is how much
 // the micro-images that see it disagree (the weighted variance of their samples, luminance), over
 // a small window; the map takes the least cost, refined to a fraction of a label by a parabola.
-// Confidence: how much worse the other labels are, against the pixel's own texture; pixels below
+// Confidence: 1 - the least cost over the greatest (how much worse the other labels are); pixels below
 // `minConfidence` are filled from confident neighbours. With fewer than two micro-images seeing a
 // point there is no evidence: labels whose disc reaches fewer are not candidates.
 #pragma once
