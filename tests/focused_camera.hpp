@@ -99,7 +99,8 @@ inline constexpr double kFocusedPixelsPerLens = 5;
 struct FocusedCapture {
   CameraModel camera;
   FocusedCalibration calibration;
-  Image image;  // radiance: the capture over the white image
+  Image image;       // radiance: the capture over the white image
+  Image raw, white;  // the sensor's irradiance, vignetted, and the white image's
   FocusedTruth truth;
 };
 
@@ -113,6 +114,10 @@ inline FocusedCapture simulateFocused(const test::FocusedCameraSpec& spec, const
   float brightest = 0;
   for (const float x : white.irradiance.pixels()) brightest = std::max(brightest, x);
   c.image = Image(spec.width, spec.height, 1);
+  c.raw = Image(spec.width, spec.height, 1);
+  c.white = Image(spec.width, spec.height, 1);
+  std::copy(capture.irradiance.pixels().begin(), capture.irradiance.pixels().end(), c.raw.pixels().begin());
+  std::copy(white.irradiance.pixels().begin(), white.irradiance.pixels().end(), c.white.pixels().begin());
   for (std::size_t k = 0; k < c.image.pixels().size(); ++k) {
     const float w = white.irradiance.pixels()[k];
     c.image.pixels()[k] = w > 0.05f * brightest ? capture.irradiance.pixels()[k] / w : 0.0f;
