@@ -39,7 +39,7 @@ struct Windows {
   }
 };
 
-// Per window (row-major, ys.count x xs.count): the sum of the image's mean channel times the window
+// Per window (row-major, ys.count x xs.count): the sum of the image's channels times the window
 // times exp(-2 pi i k . (x - reference)), x a pixel's centre.
 std::vector<std::complex<double>> windowSums(const Image& image, const Vec2& k, const Vec2& reference,
                                              const Windows& xs, const Windows& ys) {
@@ -53,11 +53,10 @@ std::vector<std::complex<double>> windowSums(const Image& image, const Vec2& k, 
     for (std::size_t wy = begin; wy < end; ++wy)
       for (int dy = 0; dy < ys.length; ++dy) {
         const int y = int(wy) * ys.stride + dy;
-        const float* pixels = image.pixels().data() + std::size_t(y) * w * channels;
-        for (int x = 0; x < w; ++x) {
-          float value = 0;
-          for (int c = 0; c < channels; ++c) value += pixels[std::size_t(x) * channels + c];
-          row[std::size_t(x)] = value;
+        std::fill(row.begin(), row.end(), 0.0);
+        for (int c = 0; c < channels; ++c) {
+          const float* pixels = image.row(y, c);
+          for (int x = 0; x < w; ++x) row[std::size_t(x)] += pixels[x];
         }
         const auto rowFactor = ys.weight(dy) * std::polar(1.0, -2 * std::numbers::pi * k[1] * (y + 0.5 - reference[1]));
         for (int wx = 0; wx < xs.count; ++wx) {

@@ -41,27 +41,43 @@ Result<FocusedCapture> readFocusedCapture(const std::filesystem::path& path, con
     capture.calibrationPath = options.calibration;
   else if (const auto beside = focusedCalibrationBeside(path))
     capture.calibrationPath = *beside;
-  else
+  else if (!options.calibrateIfNone)
     return makeError(ErrorCode::Usage,
                      path.string() +
                          ": no focused plenoptic calibration beside it (same name, .xml); name one with "
-                         "--focused-calibration");
+                         "--focused-calibration, or calibrate it from itself with --focused");
   LFCAM_ASSIGN_OR_RETURN(capture.image, readDemosaiced(path));
-  LFCAM_ASSIGN_OR_RETURN(capture.calibration, readFocusedCalibration(capture.calibrationPath, capture.image.width(),
-                                                                     capture.image.height()));
+  if (!capture.calibrationPath.empty()) {
+    LFCAM_ASSIGN_OR_RETURN(capture.calibration, readFocusedCalibration(capture.calibrationPath, capture.image.width(),
+                                                                       capture.image.height()));
+  }
+  std::optional<Image> white;
   if (!options.white.empty()) {
-    LFCAM_ASSIGN_OR_RETURN(Image white, readDemosaiced(options.white));
-    if (white.width() != capture.image.width() || white.height() != capture.image.height())
+    LFCAM_ASSIGN_OR_RETURN(white, readDemosaiced(options.white));
+    if (white->width() != capture.image.width() || white->height() != capture.image.height())
       return makeError(ErrorCode::Usage, options.white.string() + ": the white image is " +
-                                             std::to_string(white.width()) + "x" + std::to_string(white.height()) +
+                                             std::to_string(white->width()) + "x" + std::to_string(white->height()) +
                                              ", the capture " + std::to_string(capture.image.width()) + "x" +
                                              std::to_string(capture.image.height()));
+  }
+  // Without a white image the capture's own vignetting shows its lattice: calibrate before
+  // devignetting it.
+  if (capture.calibrationPath.empty() && !white) {
+    LFCAM_ASSIGN_OR_RETURN(capture.selfCalibration, calibrateFocusedCapture(capture.image, nullptr, {}, path.string()));
+    capture.calibration = capture.selfCalibration->calibration;
+  }
+  if (white) {
     for (int c = 0; c < capture.image.channels(); ++c) {
-      const float* w = white.plane(std::min(c, white.channels() - 1));
-      const float brightest = *std::max_element(w, w + white.planeSize());
+      const float* w = white->plane(std::min(c, white->channels() - 1));
+      const float brightest = *std::max_element(w, w + white->planeSize());
       float* x = capture.image.plane(c);
       for (std::size_t k = 0; k < capture.image.planeSize(); ++k)
         x[k] = w[k] > 0.05f * brightest ? x[k] * brightest / w[k] : 0.0f;
+    }
+    if (capture.calibrationPath.empty()) {
+      LFCAM_ASSIGN_OR_RETURN(capture.selfCalibration,
+                             calibrateFocusedCapture(capture.image, &*white, {}, path.string()));
+      capture.calibration = capture.selfCalibration->calibration;
     }
   }
   return capture;

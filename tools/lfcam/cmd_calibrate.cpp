@@ -1,6 +1,9 @@
 // lfcam calibrate WHITE [--metadata FILE] [--pinhole | --scene] [--bayer PATTERN] [--black-level N]
 // -o grid.json: finds the microlens lattice and writes it as grid.json (docs/formats.md). WHITE is
 // read as a raw (raw_io.hpp): values in DN, the black level as the file says unless given.
+// lfcam calibrate --focused CAPTURE [--white W] -o calibration.xml|.json: a focused plenoptic
+// capture's micro-image grid, orientation and lens types (focused_self_calibration.hpp), written
+// as Raytrix's RayCalibData (or its JSON twin) for every focused command to find beside it.
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -8,15 +11,50 @@
 
 #include "commands.hpp"
 #include "lfcam/calibrate/calibrate.hpp"
+#include "lfcam/focused/focused_capture.hpp"
 #include "lfcam/raw_io/raw_io.hpp"
 #include "raw_input.hpp"
 
 namespace lfcam::cli {
 
+namespace {
+
+Status calibrateFocused(const std::string& capturePath, const std::string& white, const std::string& output) {
+  const std::filesystem::path out = output;
+  if (out.extension() != ".xml" && out.extension() != ".json")
+    return makeError(ErrorCode::Usage, output + ": a focused calibration is written as .xml or .json");
+  LFCAM_ASSIGN_OR_RETURN(
+      const FocusedCapture capture,
+      readFocusedCapture(capturePath,
+                         {.calibration = std::filesystem::path(), .white = white, .calibrateIfNone = true}));
+  if (!capture.selfCalibration)
+    return makeError(ErrorCode::Usage, capturePath + ": has a calibration beside it (" +
+                                           capture.calibrationPath.string() + "); move it away to calibrate anew");
+  LFCAM_TRY(writeFocusedCalibration(out, capture.calibration));
+  const FocusedSelfCalibration& found = *capture.selfCalibration;
+  const FocusedCalibration& c = capture.calibration;
+  std::printf("%s micro-images, %d x %d, diameter %.4f px, rotation %.4f deg, %s; %zu lens type%s\n",
+              packingName(c.grid.packing), c.grid.columns, c.grid.rows, c.diameterPx(),
+              c.grid.rotationRad * 180.0 / M_PI,
+              c.orientation == MicroImageOrientation::Upright ? "upright (Galilean)" : "inverted (Keplerian)",
+              c.lensTypes.size(), c.lensTypes.size() == 1 ? "" : "s");
+  if (found.confidenceUpright > 0 || found.confidenceInverted > 0)
+    std::printf("way up: mean depth confidence %.3f upright, %.3f inverted\n", found.confidenceUpright,
+                found.confidenceInverted);
+  for (const LensType& type : c.lensTypes)
+    std::printf("lens type offset (%g, %g): sharp at virtual depths %.2f to %.2f\n", type.offset[0], type.offset[1],
+                type.minVirtualDepth, type.maxVirtualDepth);
+  std::printf("lens types' sharpness spread %.3f (one type below 0.15); per-lens fit %d centres, RMS %.3f px\n",
+              found.lensTypeSpread, found.gridFit.lensletsUsed, found.gridFit.rmsResidualPx);
+  return {};
+}
+
+}  // namespace
+
 void addCalibrateCommand(CLI::App& app, Job& job) {
   struct Options {
-    std::string white, metadata, bayer, output;
-    bool pinhole = false, scene = false;
+    std::string white, metadata, bayer, output, focusedWhite;
+    bool pinhole = false, scene = false, focused = false;
     std::optional<double> black;
   };
   auto options = std::make_shared<Options>();
@@ -29,11 +67,19 @@ void addCalibrateCommand(CLI::App& app, Job& job) {
                                     "the image is a pinhole-source target: a sharp spot under each microlens");
   auto* scene = command->add_flag("--scene", options->scene, "no white image: estimate the grid from a raw scene");
   pinhole->excludes(scene);
+  auto* focused = command->add_flag("--focused", options->focused,
+                                    "the image is a focused plenoptic capture (Raytrix): write its calibration "
+                                    "(.xml RayCalibData or .json), found from --white or from the capture itself");
+  focused->excludes(pinhole)->excludes(scene);
+  command->add_option("--white", options->focusedWhite, "with --focused: a white image of the same camera")
+      ->needs(focused);
   command->add_option("--bayer", options->bayer, "the image is a Bayer mosaic: RGGB, BGGR, GRBG or GBRG");
   addBlackLevelOption(*command, options->black);
-  command->add_option("-o,--output", options->output, "grid file to write (.json)")->required();
+  command->add_option("-o,--output", options->output, "grid file to write (.json; with --focused .xml or .json)")
+      ->required();
   command->callback([options, &job] {
     job = [options]() -> Status {
+      if (options->focused) return calibrateFocused(options->white, options->focusedWhite, options->output);
       CalibrationOptions calibration;
       if (!options->bayer.empty()) {
         const auto filter = parseColorFilterName(options->bayer);

@@ -51,7 +51,8 @@ void printText(const std::string& path, const LightFieldInfo& info) {
   if (!meta.source.empty()) std::printf("  source: %s\n", meta.source.c_str());
 }
 
-nlohmann::json focusedInfoJson(const std::string& path, const FocusedCapture& capture) {
+// white: the white image given, if any.
+nlohmann::json focusedInfoJson(const std::string& path, const std::string& white, const FocusedCapture& capture) {
   const FocusedCalibration& c = capture.calibration;
   nlohmann::json types = nlohmann::json::array();
   for (const LensType& type : c.lensTypes)
@@ -68,7 +69,9 @@ nlohmann::json focusedInfoJson(const std::string& path, const FocusedCapture& ca
       {"micro_image_orientation", c.orientation == MicroImageOrientation::Upright ? "upright" : "inverted"},
       {"border_px", c.borderPx},
       {"lens_types", types},
-      {"calibration", capture.calibrationPath.string()}};
+      {"calibration", !capture.selfCalibration ? capture.calibrationPath.string()
+                      : white.empty()          ? "self-calibrated from the capture"
+                                               : "self-calibrated from the white image " + white}};
   if (c.totalCoveringPlane) json["total_covering_plane"] = *c.totalCoveringPlane;
   return json;
 }
@@ -110,7 +113,7 @@ void addInfoCommand(CLI::App& app, Job& job) {
     job = [options]() -> Status {
       if (isFocusedInput(options->input, options->focused)) {
         LFCAM_ASSIGN_OR_RETURN(auto capture, loadFocusedInput(options->input, options->focused));
-        const nlohmann::json json = focusedInfoJson(options->input.path, capture);
+        const nlohmann::json json = focusedInfoJson(options->input.path, options->input.white, capture);
         if (options->json)
           std::printf("%s\n", json.dump(2).c_str());
         else

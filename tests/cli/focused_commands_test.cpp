@@ -1,0 +1,149 @@
+// A focused plenoptic capture through the command line as a user meets it: simulated with its
+// RayCalibData beside it, recognised with no flag, and, moved away from its calibration,
+// calibrated by `lfcam calibrate --focused` or on the fly with `--focused`.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+#include "lfcam/focused/focused_calibration.hpp"
+
+namespace lfcam {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runLfcam;
+
+// The farthest any micro-image centre of `truth` (a diameter or more inside the image) lies from
+// the nearest one of `found`, pixels.
+double worstCentreError(const FocusedCalibration& found, const FocusedCalibration& truth) {
+  double worst = 0;
+  const double margin = truth.diameterPx();
+  for (int j = 0; j < truth.grid.rows; ++j)
+    for (int i = 0; i < truth.grid.columns; ++i) {
+      const auto t = truth.grid.centre(i, j);
+      if (t[0] < margin || t[1] < margin || t[0] > truth.imageWidth - margin || t[1] > truth.imageHeight - margin)
+        continue;
+      double nearest = 1e9;
+      for (int fj = 0; fj < found.grid.rows; ++fj)
+        for (int fi = 0; fi < found.grid.columns; ++fi) {
+          const auto f = found.grid.centre(fi, fj);
+          nearest = std::min(nearest, std::hypot(f[0] - t[0], f[1] - t[1]));
+        }
+      worst = std::max(worst, nearest);
+    }
+  return worst;
+}
+
+// The Galilean multi-focus camera of tests/focused_camera.hpp at 480 x 360: 5.5 um pixels, 50 mm
+// focused at 2 m, microlenses 0.4 mm from the sensor with a 20 px micro-image pitch, types sharp
+// near v = 3, 4.5 and 7; a value-noise plane at 1 m (v ~ 3.4) and a card at 0.8 m (v ~ 5.1).
+constexpr const char* kScene = R"({
+  "name": "focused cli", "background": 0.5,
+  "camera": {
+    "main_lens": {"focal_length_mm": 50, "focus_distance_mm": 2000, "image_f_number": 3.811},
+    "microlenses": {"pitch_mm": 0.109149, "focal_length_mm": 0.6, "focal_lengths_mm": [0.6, 0.514286, 0.466667],
+                    "packing": "hexagonal", "to_sensor_mm": 0.4},
+    "sensor": {"width": 480, "height": 360, "pixel_pitch_mm": 0.0055, "color_filter": "mono", "noise": false}
+  },
+  "planes": [
+    {"name": "background", "centre_mm": [0, 0, 1000], "size_mm": [90, 70],
+     "texture": {"type": "noise", "period_mm": 1.7, "seed": 1, "dark": 0.1, "light": 0.9}},
+    {"name": "card", "centre_mm": [-8, 0, 800], "size_mm": [25, 25],
+     "texture": {"type": "noise", "period_mm": 1.0, "seed": 2, "dark": 0.1, "light": 0.9}}
+  ]
+})";
+
+class CliFocused : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir;
+    test::writeBytes(*dir_ / "scene.json", kScene);
+    const auto made = runLfcam({"simulate", (*dir_ / "scene.json").string(), "-o", (*dir_ / "capture").string(),
+                                "--samples", "4", "--no-ground-truth"},
+                               dir_->path());
+    ASSERT_EQ(made.exitStatus, 0) << made.err;
+    // The same capture with no calibration beside it.
+    fs::create_directories(*dir_ / "bare");
+    fs::copy_file(*dir_ / "capture" / "raw.png", *dir_ / "bare" / "capture.png");
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static nlohmann::json info(const std::vector<std::string>& args) {
+    std::vector<std::string> all{"info", "--json"};
+    all.insert(all.end(), args.begin(), args.end());
+    const auto result = runLfcam(all, dir_->path());
+    EXPECT_EQ(result.exitStatus, 0) << result.err;
+    return result.exitStatus == 0 ? nlohmann::json::parse(result.out) : nlohmann::json();
+  }
+  static fs::path at(const std::string& name) { return *dir_ / name; }
+  static test::TempDir* dir_;
+};
+test::TempDir* CliFocused::dir_ = nullptr;
+
+TEST_F(CliFocused, ACaptureWithItsXmlBesideItIsRecognisedWithNoFlag) {
+  ASSERT_TRUE(fs::exists(at("capture/raw.xml")));
+  const auto json = info({at("capture/raw.png").string()});
+  EXPECT_EQ(json["format"], "focused plenoptic capture");
+  EXPECT_EQ(json["lens_types"].size(), 3u);
+  EXPECT_EQ(json["packing"], "hexagonal");
+  const auto text = runLfcam({"info", at("capture/raw.png").string()}, dir_->path());
+  EXPECT_NE(text.out.find("focused plenoptic capture (plenoptic 2.0), 3 lens types"), std::string::npos) << text.out;
+}
+
+TEST_F(CliFocused, CalibrateWritesARayCalibDataThatMatchesTheCameras) {
+  const auto truth = info({at("capture/raw.png").string()});
+  for (const bool fromWhite : {true, false}) {
+    const fs::path xml = at(fromWhite ? "bare/from-white.xml" : "bare/from-capture.xml");
+    std::vector<std::string> args{"calibrate", "--focused", at("bare/capture.png").string(), "-o", xml.string()};
+    if (fromWhite) args.insert(args.end(), {"--white", at("capture/white.png").string()});
+    const auto result = runLfcam(args, dir_->path());
+    ASSERT_EQ(result.exitStatus, 0) << result.err;
+    EXPECT_NE(result.out.find("hexagonal micro-images"), std::string::npos) << result.out;
+    const auto found = info({at("bare/capture.png").string(), "--focused-calibration", xml.string()});
+    EXPECT_NEAR(found["micro_image_diameter_px"].get<double>(), truth["micro_image_diameter_px"].get<double>(), 0.05)
+        << (fromWhite ? "from the white" : "from the capture");
+    EXPECT_EQ(found["micro_image_orientation"], "upright");
+    auto truthGrid = readFocusedCalibration(at("capture/raw.xml"), 480, 360);
+    auto foundGrid = readFocusedCalibration(xml, 480, 360);
+    ASSERT_TRUE(truthGrid.ok() && foundGrid.ok());
+    // From the simulator's calibration tests: 0.02 px from a white, 0.4 px from a capture.
+    const double worst = worstCentreError(*foundGrid, *truthGrid);
+    std::printf("calibrated from the %s: worst centre error %.3f px\n", fromWhite ? "white" : "capture", worst);
+    EXPECT_LT(worst, fromWhite ? 0.1 : 0.6);
+    if (fromWhite) {
+      EXPECT_EQ(found["lens_types"].size(), 3u);
+    }
+  }
+}
+
+TEST_F(CliFocused, WithFocusedAnUncalibratedCaptureIsCalibratedOnTheFly) {
+  const auto json = info({at("bare/capture.png").string(), "--focused", "--white", at("capture/white.png").string()});
+  EXPECT_NE(json["calibration"].get<std::string>().find("self-calibrated from the white image"), std::string::npos);
+  const fs::path photo = at("bare/total-focus.png");
+  const auto edof =
+      runLfcam({"edof", at("bare/capture.png").string(), "--focused", "-o", photo.string()}, dir_->path());
+  ASSERT_EQ(edof.exitStatus, 0) << edof.err;
+  EXPECT_TRUE(fs::exists(photo));
+}
+
+TEST_F(CliFocused, CalibrateRefusesWhatItCannotDoInOneLine) {
+  // Not a calibration's extension: wrong usage, nothing written.
+  const auto extension = runLfcam(
+      {"calibrate", "--focused", at("bare/capture.png").string(), "-o", at("bare/cal.txt").string()}, dir_->path());
+  EXPECT_EQ(extension.exitStatus, 2) << extension.err;
+  EXPECT_EQ(extension.errLines(), 1) << extension.err;
+  EXPECT_FALSE(fs::exists(at("bare/cal.txt")));
+  // A capture that has its calibration beside it is not silently calibrated anew.
+  const auto beside = runLfcam(
+      {"calibrate", "--focused", at("capture/raw.png").string(), "-o", at("bare/again.xml").string()}, dir_->path());
+  EXPECT_EQ(beside.exitStatus, 2) << beside.err;
+  EXPECT_EQ(beside.errLines(), 1) << beside.err;
+  EXPECT_NE(beside.err.find("raw.xml"), std::string::npos) << beside.err;
+  EXPECT_FALSE(fs::exists(at("bare/again.xml")));
+}
+
+}  // namespace
+}  // namespace lfcam
