@@ -81,7 +81,7 @@ TEST(LfmOptics, RefusesNapariLfMetadataItDoesNotModel) {
   EXPECT_EQ(refused(R"({"calibrate": {"objective_na": "1.2"}})"),
             "metadata.txt: calibrate.objective_na: expected a number");
   EXPECT_EQ(refused(R"({"calibrate": {"ulens_profile": "circ"}})"),
-            "metadata.txt: calibrate.ulens_profile: only \"rect\" (square microlenses) is modelled");
+            "metadata.txt: calibrate.ulens_profile: only \"rect\" (apertures filling their cells) is modelled");
   EXPECT_EQ(refused(R"({"calibrate": {"ulens_focal_distance": 2400}})"),
             "metadata.txt: calibrate.ulens_focal_distance 2400 differs from ulens_focal_length: only a sensor at "
             "the microlens focal plane is modelled");

@@ -33,11 +33,17 @@ using namespace lfm_projector_test;
 TEST(LfmProjector, MatchesTheDenseFloat64SumOnRandomVolumes) {
   std::mt19937 random(52);
   std::uniform_real_distribution<double> uniform(0, 1);
-  // Lenslet counts off the 8-lenslet tiles; K = 1, an even K and K = N; an odd and an even N.
-  for (const auto& [n, k, lx, ly] :
-       {std::tuple{7, 1, 11, 9}, std::tuple{7, 2, 5, 4}, std::tuple{7, 7, 3, 10}, std::tuple{6, 3, 9, 5}}) {
+  // Lenslet counts off the 8-lenslet tiles; K = 1, an even K and K = N; an odd and an even N; a
+  // hexagonal array's two-row period (its row counts even) over more than one tile.
+  constexpr auto square = MicrolensLayout::Square, hexagonal = MicrolensLayout::Hexagonal;
+  for (const auto& [layout, n, k, lx, ly] :
+       {std::tuple{square, 7, 1, 11, 9}, std::tuple{square, 7, 2, 5, 4}, std::tuple{square, 7, 7, 3, 10},
+        std::tuple{square, 6, 3, 9, 5}, std::tuple{hexagonal, 7, 1, 9, 18}, std::tuple{hexagonal, 6, 3, 5, 4},
+        std::tuple{hexagonal, 7, 2, 3, 2}}) {
     const LfmGrid grid{.pixelsPerLenslet = n, .voxelsPerLenslet = k, .depthsUm = {-4, 0, 3}};
-    const auto set = computePsfSet(frameOptics(rectifiedMicroscope(), n), grid);
+    LfmOptics microscope = rectifiedMicroscope();
+    microscope.array = layout;
+    const auto set = computePsfSet(frameOptics(microscope, n), grid);
     ASSERT_TRUE(set) << set.error().message;
     const LfmSparsePsf psf = sparsePsf(set.value(), 1);
     const LfmProjector projector(psf, lx, ly);
@@ -69,8 +75,9 @@ TEST(LfmProjector, MatchesTheDenseFloat64SumOnRandomVolumes) {
     for (std::size_t i = 0; i < image64.size(); ++i) left += double(frame.pixels()[i]) * image64[i];
     for (std::size_t i = 0; i < volume64.size(); ++i) right += volume64[i] * back.voxels()[i];
     EXPECT_NEAR(left / right, 1, 1e-5) << k;
-    std::printf("N %d, K %d, %d x %d lenslets: forward %.2g, backward %.2g from float64; <Hv,f>/<v,H'f> - 1 = %.2g\n",
-                n, k, lx, ly, forwardError, backwardError, left / right - 1);
+    std::printf(
+        "%s, N %d, K %d, %d x %d lenslets: forward %.2g, backward %.2g from float64; <Hv,f>/<v,H'f> - 1 = %.2g\n",
+        microlensLayoutName(layout), n, k, lx, ly, forwardError, backwardError, left / right - 1);
   }
 }
 
