@@ -26,6 +26,47 @@ double relativeDifference(std::span<const float> fast, const std::vector<double>
   return std::sqrt(difference / norm);
 }
 
+void reconstructBeads(MicrolensLayout layout) {
+  const LfmGrid grid{.pixelsPerLenslet = 7, .voxelsPerLenslet = 3, .depthsUm = {-12, -9, -6, -3, 0, 3, 6, 9, 12}};
+  LfmOptics microscope = rectifiedMicroscope();
+  microscope.array = layout;
+  const auto psf = computeSparsePsf(microscope, grid, 0.99);
+  ASSERT_TRUE(psf) << psf.error().message;
+  const LfmProjector projector(psf.value(), 12, 12);
+  Volume truth = projector.emptyVolume();
+  struct Bead {
+    int x, y, z;
+  };
+  const Bead beads[] = {{9, 10, 1}, {25, 12, 7}, {14, 26, 2}, {27, 27, 6}};
+  for (const Bead& b : beads) truth.at(b.x, b.y, b.z) = 1;
+  const Image frame = simulateLfmFrame(projector, truth, 0.001, 20000, 7);
+  LfmReconstructOptions options{.iterations = 30, .background = 0.001};
+  const auto result = reconstructVolume(projector, frame, options);
+  ASSERT_TRUE(result) << result.error().message;
+  EXPECT_EQ(result->iterations, 30);
+  EXPECT_LT(result->residuals.back(), result->residuals.front());
+  const Volume& v = result->volume;
+  for (const Bead& b : beads) {
+    // The centroid of the reconstruction within 3 voxels (laterally) and 2 slices of the bead.
+    double sum = 0, cx = 0, cy = 0, cz = 0;
+    for (int z = std::max(0, b.z - 2); z <= std::min(v.depth() - 1, b.z + 2); ++z)
+      for (int y = std::max(0, b.y - 3); y <= std::min(v.height() - 1, b.y + 3); ++y)
+        for (int x = std::max(0, b.x - 3); x <= std::min(v.width() - 1, b.x + 3); ++x) {
+          const double value = v.at(x, y, z);
+          sum += value, cx += value * x, cy += value * y, cz += value * z;
+        }
+    ASSERT_GT(sum, 0);
+    cx /= sum, cy /= sum, cz /= sum;
+    EXPECT_LT(std::abs(cx - b.x), 1.0) << b.x << " " << b.y << " " << b.z;
+    EXPECT_LT(std::abs(cy - b.y), 1.0) << b.x << " " << b.y << " " << b.z;
+    EXPECT_LT(std::abs(cz - b.z), 1.0) << b.x << " " << b.y << " " << b.z;
+    std::printf("%s bead (%d, %d, %d): centroid (%.2f, %.2f, %.2f)\n", microlensLayoutName(layout), b.x, b.y, b.z, cx,
+                cy, cz);
+  }
+  std::printf("%s: residual %.4f -> %.4f\n", microlensLayoutName(layout), result->residuals.front(),
+              result->residuals.back());
+}
+
 }  // namespace lfm_projector_test
 
 using namespace lfm_projector_test;
@@ -101,41 +142,12 @@ TEST(LfmProjector, DroppedEnergyBoundsTheError) {
 
 TEST(LfmReconstruct, FindsSimulatedBeadsWithinAVoxel) {
   // Beads off the native plane (where a light-field microscope resolves least), imaged through
-  // the forward model with Poisson noise of 2000 photons at a bead's brightest pixel order.
-  const LfmGrid grid{.pixelsPerLenslet = 7, .voxelsPerLenslet = 3, .depthsUm = {-12, -9, -6, -3, 0, 3, 6, 9, 12}};
-  const auto psf = computeSparsePsf(rectifiedMicroscope(), grid, 0.99);
-  ASSERT_TRUE(psf) << psf.error().message;
-  const LfmProjector projector(psf.value(), 12, 12);
-  Volume truth = projector.emptyVolume();
-  struct Bead {
-    int x, y, z;
-  };
-  const Bead beads[] = {{9, 10, 1}, {25, 12, 7}, {14, 26, 2}, {27, 27, 6}};
-  for (const Bead& b : beads) truth.at(b.x, b.y, b.z) = 1;
-  const Image frame = simulateLfmFrame(projector, truth, 0.001, 20000, 7);
-  LfmReconstructOptions options{.iterations = 30, .background = 0.001};
-  const auto result = reconstructVolume(projector, frame, options);
-  ASSERT_TRUE(result) << result.error().message;
-  EXPECT_EQ(result->iterations, 30);
-  EXPECT_LT(result->residuals.back(), result->residuals.front());
-  const Volume& v = result->volume;
-  for (const Bead& b : beads) {
-    // The centroid of the reconstruction within 3 voxels (laterally) and 2 slices of the bead.
-    double sum = 0, cx = 0, cy = 0, cz = 0;
-    for (int z = std::max(0, b.z - 2); z <= std::min(v.depth() - 1, b.z + 2); ++z)
-      for (int y = std::max(0, b.y - 3); y <= std::min(v.height() - 1, b.y + 3); ++y)
-        for (int x = std::max(0, b.x - 3); x <= std::min(v.width() - 1, b.x + 3); ++x) {
-          const double value = v.at(x, y, z);
-          sum += value, cx += value * x, cy += value * y, cz += value * z;
-        }
-    ASSERT_GT(sum, 0);
-    cx /= sum, cy /= sum, cz /= sum;
-    EXPECT_LT(std::abs(cx - b.x), 1.0) << b.x << " " << b.y << " " << b.z;
-    EXPECT_LT(std::abs(cy - b.y), 1.0) << b.x << " " << b.y << " " << b.z;
-    EXPECT_LT(std::abs(cz - b.z), 1.0) << b.x << " " << b.y << " " << b.z;
-    std::printf("bead (%d, %d, %d): centroid (%.2f, %.2f, %.2f)\n", b.x, b.y, b.z, cx, cy, cz);
+  // the forward model with Poisson noise of 2000 photons at a bead's brightest pixel order; a
+  // square and a hexagonal microlens array.
+  for (const MicrolensLayout layout : {MicrolensLayout::Square, MicrolensLayout::Hexagonal}) {
+    SCOPED_TRACE(microlensLayoutName(layout));
+    reconstructBeads(layout);
   }
-  std::printf("residual %.4f -> %.4f\n", result->residuals.front(), result->residuals.back());
 }
 
 TEST(LfmReconstruct, ToleranceStopsEarlyAndTotalVariationSmooths) {

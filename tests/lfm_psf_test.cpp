@@ -250,6 +250,12 @@ TEST(LfmPsf, RefusesWindowsAndSamplingItCannotModel) {
   EXPECT_EQ(refusal(LfmOptics{.pixelSizeUm = 10, .supersample = 1}, 3),
             "sample spacing 10 um aliases the field after the microlenses (up to 0.0675 cycles/um): raise "
             "supersample to at least 2");
+  LfmOptics hexagonalFrame = frameOptics(LfmOptics{.array = MicrolensLayout::Hexagonal}, 15);
+  EXPECT_EQ(hexagonalFrame.supersample, 4);  // raised from 3: 15 x 3 samples a pitch has no half
+  hexagonalFrame.supersample = 3;
+  EXPECT_EQ(refusal(hexagonalFrame, 3),
+            "a hexagonal frame of 15 pixels a lenslet needs an even supersample: its shifted rows sit half a pitch "
+            "over");
   EXPECT_EQ(LfmPsf::lensletsFor(LfmOptics{}, 0), 3);
   EXPECT_EQ(LfmPsf::lensletsFor(LfmOptics{}, 2), 9);  // blur radius 60 * 2 * tan(alpha) = 233 um: 3 + 1 a side
 }
