@@ -5,6 +5,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -98,18 +99,34 @@ TEST(CliVolume, ReconstructsAHexagonalFrameOnItsPeriod) {
   // 6 x 5 lenslets of a hexagonal array: rows in pairs, the fifth left out; voxels sqrt(3)/2 as high.
   test::TempDir dir;
   const auto frame = writeFrame(dir);
-  std::vector<std::string> args{"volume", frame.string(), "--no-psf-cache", "-o", (dir / "volume.h5").string()};
   const auto microscope = smallMicroscope({{"--microlens-array", "hexagonal"}});
+  std::vector<Volume> volumes;
+  for (const char* psf : {"computed into", "read from"}) {
+    std::vector<std::string> args{
+        "volume", frame.string(), "--psf", (dir / "psf.h5").string(), "-o", (dir / "volume.h5").string()};
+    args.insert(args.end(), microscope.begin(), microscope.end());
+    const auto result = runLfcam(args, dir.path());
+    ASSERT_EQ(result.exitStatus, 0) << result.err;
+    EXPECT_NE(result.out.find(psf), std::string::npos) << result.out;
+    auto volume = readVolume(dir / "volume.h5");
+    ASSERT_TRUE(volume) << volume.error().message;
+    EXPECT_EQ(volume->width(), 6);
+    EXPECT_EQ(volume->height(), 4);
+    EXPECT_EQ(volume->depth(), 3);
+    EXPECT_NEAR(volume->voxelWidthUm, 2, 1e-9);
+    EXPECT_NEAR(volume->voxelHeightUm, std::sqrt(3.0), 1e-9);
+    volumes.push_back(std::move(*volume));
+  }
+  EXPECT_TRUE(std::equal(volumes[0].voxels().begin(), volumes[0].voxels().end(), volumes[1].voxels().begin()));
+  // A raw decoded on the way would be sampled on square pixels, not bricks: refused.
+  std::vector<std::string> args{"volume", frame.string(), "--white", frame.string(), "-o", (dir / "raw.h5").string()};
   args.insert(args.end(), microscope.begin(), microscope.end());
-  const auto result = runLfcam(args, dir.path());
-  ASSERT_EQ(result.exitStatus, 0) << result.err;
-  const auto volume = readVolume(dir / "volume.h5");
-  ASSERT_TRUE(volume) << volume.error().message;
-  EXPECT_EQ(volume->width(), 6);
-  EXPECT_EQ(volume->height(), 4);
-  EXPECT_EQ(volume->depth(), 3);
-  EXPECT_NEAR(volume->voxelWidthUm, 2, 1e-9);
-  EXPECT_NEAR(volume->voxelHeightUm, std::sqrt(3.0), 1e-9);
+  const auto refused = runLfcam(args, dir.path());
+  EXPECT_EQ(refused.exitStatus, 2) << refused.err;
+  EXPECT_EQ(refused.errLines(), 1) << refused.err;
+  EXPECT_NE(refused.err.find("--white: a hexagonal array's raw is not decoded on the way"), std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "raw.h5"));
 }
 
 TEST(CliVolume, RefusesInOneLineWithNoOutput) {
