@@ -28,7 +28,7 @@ field for the frame and an array for the file.
 
 light_field: the frame decoded to N x N views (colour averaged to grey), N within a quarter of
   pitch / pixel_size; its ns x nt views' pixels are the lenslets.
-optics: napari-LF's metadata.txt or lfcam's optics JSON (the same keys at the top level); the
+optics: napari-LF's metadata.txt or .lfc calibration, or lfcam's optics JSON (the same keys at the top level); the
   keywords below override it.
 objective: "MAGx/NA/MEDIUM" as "60x/1.2/water" (medium: water, oil, glycerol, air or an index).
 wavelength: emission, nm. pixel_size: camera pixel, um. pitch: microlens pitch, um.

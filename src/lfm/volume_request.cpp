@@ -13,6 +13,8 @@
 #include <sstream>
 
 #include "core/memory_budget.hpp"
+#include "io/hdf5_support.hpp"
+#include "lfcam/lfm/napari_lf_calibration.hpp"
 #include "lfcam/lfm/sparse_psf.hpp"
 
 #include "lfm/message_text.hpp"
@@ -247,10 +249,15 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
 Result<LfmVolumeRequest> volumeRequestFrom(const LfmVolumeSettings& given) {
   LfmVolumeRequest request;
   if (!given.opticsFile.empty()) {
-    std::ifstream file(given.opticsFile, std::ios::binary);
-    if (!file) return makeError(ErrorCode::Io, given.opticsFile + ": cannot open");
     std::ostringstream text;
-    text << file.rdbuf();
+    if (io::startsLikeHdf5(given.opticsFile)) {
+      LFCAM_ASSIGN_OR_RETURN(const std::string settings, napariLfCalibrationSettings(given.opticsFile));
+      text << settings;
+    } else {
+      std::ifstream file(given.opticsFile, std::ios::binary);
+      if (!file) return makeError(ErrorCode::Io, given.opticsFile + ": cannot open");
+      text << file.rdbuf();
+    }
     LFCAM_ASSIGN_OR_RETURN(request, parseLfmSettings(text.str(), given.opticsFile, request));
   }
   if (!given.objective.empty()) LFCAM_TRY(parseObjective(given.objective, request.optics));

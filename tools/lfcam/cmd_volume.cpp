@@ -65,8 +65,9 @@ void addVolumeCommand(CLI::App& app, Job& job) {
   CLI::App* command = app.add_subcommand(
       "volume", "reconstruct a 3D volume from a light-field microscope frame (Richardson-Lucy, wave optics)");
   addInputOptions(*command, options->input);
-  command->add_option("--optics", options->settings.opticsFile,
-                      "microscope settings: napari-LF's metadata.txt, or a JSON object of its calibrate keys");
+  command->add_option(
+      "--optics", options->settings.opticsFile,
+      "microscope settings: napari-LF's metadata.txt or .lfc calibration, or a JSON object of its calibrate keys");
   command->add_option("--objective", options->settings.objective,
                       "MAGx/NA/MEDIUM, e.g. 60x/1.2/water (medium: water, oil, "
                       "glycerol, air or a refractive index)");

@@ -42,7 +42,9 @@ Result<LfmVolumeRequest> parseLfmSettings(const std::string& text, const std::st
 // What a front end was given (the command line's flags, Python's keywords): a settings file and the
 // values that override it. Empty strings and absent values leave the file's (or the default).
 struct LfmVolumeSettings {
-  std::string opticsFile;      // napari-LF's metadata.txt or lfcam's optics JSON (parseLfmSettings)
+  // napari-LF's metadata.txt or .lfc calibration (napari_lf_calibration.hpp), or lfcam's optics
+  // JSON (parseLfmSettings)
+  std::string opticsFile;
   std::string objective;       // "MAGx/NA/MEDIUM" as "60x/1.2/water" (water, oil, glycerol, air, an index)
   std::string solver = "rl";   // "rl" or "backprojection"
   std::string microlensArray;  // "square" or "hexagonal"
