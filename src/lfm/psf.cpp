@@ -180,7 +180,8 @@ LensletCentre nearestLenslet(const LfmOptics& optics, double xUm, double yUm) {
 template <class T>
 void applyMicrolenses(const LfmOptics& optics, int n, std::complex<T>* field) {
   const double dx = optics.sampleSpacingUm(), dy = optics.sampleHeightUm();
-  // The aperture: the cell shrunk by sqrt(fill factor), its inradius along x then halfAperture.
+  // The aperture: the cell shrunk by sqrt(fill factor); halfAperture its half-width along x (a
+  // hexagon's inradius).
   const double halfAperture = 0.5 * std::sqrt(optics.microlensFillFactor) * optics.microlensPitchUm;
   const bool hexagonal = optics.array == MicrolensLayout::Hexagonal;
   const double chirp = kPi / (optics.wavelengthUm() * optics.microlensFocalLengthUm);  // image side: air
