@@ -28,11 +28,13 @@ field for the frame and an array for the file.
 
 light_field: the frame decoded to N x N views (colour averaged to grey), N within a quarter of
   pitch / pixel_size; its ns x nt views' pixels are the lenslets.
-optics: napari-LF's metadata.txt or lfcam's optics JSON (the same keys at the top level); the
+optics: napari-LF's metadata.txt or .lfc calibration, or lfcam's optics JSON (the same keys at the top level); the
   keywords below override it.
 objective: "MAGx/NA/MEDIUM" as "60x/1.2/water" (medium: water, oil, glycerol, air or an index).
 wavelength: emission, nm. pixel_size: camera pixel, um. pitch: microlens pitch, um.
 microlens_focal_length: um. tube_lens: mm (default 200).
+microlens_array: "square" (default) or "hexagonal": a hexagonal frame's lenslets each N x N pixels
+  over a pitch x sqrt(3)/2 pitch brick, odd rows half a pitch toward +s; an odd last row is left out.
 slices: number of z-slices. um_per_slice: their spacing in the specimen (default 1).
 z_center: depth of the middle slice from the focal plane, um (default 0).
 supersample: voxels across a lenslet (napari-LF's supersample; default 1).
@@ -46,7 +48,8 @@ psf_energy: fraction of each PSF's energy kept (default 0.95).
 progress: a callable of the fraction done (0..1), True for a tqdm bar, or None.
 
 Returns a float32 numpy array (z, y, x) of slices x nt * supersample x ns * supersample voxels.
-Its voxels are pitch / (M * supersample) um across (M the objective's magnification), and slice i
+Its voxels are pitch / (M * supersample) um across (M the objective's magnification; a hexagonal
+array's are sqrt(3)/2 of that high), and slice i
 lies at depth z_center + (i - (slices - 1) / 2) * um_per_slice um (napari-LF's convention).
 Wrong settings raise lfcam.UsageError with the command line's message; Ctrl-C stops the
 iterations and raises KeyboardInterrupt.)doc";
@@ -58,15 +61,17 @@ void bindVolume(py::module_& m) {
       "volume",
       [](const LightField& lf, std::optional<std::filesystem::path> opticsFile, std::optional<std::string> objective,
          std::optional<double> wavelength, std::optional<double> pixelSize, std::optional<double> pitch,
-         std::optional<double> microlensFocalLength, std::optional<double> tubeLens, std::optional<int> slices,
-         std::optional<double> umPerSlice, std::optional<double> zCenter, std::optional<int> supersample,
-         std::optional<int> iterations, const std::string& solver, std::optional<double> background,
-         std::optional<double> tolerance, std::optional<double> tv, std::optional<std::filesystem::path> psf,
-         std::optional<double> psfEnergy, const py::object& progress) {
+         std::optional<double> microlensFocalLength, std::optional<std::string> microlensArray,
+         std::optional<double> tubeLens, std::optional<int> slices, std::optional<double> umPerSlice,
+         std::optional<double> zCenter, std::optional<int> supersample, std::optional<int> iterations,
+         const std::string& solver, std::optional<double> background, std::optional<double> tolerance,
+         std::optional<double> tv, std::optional<std::filesystem::path> psf, std::optional<double> psfEnergy,
+         const py::object& progress) {
         // As cmd_volume.cpp: the file, then the objective, then each keyword over them.
         LfmVolumeSettings settings{.opticsFile = opticsFile ? opticsFile->string() : std::string(),
                                    .objective = objective.value_or(""),
                                    .solver = solver,
+                                   .microlensArray = microlensArray.value_or(""),
                                    .wavelengthNm = wavelength,
                                    .tubeLensMm = tubeLens,
                                    .pitchUm = pitch,
@@ -94,11 +99,12 @@ void bindVolume(py::module_& m) {
       },
       py::arg("light_field"), py::kw_only(), py::arg("optics") = py::none(), py::arg("objective") = py::none(),
       py::arg("wavelength") = py::none(), py::arg("pixel_size") = py::none(), py::arg("pitch") = py::none(),
-      py::arg("microlens_focal_length") = py::none(), py::arg("tube_lens") = py::none(), py::arg("slices") = py::none(),
-      py::arg("um_per_slice") = py::none(), py::arg("z_center") = py::none(), py::arg("supersample") = py::none(),
-      py::arg("iterations") = py::none(), py::arg("solver") = "rl", py::arg("background") = py::none(),
-      py::arg("tolerance") = py::none(), py::arg("tv") = py::none(), py::arg("psf") = py::none(),
-      py::arg("psf_energy") = py::none(), py::arg("progress") = py::none(), volumeDoc);
+      py::arg("microlens_focal_length") = py::none(), py::arg("microlens_array") = py::none(),
+      py::arg("tube_lens") = py::none(), py::arg("slices") = py::none(), py::arg("um_per_slice") = py::none(),
+      py::arg("z_center") = py::none(), py::arg("supersample") = py::none(), py::arg("iterations") = py::none(),
+      py::arg("solver") = "rl", py::arg("background") = py::none(), py::arg("tolerance") = py::none(),
+      py::arg("tv") = py::none(), py::arg("psf") = py::none(), py::arg("psf_energy") = py::none(),
+      py::arg("progress") = py::none(), volumeDoc);
 }
 
 }  // namespace lfcam::python

@@ -71,6 +71,15 @@ TEST(LfmOptics, ReadsNapariLfMetadata) {
   EXPECT_DOUBLE_EQ(optics->objectiveFocalLengthUm(), 200e3 / 60);
 }
 
+TEST(LfmOptics, ReadsAHexagonalArray) {
+  const Result<LfmOptics> optics = parseNapariLfOptics(R"({"calibrate": {"ulens_array": "hexagonal"}})", "optics.json");
+  ASSERT_TRUE(optics) << optics.error().message;
+  EXPECT_EQ(optics->array, MicrolensLayout::Hexagonal);
+  EXPECT_EQ(optics->rowsPerPeriod(), 2);
+  EXPECT_DOUBLE_EQ(optics->rowPitchUm(), 100 * std::sqrt(3.0) / 2);
+  EXPECT_EQ(parseNapariLfOptics(R"({"calibrate": {}})", "optics.json")->array, MicrolensLayout::Square);
+}
+
 TEST(LfmOptics, RefusesNapariLfMetadataItDoesNotModel) {
   auto refused = [](std::string text) {
     const Result<LfmOptics> optics = parseNapariLfOptics(text, "metadata.txt");
@@ -81,7 +90,11 @@ TEST(LfmOptics, RefusesNapariLfMetadataItDoesNotModel) {
   EXPECT_EQ(refused(R"({"calibrate": {"objective_na": "1.2"}})"),
             "metadata.txt: calibrate.objective_na: expected a number");
   EXPECT_EQ(refused(R"({"calibrate": {"ulens_profile": "circ"}})"),
-            "metadata.txt: calibrate.ulens_profile: only \"rect\" (square microlenses) is modelled");
+            "metadata.txt: calibrate.ulens_profile: only \"rect\" (apertures filling their cells) is modelled");
+  EXPECT_EQ(refused(R"({"calibrate": {"ulens_array": "round"}})"),
+            "metadata.txt: calibrate.ulens_array: expected \"square\" or \"hexagonal\", got \"round\"");
+  EXPECT_EQ(refused(R"({"calibrate": {"ulens_array": 6}})"),
+            "metadata.txt: calibrate.ulens_array: expected \"square\" or \"hexagonal\", got 6");
   EXPECT_EQ(refused(R"({"calibrate": {"ulens_focal_distance": 2400}})"),
             "metadata.txt: calibrate.ulens_focal_distance 2400 differs from ulens_focal_length: only a sensor at "
             "the microlens focal plane is modelled");

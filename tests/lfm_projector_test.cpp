@@ -26,6 +26,47 @@ double relativeDifference(std::span<const float> fast, const std::vector<double>
   return std::sqrt(difference / norm);
 }
 
+void reconstructBeads(MicrolensLayout layout) {
+  const LfmGrid grid{.pixelsPerLenslet = 7, .voxelsPerLenslet = 3, .depthsUm = {-12, -9, -6, -3, 0, 3, 6, 9, 12}};
+  LfmOptics microscope = rectifiedMicroscope();
+  microscope.array = layout;
+  const auto psf = computeSparsePsf(microscope, grid, 0.99);
+  ASSERT_TRUE(psf) << psf.error().message;
+  const LfmProjector projector(psf.value(), 12, 12);
+  Volume truth = projector.emptyVolume();
+  struct Bead {
+    int x, y, z;
+  };
+  const Bead beads[] = {{9, 10, 1}, {25, 12, 7}, {14, 26, 2}, {27, 27, 6}};
+  for (const Bead& b : beads) truth.at(b.x, b.y, b.z) = 1;
+  const Image frame = simulateLfmFrame(projector, truth, 0.001, 20000, 7);
+  LfmReconstructOptions options{.iterations = 30, .background = 0.001};
+  const auto result = reconstructVolume(projector, frame, options);
+  ASSERT_TRUE(result) << result.error().message;
+  EXPECT_EQ(result->iterations, 30);
+  EXPECT_LT(result->residuals.back(), result->residuals.front());
+  const Volume& v = result->volume;
+  for (const Bead& b : beads) {
+    // The centroid of the reconstruction within 3 voxels (laterally) and 2 slices of the bead.
+    double sum = 0, cx = 0, cy = 0, cz = 0;
+    for (int z = std::max(0, b.z - 2); z <= std::min(v.depth() - 1, b.z + 2); ++z)
+      for (int y = std::max(0, b.y - 3); y <= std::min(v.height() - 1, b.y + 3); ++y)
+        for (int x = std::max(0, b.x - 3); x <= std::min(v.width() - 1, b.x + 3); ++x) {
+          const double value = v.at(x, y, z);
+          sum += value, cx += value * x, cy += value * y, cz += value * z;
+        }
+    ASSERT_GT(sum, 0);
+    cx /= sum, cy /= sum, cz /= sum;
+    EXPECT_LT(std::abs(cx - b.x), 1.0) << b.x << " " << b.y << " " << b.z;
+    EXPECT_LT(std::abs(cy - b.y), 1.0) << b.x << " " << b.y << " " << b.z;
+    EXPECT_LT(std::abs(cz - b.z), 1.0) << b.x << " " << b.y << " " << b.z;
+    std::printf("%s bead (%d, %d, %d): centroid (%.2f, %.2f, %.2f)\n", microlensLayoutName(layout), b.x, b.y, b.z, cx,
+                cy, cz);
+  }
+  std::printf("%s: residual %.4f -> %.4f\n", microlensLayoutName(layout), result->residuals.front(),
+              result->residuals.back());
+}
+
 }  // namespace lfm_projector_test
 
 using namespace lfm_projector_test;
@@ -33,11 +74,17 @@ using namespace lfm_projector_test;
 TEST(LfmProjector, MatchesTheDenseFloat64SumOnRandomVolumes) {
   std::mt19937 random(52);
   std::uniform_real_distribution<double> uniform(0, 1);
-  // Lenslet counts off the 8-lenslet tiles; K = 1, an even K and K = N; an odd and an even N.
-  for (const auto& [n, k, lx, ly] :
-       {std::tuple{7, 1, 11, 9}, std::tuple{7, 2, 5, 4}, std::tuple{7, 7, 3, 10}, std::tuple{6, 3, 9, 5}}) {
+  // Lenslet counts off the 8-lenslet tiles; K = 1, an even K and K = N; an odd and an even N; a
+  // hexagonal array's two-row period (its row counts even) over more than one tile.
+  constexpr auto square = MicrolensLayout::Square, hexagonal = MicrolensLayout::Hexagonal;
+  for (const auto& [layout, n, k, lx, ly] :
+       {std::tuple{square, 7, 1, 11, 9}, std::tuple{square, 7, 2, 5, 4}, std::tuple{square, 7, 7, 3, 10},
+        std::tuple{square, 6, 3, 9, 5}, std::tuple{hexagonal, 7, 1, 9, 18}, std::tuple{hexagonal, 6, 3, 5, 4},
+        std::tuple{hexagonal, 7, 2, 3, 2}}) {
     const LfmGrid grid{.pixelsPerLenslet = n, .voxelsPerLenslet = k, .depthsUm = {-4, 0, 3}};
-    const auto set = computePsfSet(frameOptics(rectifiedMicroscope(), n), grid);
+    LfmOptics microscope = rectifiedMicroscope();
+    microscope.array = layout;
+    const auto set = computePsfSet(frameOptics(microscope, n), grid);
     ASSERT_TRUE(set) << set.error().message;
     const LfmSparsePsf psf = sparsePsf(set.value(), 1);
     const LfmProjector projector(psf, lx, ly);
@@ -69,8 +116,9 @@ TEST(LfmProjector, MatchesTheDenseFloat64SumOnRandomVolumes) {
     for (std::size_t i = 0; i < image64.size(); ++i) left += double(frame.pixels()[i]) * image64[i];
     for (std::size_t i = 0; i < volume64.size(); ++i) right += volume64[i] * back.voxels()[i];
     EXPECT_NEAR(left / right, 1, 1e-5) << k;
-    std::printf("N %d, K %d, %d x %d lenslets: forward %.2g, backward %.2g from float64; <Hv,f>/<v,H'f> - 1 = %.2g\n",
-                n, k, lx, ly, forwardError, backwardError, left / right - 1);
+    std::printf(
+        "%s, N %d, K %d, %d x %d lenslets: forward %.2g, backward %.2g from float64; <Hv,f>/<v,H'f> - 1 = %.2g\n",
+        microlensLayoutName(layout), n, k, lx, ly, forwardError, backwardError, left / right - 1);
   }
 }
 
@@ -94,41 +142,12 @@ TEST(LfmProjector, DroppedEnergyBoundsTheError) {
 
 TEST(LfmReconstruct, FindsSimulatedBeadsWithinAVoxel) {
   // Beads off the native plane (where a light-field microscope resolves least), imaged through
-  // the forward model with Poisson noise of 2000 photons at a bead's brightest pixel order.
-  const LfmGrid grid{.pixelsPerLenslet = 7, .voxelsPerLenslet = 3, .depthsUm = {-12, -9, -6, -3, 0, 3, 6, 9, 12}};
-  const auto psf = computeSparsePsf(rectifiedMicroscope(), grid, 0.99);
-  ASSERT_TRUE(psf) << psf.error().message;
-  const LfmProjector projector(psf.value(), 12, 12);
-  Volume truth = projector.emptyVolume();
-  struct Bead {
-    int x, y, z;
-  };
-  const Bead beads[] = {{9, 10, 1}, {25, 12, 7}, {14, 26, 2}, {27, 27, 6}};
-  for (const Bead& b : beads) truth.at(b.x, b.y, b.z) = 1;
-  const Image frame = simulateLfmFrame(projector, truth, 0.001, 20000, 7);
-  LfmReconstructOptions options{.iterations = 30, .background = 0.001};
-  const auto result = reconstructVolume(projector, frame, options);
-  ASSERT_TRUE(result) << result.error().message;
-  EXPECT_EQ(result->iterations, 30);
-  EXPECT_LT(result->residuals.back(), result->residuals.front());
-  const Volume& v = result->volume;
-  for (const Bead& b : beads) {
-    // The centroid of the reconstruction within 3 voxels (laterally) and 2 slices of the bead.
-    double sum = 0, cx = 0, cy = 0, cz = 0;
-    for (int z = std::max(0, b.z - 2); z <= std::min(v.depth() - 1, b.z + 2); ++z)
-      for (int y = std::max(0, b.y - 3); y <= std::min(v.height() - 1, b.y + 3); ++y)
-        for (int x = std::max(0, b.x - 3); x <= std::min(v.width() - 1, b.x + 3); ++x) {
-          const double value = v.at(x, y, z);
-          sum += value, cx += value * x, cy += value * y, cz += value * z;
-        }
-    ASSERT_GT(sum, 0);
-    cx /= sum, cy /= sum, cz /= sum;
-    EXPECT_LT(std::abs(cx - b.x), 1.0) << b.x << " " << b.y << " " << b.z;
-    EXPECT_LT(std::abs(cy - b.y), 1.0) << b.x << " " << b.y << " " << b.z;
-    EXPECT_LT(std::abs(cz - b.z), 1.0) << b.x << " " << b.y << " " << b.z;
-    std::printf("bead (%d, %d, %d): centroid (%.2f, %.2f, %.2f)\n", b.x, b.y, b.z, cx, cy, cz);
+  // the forward model with Poisson noise of 2000 photons at a bead's brightest pixel order; a
+  // square and a hexagonal microlens array.
+  for (const MicrolensLayout layout : {MicrolensLayout::Square, MicrolensLayout::Hexagonal}) {
+    SCOPED_TRACE(microlensLayoutName(layout));
+    reconstructBeads(layout);
   }
-  std::printf("residual %.4f -> %.4f\n", result->residuals.front(), result->residuals.back());
 }
 
 TEST(LfmReconstruct, ToleranceStopsEarlyAndTotalVariationSmooths) {

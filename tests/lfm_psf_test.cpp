@@ -2,9 +2,11 @@
 // and Parseval, the Fresnel propagation against its direct float64 sum, the whole PSF's geometry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "lfcam/lfm/psf.hpp"
@@ -141,7 +143,8 @@ TEST(LfmPsf, FresnelPropagationConservesEnergy) {
   lfm::applyMicrolenses(optics, n, field.data());
   double before = 0, after = 0;
   for (auto value : field) before += std::norm(std::complex<double>(value));
-  lfm::FresnelTransfer transfer(n, optics.sampleSpacingUm(), optics.wavelengthUm(), optics.microlensFocalLengthUm);
+  lfm::FresnelTransfer transfer(n, optics.sampleSpacingUm(), optics.sampleHeightUm(), optics.wavelengthUm(),
+                                optics.microlensFocalLengthUm);
   transfer.propagate(field.data());
   for (auto value : field) after += std::norm(std::complex<double>(value));
   EXPECT_NEAR(after / before, 1, 1e-5);
@@ -151,32 +154,36 @@ TEST(LfmPsf, FresnelPropagationConservesEnergy) {
 TEST(LfmPsf, DirectFresnelSumMatchesTheFft) {
   // On a 60-sample window of 3 x 3 lenslets, an in-focus point on the axis: its light stays
   // under the centre lenslet, so the FFT's periodic window and the direct sum's open plane agree.
-  const LfmOptics optics = test::smallMicroscope();
-  const auto model = LfmPsf::create(optics, 3, PupilModel::AbbeSine);
-  ASSERT_TRUE(model) << model.error().message;
-  const int n = model->samplesAcross();
-  ASSERT_EQ(n, 60);  // 3 lenslets of 10 pixels, 2 samples each
-  const LfmPoint point{0.3, 0, 0};
-  std::vector<std::complex<double>> masked = model->nativeField(point);
-  lfm::applyMicrolenses(optics, n, masked.data());
-  const auto direct =
-      lfm::fresnelDirect(masked, n, optics.sampleSpacingUm(), optics.wavelengthUm(), optics.microlensFocalLengthUm);
-  const auto fft = model->sensorField(point);
-  // Compared under the centre lenslet, where 92 % of the light lands: the rest, spread by the
-  // lenslets' edges, leaves the window and comes back in on the FFT's periodic one alone.
-  double difference = 0, norm = 0;
-  const double dx = optics.sampleSpacingUm(), half = 0.5 * optics.microlensPitchUm;
-  for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) {
-      if (std::abs(lfm::sampleCoordinate(x, n, dx)) > half || std::abs(lfm::sampleCoordinate(y, n, dx)) > half)
-        continue;
-      const std::size_t i = std::size_t(y) * n + x;
-      difference += std::norm(std::complex<double>(fft[i]) - direct[i]);
-      norm += std::norm(direct[i]);
-    }
-  const double relative = std::sqrt(difference / norm);
-  EXPECT_LT(relative, 0.02);
-  std::printf("FFT vs direct Fresnel under the centre lenslet: relative L2 %.3g\n", relative);
+  // Square pixels of a square array; a hexagonal array's bricks, shorter than wide.
+  LfmOptics hexagonal = test::smallMicroscope();
+  hexagonal.array = MicrolensLayout::Hexagonal;
+  for (const LfmOptics& optics : {test::smallMicroscope(), frameOptics(hexagonal, 10)}) {
+    const auto model = LfmPsf::create(optics, 3, PupilModel::AbbeSine);
+    ASSERT_TRUE(model) << model.error().message;
+    const int n = model->samplesAcross();
+    ASSERT_EQ(n, 60);  // 3 lenslets of 10 pixels, 2 samples each
+    const LfmPoint point{0.3, 0, 0};
+    std::vector<std::complex<double>> masked = model->nativeField(point);
+    lfm::applyMicrolenses(optics, n, masked.data());
+    const auto direct = lfm::fresnelDirect(masked, n, optics.sampleSpacingUm(), optics.sampleHeightUm(),
+                                           optics.wavelengthUm(), optics.microlensFocalLengthUm);
+    const auto fft = model->sensorField(point);
+    // Compared under the centre lenslet, where 92 % of the light lands: the rest, spread by the
+    // lenslets' edges, leaves the window and comes back in on the FFT's periodic one alone.
+    double difference = 0, norm = 0;
+    const double dx = optics.sampleSpacingUm(), dy = optics.sampleHeightUm(), half = 0.5 * optics.rowPitchUm();
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        if (std::hypot(lfm::sampleCoordinate(x, n, dx), lfm::sampleCoordinate(y, n, dy)) > half) continue;
+        const std::size_t i = std::size_t(y) * n + x;
+        difference += std::norm(std::complex<double>(fft[i]) - direct[i]);
+        norm += std::norm(direct[i]);
+      }
+    const double relative = std::sqrt(difference / norm);
+    EXPECT_LT(relative, 0.02) << microlensLayoutName(optics.array);
+    std::printf("%s: FFT vs direct Fresnel under the centre lenslet: relative L2 %.3g\n",
+                microlensLayoutName(optics.array), relative);
+  }
 }
 
 TEST(LfmPsf, InFocusPointOnTheAxisLightsTheCentreLensletSymmetrically) {
@@ -243,6 +250,12 @@ TEST(LfmPsf, RefusesWindowsAndSamplingItCannotModel) {
   EXPECT_EQ(refusal(LfmOptics{.pixelSizeUm = 10, .supersample = 1}, 3),
             "sample spacing 10 um aliases the field after the microlenses (up to 0.0675 cycles/um): raise "
             "supersample to at least 2");
+  LfmOptics hexagonalFrame = frameOptics(LfmOptics{.array = MicrolensLayout::Hexagonal}, 15);
+  EXPECT_EQ(hexagonalFrame.supersample, 4);  // raised from 3: 15 x 3 samples a pitch has no half
+  hexagonalFrame.supersample = 3;
+  EXPECT_EQ(refusal(hexagonalFrame, 3),
+            "a hexagonal frame of 15 pixels a lenslet needs an even supersample: its shifted rows sit half a pitch "
+            "over");
   EXPECT_EQ(LfmPsf::lensletsFor(LfmOptics{}, 0), 3);
   EXPECT_EQ(LfmPsf::lensletsFor(LfmOptics{}, 2), 9);  // blur radius 60 * 2 * tan(alpha) = 233 um: 3 + 1 a side
 }
@@ -371,6 +384,157 @@ TEST(LfmPsfCache, KeepsTheSplatsAndRefusesOtherSettings) {
   const auto other = readPsfCache((dir.path() / "other.h5").string(), optics, grid, 0.99);
   ASSERT_FALSE(other);
   EXPECT_EQ(other.error().code, ErrorCode::Io);
+}
+
+namespace lfm_psf_test {
+
+LfmOptics hexagonalMicroscope() {
+  LfmOptics optics = test::smallMicroscope();
+  optics.array = MicrolensLayout::Hexagonal;
+  return optics;
+}
+
+// |U|^2 at (x, y) micrometres from the window's centre, bilinear between the samples.
+double intensityAt(const std::vector<std::complex<float>>& field, int n, double dx, double dy, double x, double y) {
+  const double fx = x / dx + 0.5 * (n - 1), fy = y / dy + 0.5 * (n - 1);
+  const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+  const double tx = fx - x0, ty = fy - y0;
+  auto at = [&](int i, int j) { return double(std::norm(field[std::size_t(j) * n + i])); };
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+         ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+}
+
+}  // namespace lfm_psf_test
+
+TEST(LfmPsf, HexagonalArrayPlacesItsLensletsAndApertures) {
+  const LfmOptics optics = hexagonalMicroscope();
+  const double p = optics.microlensPitchUm, h = optics.rowPitchUm();
+  EXPECT_NEAR(h, 40 * std::sqrt(3.0) / 2, 1e-12);
+  // Odd rows, above and below the axis, half a pitch toward +x.
+  for (const auto& [x, y, cx, cy] : {std::tuple{3.0, 2.0, 0.0, 0.0}, std::tuple{19.0, 30.0, 20.0, h},
+                                     std::tuple{-18.0, -33.0, -20.0, -h}, std::tuple{41.0, 2 * h - 1, 40.0, 2 * h},
+                                     std::tuple{0.0, 0.6 * h, 0.0, 0.0}, std::tuple{p / 2 - 1, 0.6 * h, p / 2, h}}) {
+    const lfm::LensletCentre centre = lfm::nearestLenslet(optics, x, y);
+    EXPECT_NEAR(centre.xUm, cx, 1e-9) << x << " " << y;
+    EXPECT_NEAR(centre.yUm, cy, 1e-9) << x << " " << y;
+  }
+  // The apertures pass the fill factor of the plane: the hexagons shrunk by its square root.
+  for (double fill : {1.0, 0.6}) {
+    LfmOptics shrunk = optics;
+    shrunk.microlensFillFactor = fill;
+    shrunk.supersample = 8;
+    const int n = 400;
+    std::vector<std::complex<double>> field(std::size_t(n) * n, 1.0);
+    lfm::applyMicrolenses(shrunk, n, field.data());
+    double open = 0;
+    for (auto value : field) open += std::abs(value) > 0.5;
+    EXPECT_NEAR(open / field.size(), fill, 0.01) << fill;
+  }
+}
+
+TEST(LfmPsf, HexagonalArrayPsfHasSixFoldSymmetry) {
+  // A point on the axis, in focus and 6 um off: the array is symmetric under turns of 60 degrees
+  // about the centre lenslet, so the sensor's light is too (between samples by interpolation);
+  // not under 90 degrees, which tells the test can see a square array's symmetry from a
+  // hexagon's. The six neighbours' cells receive equal light. Finely sampled: the interpolation
+  // between samples is most of the difference.
+  LfmOptics optics = hexagonalMicroscope();
+  optics.supersample = 6;
+  for (double z : {0.0, 6.0}) {
+    const auto model = LfmPsf::create(optics, LfmPsf::lensletsFor(optics, z));
+    ASSERT_TRUE(model) << model.error().message;
+    const int n = model->samplesAcross();
+    const double dx = optics.sampleSpacingUm(), dy = optics.sampleHeightUm();
+    const auto field = model->sensorField({0, 0, z});
+    const double radius = z == 0 ? 0.45 * optics.microlensPitchUm : 1.4 * optics.microlensPitchUm;
+    auto turned = [&](double degrees) {
+      const double c = std::cos(degrees * kPi / 180), s = std::sin(degrees * kPi / 180);
+      double difference = 0, total = 0;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const double x = lfm::sampleCoordinate(i, n, dx), y = lfm::sampleCoordinate(j, n, dy);
+          if (std::hypot(x, y) > radius) continue;
+          const double here = intensityAt(field, n, dx, dy, x, y);
+          difference += std::abs(here - intensityAt(field, n, dx, dy, c * x - s * y, s * x + c * y));
+          total += here;
+        }
+      return difference / total;
+    };
+    const double sixty = turned(60), ninety = turned(90);
+    EXPECT_LT(sixty, 0.01) << z;
+    EXPECT_GT(ninety, 5 * sixty) << z;
+    std::vector<double> neighbours(6, 0.0);
+    double all = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double x = lfm::sampleCoordinate(i, n, dx), y = lfm::sampleCoordinate(j, n, dy);
+        const double energy = std::norm(field[std::size_t(j) * n + i]);
+        all += energy;
+        const lfm::LensletCentre centre = lfm::nearestLenslet(optics, x, y);
+        const double distance = std::hypot(centre.xUm, centre.yUm);
+        if (std::abs(distance - optics.microlensPitchUm) > 1e-6) continue;
+        const int sector = int(std::lround(std::atan2(centre.yUm, centre.xUm) / (kPi / 3)) + 6) % 6;
+        neighbours[sector] += energy;
+      }
+    const auto [low, high] = std::minmax_element(neighbours.begin(), neighbours.end());
+    EXPECT_LT((*high - *low) / *high, 0.005) << z;
+    std::printf("z %g um: |I - I turned 60| %.3g, 90 %.3g of the light; neighbours' cells %.4f-%.4f of it\n", z, sixty,
+                ninety, *low / all, *high / all);
+  }
+}
+
+TEST(LfmPsf, HexagonalFrameKeepsEachDepthsEnergyInItsBricks) {
+  // A rectified hexagonal frame's pixels tile the window brick by brick (every other row half a
+  // pitch over): they hold every sample's energy once, which is the native image's unit energy
+  // less what leaves the window.
+  const LfmOptics optics = frameOptics(hexagonalMicroscope(), 10);
+  EXPECT_EQ(lfm::hexagonalBrickPixels(optics), 10);
+  for (double z : {-6.0, 0.0, 4.0}) {
+    const auto model = LfmPsf::create(optics, LfmPsf::lensletsFor(optics, z));
+    ASSERT_TRUE(model) << model.error().message;
+    const LfmPoint point{0.4, -0.3, z};
+    const auto field = model->sensorField(point);
+    double samples = 0;
+    for (auto value : field) samples += std::norm(std::complex<double>(value));
+    samples *= optics.sampleSpacingUm() * optics.sampleHeightUm();
+    const Image psf = model->psf(point);
+    double pixels = 0;
+    for (float value : psf.pixels()) pixels += value;
+    EXPECT_NEAR(pixels / samples, 1, 1e-5) << z;
+    EXPECT_GT(pixels, 0.97) << z;
+    EXPECT_LT(pixels, 1 + 1e-4) << z;
+    std::printf("z %g um: the bricks hold %.5f, the samples %.5f\n", z, pixels, samples);
+  }
+}
+
+TEST(LfmPsf, HexagonalFrameMovesThePsfABrickWithTheLattice) {
+  // Moving the point by the lattice vector (pitch / 2, row pitch) moves its light by one row of
+  // bricks, and by one brick along x from a shifted row to an unshifted one: the array and the
+  // frame's bricks are the same after the move.
+  const LfmOptics optics = frameOptics(hexagonalMicroscope(), 10);
+  const int lenslets = LfmPsf::lensletsFor(optics, 3) + 2;
+  const auto model = LfmPsf::create(optics, lenslets);
+  ASSERT_TRUE(model) << model.error().message;
+  const double m = optics.magnification;
+  const LfmPoint point{0.3, -0.2, 3}, moved{0.3 + 0.5 * optics.microlensPitchUm / m, -0.2 + optics.rowPitchUm() / m, 3};
+  const Image a = model->psf(point), b = model->psf(moved);
+  const int n = 10, centre = lenslets / 2;
+  double difference = 0, total = 0, peak = 0;
+  for (int by = 1; by + 2 < lenslets; ++by)
+    for (int bx = 1; bx + 2 < lenslets; ++bx) {
+      const bool shiftedRow = (by - centre) % 2 != 0;
+      for (int v = 0; v < n; ++v)
+        for (int u = 0; u < n; ++u) {
+          const double before = a.at(bx * n + u, by * n + v, 0);
+          const double after = b.at((bx + (shiftedRow ? 1 : 0)) * n + u, (by + 1) * n + v, 0);
+          difference = std::max(difference, std::abs(after - before));
+          total += before;
+          peak = std::max(peak, before);
+        }
+    }
+  EXPECT_GT(total, 0.9);
+  EXPECT_LT(difference / peak, 1e-3);
+  std::printf("moved by the lattice: %.3g of the peak apart over %.3f of the light\n", difference / peak, total);
 }
 
 }  // namespace lfcam

@@ -7,6 +7,7 @@
 #include <sys/resource.h>
 #include <tiffio.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <functional>
@@ -28,7 +29,8 @@ Volume randomVolume(int width, int height, int depth, unsigned seed) {
   std::mt19937 random(seed);
   std::normal_distribution<float> normal(0.0f, 3.0f);
   for (float& value : volume.voxels()) value = normal(random);
-  volume.voxelWidthUm = 0.65;  // no float, nor a short rational, holds these exactly
+  volume.voxelWidthUm = 0.65;                        // no float, nor a short rational, holds these exactly
+  volume.voxelHeightUm = 0.65 * std::sqrt(3.0) / 2;  // a hexagonal microlens array's
   volume.voxelDepthUm = 1.7;
   volume.firstSliceUm = -12.3;
   return volume;
@@ -41,6 +43,7 @@ void expectSameVolume(const Volume& read, const Volume& written) {
   for (std::size_t i = 0; i < written.voxels().size(); ++i)
     ASSERT_EQ(read.voxels()[i], written.voxels()[i]) << "voxel " << i;
   EXPECT_EQ(read.voxelWidthUm, written.voxelWidthUm);
+  EXPECT_EQ(read.voxelHeightUm, written.voxelHeightUm);
   EXPECT_EQ(read.voxelDepthUm, written.voxelDepthUm);
   EXPECT_EQ(read.firstSliceUm, written.firstSliceUm);
 }
@@ -124,7 +127,7 @@ TEST(VolumeIo, TiffCarriesImageJsStackAndVoxelSize) {
   ASSERT_TRUE(TIFFGetField(tiff.get(), TIFFTAG_IMAGEDESCRIPTION, &description));
   EXPECT_EQ(std::string(description),
             "ImageJ=1.11a\nimages=4\nslices=4\nunit=micron\nspacing=1.7\nloop=false\nmin=-20.5\nmax=40.25\n"
-            "lfcam_first_slice_um=-12.3\nlfcam_voxel_width_um=0.65\n");
+            "lfcam_first_slice_um=-12.3\nlfcam_voxel_width_um=0.65\nlfcam_voxel_height_um=0.562916512459885\n");
   for (int z = 0; z < 4; ++z) {
     SCOPED_TRACE(z);
     ASSERT_TRUE(TIFFSetDirectory(tiff.get(), tdir_t(z)));
@@ -145,7 +148,7 @@ TEST(VolumeIo, TiffCarriesImageJsStackAndVoxelSize) {
     ASSERT_TRUE(TIFFGetField(tiff.get(), TIFFTAG_YRESOLUTION, &y));
     ASSERT_TRUE(TIFFGetField(tiff.get(), TIFFTAG_RESOLUTIONUNIT, &unit));
     EXPECT_FLOAT_EQ(x, float(1 / 0.65));
-    EXPECT_FLOAT_EQ(y, float(1 / 0.65));
+    EXPECT_FLOAT_EQ(y, float(1 / volume.voxelHeightUm));  // Fiji's pixel height
     EXPECT_EQ(unit, RESUNIT_NONE);
     // ImageJ reads the description from the first page only.
     EXPECT_EQ(TIFFGetField(tiff.get(), TIFFTAG_IMAGEDESCRIPTION, &description), z == 0 ? 1 : 0);
@@ -171,6 +174,7 @@ TEST(VolumeIo, ForeignStacksReadWithTheirCalibration) {
   ASSERT_EQ(fiji->depth(), 3);
   EXPECT_FLOAT_EQ(fiji->at(8, 6, 2), float((8 * 1000 + 6 * 100 + 2) / 65535.0));
   EXPECT_NEAR(fiji->voxelWidthUm, 0.1, 1e-7);
+  EXPECT_NEAR(fiji->voxelHeightUm, 0.1, 1e-7);
   EXPECT_DOUBLE_EQ(fiji->voxelDepthUm, 0.25);
   EXPECT_EQ(fiji->firstSliceUm, 0);
 
@@ -187,6 +191,7 @@ TEST(VolumeIo, ForeignStacksReadWithTheirCalibration) {
   EXPECT_NEAR(microscope->voxelWidthUm, 0.2, 1e-7);
   EXPECT_EQ(microscope->voxelDepthUm, 1);
   EXPECT_EQ(bare->voxelWidthUm, 1);
+  EXPECT_EQ(bare->voxelHeightUm, 1);
   EXPECT_EQ(bare->voxelDepthUm, 1);
 
   // An ImageJ hyperstack's pages interleave channels: not a volume's slices.

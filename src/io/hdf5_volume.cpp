@@ -27,7 +27,7 @@ struct OpenedVolume {
   Handle file, dataset;
   hsize_t dims[3] = {};
   double codeScale = 1;
-  double voxelWidthUm = 1, voxelDepthUm = 1, firstSliceUm = 0;
+  double voxelWidthUm = 1, voxelHeightUm = 1, voxelDepthUm = 1, firstSliceUm = 0;
 };
 
 Result<OpenedVolume> openVolume(const fs::path& path) {
@@ -70,7 +70,8 @@ Result<OpenedVolume> openVolume(const fs::path& path) {
       if (!std::isfinite(value) || value <= 0 || sizes.size() != 3)
         return fileError(ErrorCode::Format, path, "attribute 'voxel_size_um' is not three positive sizes [dz, dy, dx]");
     opened.voxelDepthUm = sizes[0];
-    opened.voxelWidthUm = sizes[2];  // Volume's voxels are square: x's size stands for both
+    opened.voxelHeightUm = sizes[1];
+    opened.voxelWidthUm = sizes[2];
   }
   LFCAM_ASSIGN_OR_RETURN(auto firstSlice, readNumberAttribute(path, dataset, "first_slice_um"));
   if (firstSlice && !std::isfinite(*firstSlice))
@@ -108,7 +109,7 @@ Status writeHdf5Volume(const fs::path& file, const Volume& volume, const fs::pat
       return hdf5Error(ErrorCode::Io, path, "cannot write voxels");
     const bool attributes =
         writeNumbersAttribute(dataset.get(), "voxel_size_um",
-                              {volume.voxelDepthUm, volume.voxelWidthUm, volume.voxelWidthUm}) &&
+                              {volume.voxelDepthUm, volume.voxelHeightUm, volume.voxelWidthUm}) &&
         writeScalarAttribute(dataset.get(), "first_slice_um", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, volume.firstSliceUm);
     if (!attributes) return hdf5Error(ErrorCode::Io, path, "cannot write attributes");
     if (!dataset.close()) return hdf5Error(ErrorCode::Io, path, "cannot write voxels");
@@ -131,6 +132,7 @@ Result<Volume> readHdf5Volume(const fs::path& path) {
   LFCAM_ASSIGN_OR_RETURN(auto opened, openVolume(path));
   Volume volume(int(opened.dims[2]), int(opened.dims[1]), int(opened.dims[0]));
   volume.voxelWidthUm = opened.voxelWidthUm;
+  volume.voxelHeightUm = opened.voxelHeightUm;
   volume.voxelDepthUm = opened.voxelDepthUm;
   volume.firstSliceUm = opened.firstSliceUm;
   LFCAM_TRY(readVoxels(path, opened, volume.voxels().data()));

@@ -23,9 +23,10 @@ namespace fs = std::filesystem;
 namespace {
 
 // lfcam's own lines in ImageJ's description, which ImageJ ignores: the depth of slice 0 has no
-// place in ImageJ's calibration, and the resolution tags round the voxel width to a float.
+// place in ImageJ's calibration, and the resolution tags round the voxel's sizes to floats.
 constexpr const char* kFirstSliceKey = "lfcam_first_slice_um";
 constexpr const char* kVoxelWidthKey = "lfcam_voxel_width_um";
+constexpr const char* kVoxelHeightKey = "lfcam_voxel_height_um";
 
 // ImageJ's own description of a z-stack, as tifffile writes it for `imagej=True`; min and max set
 // Fiji's display range.
@@ -38,7 +39,8 @@ std::string imageJDescription(const Volume& volume) {
   return "ImageJ=1.11a\nimages=" + slices + "\nslices=" + slices +
          "\nunit=micron\nspacing=" + shortestNumber(volume.voxelDepthUm) + "\nloop=false\nmin=" + shortestNumber(low) +
          "\nmax=" + shortestNumber(high) + "\n" + kFirstSliceKey + "=" + shortestNumber(volume.firstSliceUm) + "\n" +
-         kVoxelWidthKey + "=" + shortestNumber(volume.voxelWidthUm) + "\n";
+         kVoxelWidthKey + "=" + shortestNumber(volume.voxelWidthUm) + "\n" + kVoxelHeightKey + "=" +
+         shortestNumber(volume.voxelHeightUm) + "\n";
 }
 
 // ImageJ's description is a Java properties text, "key=value" a line, behind "ImageJ=...".
@@ -91,16 +93,21 @@ Status calibrate(const fs::path& path, const TiffStack& stack, Volume& volume) {
   // Without a unit (napari-LF's files, ImageJ's uncalibrated ones) numbers are taken as micrometres.
   const auto unit = properties.find("unit");
   const std::optional<double> scale = unit == properties.end() ? 1.0 : micrometresPer(unit->second);
-  if (const auto width = numberOf(properties, kVoxelWidthKey); positive(width)) {
+  const std::uint16_t tiffUnit = stack.resolution ? stack.resolution->unit : 0;
+  const std::optional<double> unitUm = tiffUnit == RESUNIT_CENTIMETER ? 1e4
+                                       : tiffUnit == RESUNIT_INCH     ? 25400.0
+                                                                      : scale;
+  if (const auto width = numberOf(properties, kVoxelWidthKey); positive(width))
     volume.voxelWidthUm = *width;
-  } else if (stack.resolution && stack.resolution->x > 0) {
-    // Volume's voxels are square: x's resolution stands for both.
-    const std::uint16_t tiffUnit = stack.resolution->unit;
-    const std::optional<double> unitUm = tiffUnit == RESUNIT_CENTIMETER ? 1e4
-                                         : tiffUnit == RESUNIT_INCH     ? 25400.0
-                                                                        : scale;
-    if (unitUm) volume.voxelWidthUm = *unitUm / stack.resolution->x;
-  }
+  else if (stack.resolution && stack.resolution->x > 0 && unitUm)
+    volume.voxelWidthUm = *unitUm / stack.resolution->x;
+  // A file without the height (an earlier lfcam's, square voxels) has the width's.
+  if (const auto height = numberOf(properties, kVoxelHeightKey); positive(height))
+    volume.voxelHeightUm = *height;
+  else if (stack.resolution && stack.resolution->y > 0 && unitUm)
+    volume.voxelHeightUm = *unitUm / stack.resolution->y;
+  else
+    volume.voxelHeightUm = volume.voxelWidthUm;
   if (const auto spacing = numberOf(properties, "spacing"); scale && positive(spacing))
     volume.voxelDepthUm = *spacing * *scale;
   volume.firstSliceUm = numberOf(properties, kFirstSliceKey).value_or(0);
@@ -126,11 +133,10 @@ void copyPage(const InterleavedCodes& codes, float* slice) {
 // whose description says images= as one contiguous block after the first page, which libtiff's
 // pages are not; a compressed one it reads page by page.
 Status writeImageJStack(const fs::path& temporary, const fs::path& path, const Volume& volume) {
-  const double pixelsPerUm = 1 / volume.voxelWidthUm;
   const TiffStack stack{
       .header = {volume.width(), volume.height(), 1, SampleType::Float32, {}, imageJDescription(volume)},
       .pages = volume.depth(),
-      .resolution = TiffResolution{pixelsPerUm, pixelsPerUm, RESUNIT_NONE}};
+      .resolution = TiffResolution{1 / volume.voxelWidthUm, 1 / volume.voxelHeightUm, RESUNIT_NONE}};
   return writeTiffStack(temporary, path, stack,
                         [&](int z) { return reinterpret_cast<const unsigned char*>(volume.slice(z)); });
 }

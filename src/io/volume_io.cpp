@@ -30,11 +30,13 @@ Status writeVolume(const fs::path& path, const Volume& volume) {
   const bool tiff = extension == ".tif" || extension == ".tiff";
   if (volume.empty()) return fileError(ErrorCode::Usage, path, "nothing to write: the volume is empty");
   const auto positive = [](double size) { return std::isfinite(size) && size > 0; };
-  if (!positive(volume.voxelWidthUm) || !positive(volume.voxelDepthUm) || !std::isfinite(volume.firstSliceUm))
+  if (!positive(volume.voxelWidthUm) || !positive(volume.voxelHeightUm) || !positive(volume.voxelDepthUm) ||
+      !std::isfinite(volume.firstSliceUm))
     return fileError(ErrorCode::Usage, path,
                      "voxel sizes must be positive and finite and the first slice's depth finite, not " +
-                         io::shortestNumber(volume.voxelWidthUm) + ", " + io::shortestNumber(volume.voxelDepthUm) +
-                         " and " + io::shortestNumber(volume.firstSliceUm) + " um");
+                         io::shortestNumber(volume.voxelWidthUm) + ", " + io::shortestNumber(volume.voxelHeightUm) +
+                         ", " + io::shortestNumber(volume.voxelDepthUm) + " and " +
+                         io::shortestNumber(volume.firstSliceUm) + " um");
   return writeFileAtomically(path, [&](const fs::path& temporary) {
     return tiff ? io::writeImageJStack(temporary, path, volume) : io::writeHdf5Volume(temporary, volume, path);
   });

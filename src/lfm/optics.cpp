@@ -13,13 +13,27 @@ namespace lfcam {
 using lfm::number;
 using lfm::usage;
 
+double LfmOptics::rowPitchUm() const {
+  return array == MicrolensLayout::Hexagonal ? microlensPitchUm * std::sqrt(3.0) / 2 : microlensPitchUm;
+}
+
+const char* microlensLayoutName(MicrolensLayout array) {
+  return array == MicrolensLayout::Hexagonal ? "hexagonal" : "square";
+}
+
+std::optional<MicrolensLayout> parseMicrolensLayout(const std::string& name) {
+  for (MicrolensLayout array : {MicrolensLayout::Square, MicrolensLayout::Hexagonal})
+    if (name == microlensLayoutName(array)) return array;
+  return std::nullopt;
+}
+
 Status validateLfmOptics(const LfmOptics& o) {
   // Each length and ratio finite and positive; NaN fails every comparison, so `!(x > 0)`.
   const std::pair<double, const char*> positives[] = {
       {o.magnification, "magnification"},      {o.numericalAperture, "NA"},
       {o.wavelengthNm, "wavelength"},          {o.tubeFocalLengthMm, "tube lens focal length"},
       {o.microlensPitchUm, "microlens pitch"}, {o.microlensFocalLengthUm, "microlens focal length"},
-      {o.pixelSizeUm, "pixel size"},
+      {o.pixelSizeUm, "pixel size"},           {o.pixelAspect, "pixel aspect"},
   };
   for (const auto& [value, name] : positives)
     if (!(value > 0) || !std::isfinite(value))
@@ -60,10 +74,18 @@ Result<LfmOptics> parseNapariLfOptics(const std::string& text, const std::string
       return makeError(ErrorCode::Format, where + ": calibrate." + key + ": expected a number");
     *out = section[key].get<double>();
   }
+  if (section.contains("ulens_array")) {
+    const nlohmann::json& value = section["ulens_array"];
+    const auto array = value.is_string() ? parseMicrolensLayout(value.get<std::string>()) : std::nullopt;
+    if (!array)
+      return makeError(ErrorCode::Usage,
+                       where + ": calibrate.ulens_array: expected \"square\" or \"hexagonal\", got " + value.dump());
+    optics.array = *array;
+  }
   if (section.contains("ulens_profile") &&
       !(section["ulens_profile"].is_string() && section["ulens_profile"].get<std::string>() == "rect"))
     return makeError(ErrorCode::Unsupported,
-                     where + ": calibrate.ulens_profile: only \"rect\" (square microlenses) is modelled");
+                     where + ": calibrate.ulens_profile: only \"rect\" (apertures filling their cells) is modelled");
   // The sensor at the microlens focal plane is the model's; another distance is not.
   if (section.contains("ulens_focal_distance") && section["ulens_focal_distance"].is_number() &&
       section["ulens_focal_distance"].get<double>() != optics.microlensFocalLengthUm)

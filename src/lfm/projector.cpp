@@ -73,16 +73,22 @@ void copyAroundTile(const PaddedPlanes& in, std::size_t first, std::size_t count
 
 }  // namespace
 
+// The planes are over the array's periods (lenslets; pairs of lenslet rows of a hexagonal array),
+// a period holding n x rows n pixels and k x rows k voxels.
 struct LfmProjector::State {
   const LfmSparsePsf* psf = nullptr;
   int lensletsX = 0, lensletsY = 0;
-  int n = 0, k = 0, slices = 0;
+  int n = 0, k = 0, rows = 1, slices = 0;
   // The splats turned around for the forward projection: per (slice, pixel), the voxel phases
   // (j K + i, in `pixel`) lighting that pixel, their offsets negated.
   std::vector<std::size_t> byPixelBegins;
   std::vector<LfmSplat> byPixel;
 
-  std::size_t phases() const { return std::size_t(slices) * k * k; }
+  int periodsY() const { return lensletsY / rows; }
+  int pixelRows() const { return rows * n; }  // of a period
+  int voxelRows() const { return rows * k; }
+  std::size_t phasesPerSlice() const { return std::size_t(k) * voxelRows(); }
+  std::size_t phases() const { return slices * phasesPerSlice(); }
 };
 
 LfmProjector::LfmProjector(const LfmSparsePsf& psf, int lensletsX, int lensletsY)
@@ -91,9 +97,10 @@ LfmProjector::LfmProjector(const LfmSparsePsf& psf, int lensletsX, int lensletsY
                                            .lensletsY = lensletsY,
                                            .n = psf.grid.pixelsPerLenslet,
                                            .k = psf.grid.voxelsPerLenslet,
+                                           .rows = psf.optics.rowsPerPeriod(),
                                            .slices = int(psf.grid.depthsUm.size())})) {
   State& s = *state_;
-  const std::size_t pixels = std::size_t(s.n) * s.n, phasesPerSlice = std::size_t(s.k) * s.k;
+  const std::size_t pixels = std::size_t(s.n) * s.pixelRows(), phasesPerSlice = s.phasesPerSlice();
   // A counting sort of every slice's splats by pixel.
   s.byPixelBegins.assign(s.slices * pixels + 1, 0);
   for (int z = 0; z < s.slices; ++z)
@@ -124,6 +131,7 @@ Volume LfmProjector::emptyVolume() const {
   Volume volume(s.lensletsX * s.k, s.lensletsY * s.k, s.slices);
   const LfmGrid& grid = s.psf->grid;
   volume.voxelWidthUm = s.psf->optics.microlensPitchUm / (s.psf->optics.magnification * s.k);
+  volume.voxelHeightUm = s.psf->optics.rowPitchUm() / (s.psf->optics.magnification * s.k);
   volume.firstSliceUm = grid.depthsUm.front();
   volume.voxelDepthUm = grid.depthsUm.size() > 1 ? grid.depthsUm[1] - grid.depthsUm[0] : 1;
   return volume;
@@ -136,11 +144,11 @@ Volume LfmProjector::sensitivity() const {
   parallelFor(0, s.phases(), 1, [&](std::size_t begin, std::size_t end) {
     std::vector<double> byOffset(std::size_t(side) * side), byRow(std::size_t(s.lensletsX) * side);
     for (std::size_t p = begin; p < end; ++p) {
-      const int z = int(p / (k * k)), j = int(p / k % k), i = int(p % k);
+      const int z = int(p / s.phasesPerSlice()), j = int(p / k % s.voxelRows()), i = int(p % k);
       std::fill(byOffset.begin(), byOffset.end(), 0.0);
       for (const LfmSplat& splat : s.psf->of(z, i, j))
         byOffset[std::size_t(splat.dy + reach) * side + splat.dx + reach] += splat.weight;
-      // Lenslet L reaches L + d when that lies on the frame, along x and along y apart.
+      // Period L reaches L + d when that lies on the frame, along x and along y apart.
       for (int x = 0; x < s.lensletsX; ++x)
         for (int dy = 0; dy < side; ++dy) {
           double sum = 0;
@@ -148,12 +156,12 @@ Volume LfmProjector::sensitivity() const {
             if (x + dx - reach >= 0 && x + dx - reach < s.lensletsX) sum += byOffset[std::size_t(dy) * side + dx];
           byRow[std::size_t(x) * side + dy] = sum;
         }
-      for (int y = 0; y < s.lensletsY; ++y)
+      for (int y = 0; y < s.periodsY(); ++y)
         for (int x = 0; x < s.lensletsX; ++x) {
           double sum = 0;
           for (int dy = 0; dy < side; ++dy)
-            if (y + dy - reach >= 0 && y + dy - reach < s.lensletsY) sum += byRow[std::size_t(x) * side + dy];
-          volume.at(x * k + i, y * k + j, z) = float(sum);
+            if (y + dy - reach >= 0 && y + dy - reach < s.periodsY()) sum += byRow[std::size_t(x) * side + dy];
+          volume.at(x * k + i, y * s.voxelRows() + j, z) = float(sum);
         }
     }
   });
@@ -163,21 +171,21 @@ Volume LfmProjector::sensitivity() const {
 Image LfmProjector::forward(const Volume& volume) const {
   const State& s = *state_;
   const int k = s.k, n = s.n;
-  // The volume as one padded plane per (slice, voxel phase) over the lenslets.
-  PaddedPlanes in(s.lensletsX, s.lensletsY, s.psf->reach, s.phases());
+  // The volume as one padded plane per (slice, voxel phase) over the periods.
+  PaddedPlanes in(s.lensletsX, s.periodsY(), s.psf->reach, s.phases());
   parallelFor(0, s.phases(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t p = begin; p < end; ++p) {
-      const int z = int(p / (k * k)), j = int(p / k % k), i = int(p % k);
-      for (int t = 0; t < s.lensletsY; ++t) {
-        const float* row = volume.slice(z) + std::size_t(t * k + j) * volume.width() + i;
+      const int z = int(p / s.phasesPerSlice()), j = int(p / k % s.voxelRows()), i = int(p % k);
+      for (int t = 0; t < s.periodsY(); ++t) {
+        const float* row = volume.slice(z) + std::size_t(t * s.voxelRows() + j) * volume.width() + i;
         float* out = in.at(p, 0, t);
         for (int x = 0; x < s.lensletsX; ++x) out[x] = row[std::size_t(x) * k];
       }
     }
   });
   Image frame(s.lensletsX * n, s.lensletsY * n, 1);
-  const int pixels = n * n;
-  const std::size_t tiles = std::size_t(in.tilesX) * in.tilesY, phasesPerSlice = std::size_t(k) * k;
+  const int pixels = n * s.pixelRows();
+  const std::size_t tiles = std::size_t(in.tilesX) * in.tilesY, phasesPerSlice = s.phasesPerSlice();
   const int side = kTile + 2 * in.reach;
   const std::size_t planeSize = std::size_t(side) * side;
   parallelFor(0, tiles, 1, [&](std::size_t begin, std::size_t end) {
@@ -197,9 +205,10 @@ Image LfmProjector::forward(const Volume& volume) const {
       }
       for (int c = 0; c < pixels; ++c) {
         const int u = c % n, v = c / n;
-        for (int r = 0; r < kTile && y0 + r < s.lensletsY; ++r)
+        for (int r = 0; r < kTile && y0 + r < s.periodsY(); ++r)
           for (int x = 0; x < kTile && x0 + x < s.lensletsX; ++x)
-            frame.at((x0 + x) * n + u, (y0 + r) * n + v, 0) = sums[std::size_t(c) * kTileSize + r * kTile + x];
+            frame.at((x0 + x) * n + u, (y0 + r) * s.pixelRows() + v, 0) =
+                sums[std::size_t(c) * kTileSize + r * kTile + x];
       }
     }
   });
@@ -208,14 +217,14 @@ Image LfmProjector::forward(const Volume& volume) const {
 
 Volume LfmProjector::backward(const Image& frame) const {
   const State& s = *state_;
-  const int k = s.k, n = s.n, pixels = n * n;
-  // The frame as one padded plane per pixel phase over the lenslets.
-  PaddedPlanes in(s.lensletsX, s.lensletsY, s.psf->reach, std::size_t(pixels));
+  const int k = s.k, n = s.n, pixels = n * s.pixelRows();
+  // The frame as one padded plane per pixel phase over the periods.
+  PaddedPlanes in(s.lensletsX, s.periodsY(), s.psf->reach, std::size_t(pixels));
   parallelFor(0, pixels, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       const int u = int(c) % n, v = int(c) / n;
-      for (int t = 0; t < s.lensletsY; ++t) {
-        const float* row = frame.row(t * n + v, 0) + u;
+      for (int t = 0; t < s.periodsY(); ++t) {
+        const float* row = frame.row(t * s.pixelRows() + v, 0) + u;
         float* out = in.at(c, 0, t);
         for (int x = 0; x < s.lensletsX; ++x) out[x] = row[std::size_t(x) * n];
       }
@@ -234,13 +243,13 @@ Volume LfmProjector::backward(const Image& frame) const {
       copyAroundTile(in, 0, pixels, x0, y0, local.data());
       const float* origin = local.data() + std::size_t(in.reach) * side + in.reach;
       for (std::size_t p = 0; p < s.phases(); ++p) {
-        const int z = int(p / (k * k)), j = int(p / k % k), i = int(p % k);
+        const int z = int(p / s.phasesPerSlice()), j = int(p / k % s.voxelRows()), i = int(p % k);
         const auto splats = s.psf->of(z, i, j);
         std::fill(std::begin(sums), std::end(sums), 0.0f);
         gatherTile(sums, origin, planeSize, side, splats.data(), splats.data() + splats.size());
-        for (int r = 0; r < kTile && y0 + r < s.lensletsY; ++r)
+        for (int r = 0; r < kTile && y0 + r < s.periodsY(); ++r)
           for (int x = 0; x < kTile && x0 + x < s.lensletsX; ++x)
-            volume.at((x0 + x) * k + i, (y0 + r) * k + j, z) = sums[r * kTile + x];
+            volume.at((x0 + x) * k + i, (y0 + r) * s.voxelRows() + j, z) = sums[r * kTile + x];
       }
     }
   });

@@ -8,14 +8,16 @@ namespace {
 template <class Visit>
 void forEachLink(const LfmPsfSet& set, int lensletsX, int lensletsY, Visit&& visit) {
   const int k = set.grid.voxelsPerLenslet, n = set.grid.pixelsPerLenslet, w = set.pixelsAcross;
+  const int rows = set.optics.rowsPerPeriod(), voxelRows = set.voxelRows();
   const int width = lensletsX * k, height = lensletsY * k, frameWidth = lensletsX * n, frameHeight = lensletsY * n;
   const int centre = set.lensletsAcross / 2;
   for (int z = 0; z < int(set.grid.depthsUm.size()); ++z)
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
-        const float* psf = set.psf(z, x % k, y % k);
-        // The window's pixel (0, 0) is pixel (0, 0) of the lenslet `centre` lenslets up and left.
-        const int left = (x / k - centre) * n, top = (y / k - centre) * n;
+        const float* psf = set.psf(z, x % k, y % voxelRows);
+        // The window's pixel (0, 0) is pixel (0, 0) of the lenslet `centre` lenslets up and left
+        // of the first lenslet of the voxel's period.
+        const int left = (x / k - centre) * n, top = (y / voxelRows * rows - centre) * n;
         for (int py = 0; py < w; ++py)
           for (int px = 0; px < w; ++px) {
             const int fx = left + px, fy = top + py;

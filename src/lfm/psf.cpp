@@ -6,8 +6,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <numbers>
+#include <tuple>
 
 #include "core/fftw_planner.hpp"
 #include "core/parallel.hpp"
@@ -104,14 +106,15 @@ std::complex<double> DebyeIntegral::field(double radiusUm) const {
 }
 
 double maxRadiusOnGrid(const LfmOptics& optics, const LfmPoint& point, int n) {
-  const double half = sampleCoordinate(n - 1, n, optics.sampleSpacingUm());
+  const double halfX = sampleCoordinate(n - 1, n, optics.sampleSpacingUm());
+  const double halfY = sampleCoordinate(n - 1, n, optics.sampleHeightUm());
   const double cx = optics.magnification * point.xUm, cy = optics.magnification * point.yUm;
-  return std::hypot(half + std::abs(cx), half + std::abs(cy));
+  return std::hypot(halfX + std::abs(cx), halfY + std::abs(cy));
 }
 
 std::vector<std::complex<double>> nativeFieldDirect(const LfmOptics& optics, PupilModel pupil, const LfmPoint& point,
                                                     int n) {
-  const double dx = optics.sampleSpacingUm();
+  const double dx = optics.sampleSpacingUm(), dy = optics.sampleHeightUm();
   const DebyeIntegral debye(optics, point.zUm, maxRadiusOnGrid(optics, point, n), pupil);
   const double cx = optics.magnification * point.xUm, cy = optics.magnification * point.yUm;
   std::vector<std::complex<double>> field(std::size_t(n) * n);
@@ -119,7 +122,7 @@ std::vector<std::complex<double>> nativeFieldDirect(const LfmOptics& optics, Pup
     for (std::size_t y = begin; y < end; ++y)
       for (int x = 0; x < n; ++x)
         field[y * n + x] =
-            debye.field(std::hypot(sampleCoordinate(x, n, dx) - cx, sampleCoordinate(int(y), n, dx) - cy));
+            debye.field(std::hypot(sampleCoordinate(x, n, dx) - cx, sampleCoordinate(int(y), n, dy) - cy));
   });
   return field;
 }
@@ -143,53 +146,72 @@ RadialProfile radialProfile(const LfmOptics& optics, PupilModel pupil, double de
 
 std::vector<std::complex<double>> nativeFieldFromProfile(const LfmOptics& optics, const RadialProfile& profile,
                                                          const LfmPoint& point, int n) {
-  const double dx = optics.sampleSpacingUm();
+  const double dx = optics.sampleSpacingUm(), dy = optics.sampleHeightUm();
   const double cx = optics.magnification * point.xUm, cy = optics.magnification * point.yUm;
   std::vector<std::complex<double>> field(std::size_t(n) * n);
   parallelFor(0, n, 8, [&](std::size_t begin, std::size_t end) {
     for (std::size_t y = begin; y < end; ++y)
       for (int x = 0; x < n; ++x)
         field[y * n + x] =
-            profile.at(std::hypot(sampleCoordinate(x, n, dx) - cx, sampleCoordinate(int(y), n, dx) - cy));
+            profile.at(std::hypot(sampleCoordinate(x, n, dx) - cx, sampleCoordinate(int(y), n, dy) - cy));
   });
   return field;
 }
 
+LensletCentre nearestLenslet(const LfmOptics& optics, double xUm, double yUm) {
+  const double pitch = optics.microlensPitchUm;
+  if (optics.array == MicrolensLayout::Square)
+    return {std::round(xUm / pitch) * pitch, std::round(yUm / pitch) * pitch};
+  // The nearest centre of the rows through and around the nearest row's: a hexagonal cell
+  // reaches into the next rows' bands.
+  const double row = optics.rowPitchUm();
+  const double t0 = std::round(yUm / row);
+  LensletCentre best{0, 0};
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (double t = t0 - 1; t <= t0 + 1; ++t) {
+    const double shift = std::fmod(std::abs(t), 2.0) == 1 ? 0.5 : 0.0;
+    const LensletCentre centre{(std::round(xUm / pitch - shift) + shift) * pitch, t * row};
+    const double distance = std::hypot(xUm - centre.xUm, yUm - centre.yUm);
+    if (distance < bestDistance) best = centre, bestDistance = distance;
+  }
+  return best;
+}
+
 template <class T>
 void applyMicrolenses(const LfmOptics& optics, int n, std::complex<T>* field) {
-  const double dx = optics.sampleSpacingUm(), pitch = optics.microlensPitchUm;
-  const double halfAperture = 0.5 * std::sqrt(optics.microlensFillFactor) * pitch;
+  const double dx = optics.sampleSpacingUm(), dy = optics.sampleHeightUm();
+  // The aperture: the cell shrunk by sqrt(fill factor); halfAperture its half-width along x (a
+  // hexagon's inradius).
+  const double halfAperture = 0.5 * std::sqrt(optics.microlensFillFactor) * optics.microlensPitchUm;
+  const bool hexagonal = optics.array == MicrolensLayout::Hexagonal;
   const double chirp = kPi / (optics.wavelengthUm() * optics.microlensFocalLengthUm);  // image side: air
-  // Equation 6: each lenslet a thin lens, its centre on the nearest multiple of the pitch.
-  std::vector<double> local(n);
-  std::vector<bool> inside(n);
-  for (int i = 0; i < n; ++i) {
-    const double x = sampleCoordinate(i, n, dx);
-    local[i] = x - std::round(x / pitch) * pitch;
-    inside[i] = std::abs(local[i]) <= halfAperture;
-  }
-  for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) {
-      std::complex<T>& value = field[std::size_t(y) * n + x];
-      if (!inside[x] || !inside[y]) {
-        value = 0;
-        continue;
+  // Equation 6: each lenslet a thin lens centred on its cell.
+  parallelFor(0, n, 8, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t y = begin; y < end; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double px = sampleCoordinate(x, n, dx), py = sampleCoordinate(int(y), n, dy);
+        const LensletCentre centre = nearestLenslet(optics, px, py);
+        const double lx = std::abs(px - centre.xUm), ly = std::abs(py - centre.yUm);
+        // A hexagon's sides: two at |x| = a, four at |x| / 2 + sqrt(3) / 2 |y| = a.
+        const bool inside = hexagonal ? lx <= halfAperture && 0.5 * lx + 0.5 * std::sqrt(3.0) * ly <= halfAperture
+                                      : lx <= halfAperture && ly <= halfAperture;
+        std::complex<T>& value = field[y * n + x];
+        value = inside ? value * std::complex<T>(std::polar(1.0, -chirp * (lx * lx + ly * ly))) : std::complex<T>(0);
       }
-      const double phase = -chirp * (local[x] * local[x] + local[y] * local[y]);
-      value *= std::complex<T>(std::polar(1.0, phase));
-    }
+  });
 }
 template void applyMicrolenses(const LfmOptics&, int, std::complex<float>*);
 template void applyMicrolenses(const LfmOptics&, int, std::complex<double>*);
 
-FresnelTransfer::FresnelTransfer(int n, double spacingUm, double wavelengthUm, double distanceUm) : n_(n) {
+FresnelTransfer::FresnelTransfer(int n, double spacingXUm, double spacingYUm, double wavelengthUm, double distanceUm)
+    : n_(n) {
   const std::size_t size = std::size_t(n) * n;
   transfer_.resize(size);
   const double scale = 1.0 / double(size);  // FFTW's inverse is unnormalised
   for (int y = 0; y < n; ++y) {
-    const double fy = (y <= (n - 1) / 2 ? y : y - n) / (n * spacingUm);
+    const double fy = (y <= (n - 1) / 2 ? y : y - n) / (n * spacingYUm);
     for (int x = 0; x < n; ++x) {
-      const double fx = (x <= (n - 1) / 2 ? x : x - n) / (n * spacingUm);
+      const double fx = (x <= (n - 1) / 2 ? x : x - n) / (n * spacingXUm);
       const double phase = -kPi * wavelengthUm * distanceUm * (fx * fx + fy * fy);
       transfer_[std::size_t(y) * n + x] = std::complex<float>(std::polar(scale, phase));
     }
@@ -219,22 +241,25 @@ void FresnelTransfer::propagate(std::complex<float>* field) const {
   std::copy(data, data + size, field);
 }
 
-std::vector<std::complex<double>> fresnelDirect(const std::vector<std::complex<double>>& field, int n, double spacingUm,
-                                                double wavelengthUm, double distanceUm) {
+std::vector<std::complex<double>> fresnelDirect(const std::vector<std::complex<double>>& field, int n,
+                                                double spacingXUm, double spacingYUm, double wavelengthUm,
+                                                double distanceUm) {
   const double chirp = kPi / (wavelengthUm * distanceUm);
-  const std::complex<double> scale = spacingUm * spacingUm / std::complex<double>(0, wavelengthUm * distanceUm);
-  // exp(i chirp d^2) for every separation d = k * spacing along one axis: the kernel separates.
-  std::vector<std::complex<double>> kernel(2 * n - 1);
-  for (int k = -(n - 1); k <= n - 1; ++k)
-    kernel[k + n - 1] = std::polar(1.0, chirp * (k * spacingUm) * (k * spacingUm));
+  const std::complex<double> scale = spacingXUm * spacingYUm / std::complex<double>(0, wavelengthUm * distanceUm);
+  // exp(i chirp d^2) for every separation d = k * spacing along each axis: the kernel separates.
+  std::vector<std::complex<double>> kernelX(2 * n - 1), kernelY(2 * n - 1);
+  for (int k = -(n - 1); k <= n - 1; ++k) {
+    kernelX[k + n - 1] = std::polar(1.0, chirp * (k * spacingXUm) * (k * spacingXUm));
+    kernelY[k + n - 1] = std::polar(1.0, chirp * (k * spacingYUm) * (k * spacingYUm));
+  }
   std::vector<std::complex<double>> out(std::size_t(n) * n);
   parallelFor(0, n, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t y = begin; y < end; ++y)
       for (int x = 0; x < n; ++x) {
         std::complex<double> sum = 0;
         for (int y1 = 0; y1 < n; ++y1) {
-          const std::complex<double> ky = kernel[int(y) - y1 + n - 1];
-          for (int x1 = 0; x1 < n; ++x1) sum += field[std::size_t(y1) * n + x1] * ky * kernel[x - x1 + n - 1];
+          const std::complex<double> ky = kernelY[int(y) - y1 + n - 1];
+          for (int x1 = 0; x1 < n; ++x1) sum += field[std::size_t(y1) * n + x1] * ky * kernelX[x - x1 + n - 1];
         }
         out[y * n + x] = scale * sum;
       }
@@ -242,18 +267,32 @@ std::vector<std::complex<double>> fresnelDirect(const std::vector<std::complex<d
   return out;
 }
 
-Image integratePixels(const std::complex<float>* field, int n, int supersample, double spacingUm) {
-  const int pixels = n / supersample;
+int hexagonalBrickPixels(const LfmOptics& optics) {
+  if (optics.array != MicrolensLayout::Hexagonal) return 0;
+  const double perLenslet = optics.microlensPitchUm / optics.pixelSizeUm;
+  const int n = int(std::round(perLenslet));
+  const bool whole = std::abs(perLenslet - n) < 1e-9 * n;
+  return whole && std::abs(n * optics.pixelHeightUm() - optics.rowPitchUm()) < 1e-9 * optics.rowPitchUm() ? n : 0;
+}
+
+Image integratePixels(const std::complex<float>* field, int n, const LfmOptics& optics) {
+  const int supersample = optics.supersample, pixels = n / supersample;
+  const int brick = hexagonalBrickPixels(optics), middleRow = pixels / std::max(brick, 1) / 2;
   Image image(pixels, pixels, 1);
-  const double area = spacingUm * spacingUm;
-  for (int py = 0; py < pixels; ++py)
+  const double area = optics.sampleSpacingUm() * optics.sampleHeightUm();
+  for (int py = 0; py < pixels; ++py) {
+    const bool shifted = brick > 0 && (py / brick - middleRow) % 2 != 0;
+    const int shift = shifted ? brick * supersample / 2 : 0;
     for (int px = 0; px < pixels; ++px) {
       double sum = 0;
       for (int sy = 0; sy < supersample; ++sy)
-        for (int sx = 0; sx < supersample; ++sx)
-          sum += std::norm(std::complex<double>(field[std::size_t(py * supersample + sy) * n + px * supersample + sx]));
+        for (int sx = 0; sx < supersample; ++sx) {
+          const int x = (px * supersample + sx + shift) % n;
+          sum += std::norm(std::complex<double>(field[std::size_t(py * supersample + sy) * n + x]));
+        }
       image.at(px, py, 0) = float(sum * area);
     }
+  }
   return image;
 }
 
@@ -292,14 +331,15 @@ struct LfmPsf::State {
         pupil(p),
         pixels(pixelsAcross),
         samples(pixelsAcross * o.supersample),
-        transfer(samples, o.sampleSpacingUm(), o.wavelengthUm(), o.microlensFocalLengthUm),
+        transfer(samples, o.sampleSpacingUm(), o.sampleHeightUm(), o.wavelengthUm(), o.microlensFocalLengthUm),
         mask(std::size_t(samples) * samples, 1.0f) {
     lfm::applyMicrolenses(optics, samples, mask.data());
   }
 
   std::shared_ptr<const lfm::RadialProfile> profileFor(const LfmPoint& point) const {
-    const double half = 0.5 * optics.microlensPitchUm / optics.magnification;
-    const LfmPoint corner{half, half, point.zUm};
+    // The farthest a voxel of the array's period sits from the axis (computePsfSet's points).
+    const LfmPoint corner{0.5 * optics.microlensPitchUm / optics.magnification,
+                          (optics.rowsPerPeriod() - 0.5) * optics.rowPitchUm() / optics.magnification, point.zUm};
     const double reach = lfm::maxRadiusOnGrid(optics, corner, samples);
     if (lfm::maxRadiusOnGrid(optics, point, samples) > reach)
       return std::make_shared<const lfm::RadialProfile>(
@@ -323,16 +363,24 @@ Result<LfmPsf> LfmPsf::create(const LfmOptics& optics, int lensletsAcross, Pupil
     return makeError(ErrorCode::Usage,
                      "lenslets across " + std::to_string(lensletsAcross) + " must be odd, in [1, 201]");
   // The field after the mask holds frequencies up to the native image's cutoff plus the lenslets'
-  // phase slope at their edge, along each axis; the samples must hold them without aliasing.
-  const double dx = optics.sampleSpacingUm();
-  const double slope = 0.5 * std::sqrt(optics.microlensFillFactor) * optics.microlensPitchUm /
-                       (optics.wavelengthUm() * optics.microlensFocalLengthUm);
-  const double bandwidth = optics.imageCutoffPerUm() + slope;
-  if (!(2 * bandwidth * dx < 1))
-    return makeError(ErrorCode::Usage, "sample spacing " + number(dx, "%.3g") +
-                                           " um aliases the field after the microlenses (up to " +
-                                           number(bandwidth, "%.3g") + " cycles/um): raise supersample to at least " +
-                                           std::to_string(int(std::floor(2 * bandwidth * optics.pixelSizeUm)) + 1));
+  // phase slope at their edge, along each axis; the samples must hold them without aliasing. A
+  // hexagonal aperture reaches 2 / sqrt(3) of its inradius along y.
+  const double halfAperture = 0.5 * std::sqrt(optics.microlensFillFactor) * optics.microlensPitchUm;
+  const double reachY = optics.array == MicrolensLayout::Hexagonal ? halfAperture * 2 / std::sqrt(3.0) : halfAperture;
+  for (const auto& [reach, spacing, pixel] : {std::tuple{halfAperture, optics.sampleSpacingUm(), optics.pixelSizeUm},
+                                              std::tuple{reachY, optics.sampleHeightUm(), optics.pixelHeightUm()}}) {
+    const double bandwidth =
+        optics.imageCutoffPerUm() + reach / (optics.wavelengthUm() * optics.microlensFocalLengthUm);
+    if (!(2 * bandwidth * spacing < 1))
+      return makeError(ErrorCode::Usage, "sample spacing " + number(spacing, "%.3g") +
+                                             " um aliases the field after the microlenses (up to " +
+                                             number(bandwidth, "%.3g") + " cycles/um): raise supersample to at least " +
+                                             std::to_string(int(std::floor(2 * bandwidth * pixel)) + 1));
+  }
+  if (const int brick = lfm::hexagonalBrickPixels(optics); brick * optics.supersample % 2 != 0)
+    return makeError(ErrorCode::Usage, "a hexagonal frame of " + std::to_string(brick) +
+                                           " pixels a lenslet needs an even supersample: its shifted rows sit half a "
+                                           "pitch over");
   const int pixels = lfm::windowPixels(optics, lensletsAcross);
   if (std::size_t(pixels) * optics.supersample > 8192)
     return makeError(ErrorCode::Resource, "a window of " + std::to_string(pixels * optics.supersample) +
@@ -343,7 +391,9 @@ Result<LfmPsf> LfmPsf::create(const LfmOptics& optics, int lensletsAcross, Pupil
 int LfmPsf::lensletsFor(const LfmOptics& optics, double maxDepthUm) {
   const double sinAlpha = std::min(optics.sinAlpha(), 0.999999);
   const double radius = optics.magnification * std::abs(maxDepthUm) * sinAlpha / std::sqrt(1 - sinAlpha * sinAlpha);
-  return 2 * (int(std::ceil(radius / optics.microlensPitchUm)) + 1) + 1;
+  // Rows (the closer-spaced axis) to the blur's edge, and a period's rows of margin: a period of a
+  // hexagonal array holds points a row off the axis.
+  return 2 * (int(std::ceil(radius / optics.rowPitchUm())) + optics.rowsPerPeriod()) + 1;
 }
 
 LfmPsf::LfmPsf(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -369,8 +419,7 @@ std::vector<std::complex<float>> LfmPsf::sensorField(const LfmPoint& point) cons
 
 Image LfmPsf::psf(const LfmPoint& point) const {
   const std::vector<std::complex<float>> field = sensorField(point);
-  return lfm::integratePixels(field.data(), state_->samples, state_->optics.supersample,
-                              state_->optics.sampleSpacingUm());
+  return lfm::integratePixels(field.data(), state_->samples, state_->optics);
 }
 
 Status validateLfmGrid(const LfmGrid& grid) {
@@ -390,16 +439,19 @@ Status validateLfmGrid(const LfmGrid& grid) {
 LfmOptics frameOptics(const LfmOptics& optics, int pixelsPerLenslet) {
   LfmOptics frame = optics;
   frame.pixelSizeUm = optics.microlensPitchUm / pixelsPerLenslet;
+  if (optics.array == MicrolensLayout::Hexagonal) {
+    frame.pixelAspect = optics.rowPitchUm() / optics.microlensPitchUm;
+    if (pixelsPerLenslet * frame.supersample % 2 != 0) ++frame.supersample;
+  }
   return frame;
 }
 
 LfmPoint LfmPsfSet::point(int depth, int i, int j) const {
-  return {grid.voxelOffsetUm(optics, i), grid.voxelOffsetUm(optics, j), grid.depthsUm[depth]};
+  return {grid.voxelOffsetUm(optics, i), grid.voxelRowOffsetUm(optics, j), grid.depthsUm[depth]};
 }
 
 const float* LfmPsfSet::psf(int depth, int i, int j) const {
-  const int k = grid.voxelsPerLenslet;
-  const std::size_t index = (std::size_t(depth) * k + j) * k + i;
+  const std::size_t index = (std::size_t(depth) * voxelRows() + j) * grid.voxelsPerLenslet + i;
   return values.data() + index * pixelsAcross * pixelsAcross;
 }
 
@@ -415,16 +467,17 @@ Result<LfmPsfSet> computePsfSet(const LfmOptics& microscope, const LfmGrid& grid
   const int k = grid.voxelsPerLenslet, n = model.pixelsAcross();
   LfmPsfSet set{.optics = optics, .pupil = pupil, .grid = grid, .lensletsAcross = lensletsAcross, .pixelsAcross = n};
   const std::size_t size = std::size_t(n) * n;
-  set.values.resize(grid.depthsUm.size() * k * k * size);
-  // The array and the pixels are symmetric about the centre lenslet's axes and diagonal: phase
-  // K - 1 - i is phase i mirrored, phase (j, i) phase (i, j) transposed. Only the phases with
-  // fold(i) <= fold(j) are computed; the others are copied from them.
+  set.values.resize(grid.depthsUm.size() * k * set.voxelRows() * size);
+  // A square array and its pixels are symmetric about the centre lenslet's axes and diagonal:
+  // phase K - 1 - i is phase i mirrored, phase (j, i) phase (i, j) transposed. Only the phases
+  // with fold(i) <= fold(j) are computed; the others are copied from them.
+  const bool square = optics.array == MicrolensLayout::Square;
   auto fold = [k](int i) { return std::min(i, k - 1 - i); };
   std::vector<std::array<int, 3>> computed;  // depth, i, j
   for (int depth = 0; depth < int(grid.depthsUm.size()); ++depth)
-    for (int j = 0; j < k; ++j)
+    for (int j = 0; j < set.voxelRows(); ++j)
       for (int i = 0; i < k; ++i)
-        if (i == fold(i) && j == fold(j) && i <= j) computed.push_back({depth, i, j});
+        if (!square || (i == fold(i) && j == fold(j) && i <= j)) computed.push_back({depth, i, j});
   // One PSF a task: each one's own stages thread within it too.
   parallelFor(0, computed.size(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
@@ -433,7 +486,7 @@ Result<LfmPsfSet> computePsfSet(const LfmOptics& microscope, const LfmGrid& grid
       std::copy(image.pixels().begin(), image.pixels().end(), const_cast<float*>(set.psf(depth, i, j)));
     }
   });
-  for (int depth = 0; depth < int(grid.depthsUm.size()); ++depth)
+  for (int depth = 0; square && depth < int(grid.depthsUm.size()); ++depth)
     for (int j = 0; j < k; ++j)
       for (int i = 0; i < k; ++i) {
         const int fi = fold(i), fj = fold(j);

@@ -25,7 +25,7 @@ namespace {
 using hdf5::Handle;
 
 constexpr const char* kFormatTag = "lfcam-lfm-psf";
-constexpr int kFormatVersion = 2;  // 1 held dense PSFs on field-sample phases
+constexpr int kFormatVersion = 3;  // 1 held dense PSFs on field-sample phases; 2 had square arrays only
 
 // Every number the cache is keyed by, with the name a refusal shows.
 struct Key {
@@ -43,7 +43,9 @@ std::vector<Key> keysOf(const LfmOptics& o, PupilModel pupil, const LfmGrid& gri
           {"microlens_pitch_um", "microlens pitch (um)", o.microlensPitchUm},
           {"microlens_focal_length_um", "microlens focal length (um)", o.microlensFocalLengthUm},
           {"microlens_fill_factor", "microlens fill factor", o.microlensFillFactor},
+          {"microlens_array", "microlens array (0 square, 1 hexagonal)", double(int(o.array))},
           {"pixel_size_um", "pixel size (um)", o.pixelSizeUm},
+          {"pixel_aspect", "pixel aspect", o.pixelAspect},
           {"field_samples_per_pixel", "field samples per pixel", double(o.supersample)},
           {"pupil", "pupil (0 Abbe sine, 1 paraxial)", double(int(pupil))},
           {"pixels_per_lenslet", "pixels per lenslet", double(grid.pixelsPerLenslet)},
@@ -204,7 +206,7 @@ Result<LfmSparsePsf> readPsfCache(const std::string& path, const LfmOptics& micr
       return makeError(ErrorCode::Usage, path + ": made for a slice at " + number(depths[d], "%.10g") + " um, not " +
                                              number(grid.depthsUm[d], "%.10g") +
                                              ": compute the PSFs again for these settings");
-  const std::size_t phases = depths.size() * grid.voxelsPerLenslet * grid.voxelsPerLenslet;
+  const std::size_t phases = depths.size() * grid.voxelsPerLenslet * grid.voxelsPerLenslet * optics.rowsPerPeriod();
   std::vector<std::uint64_t> begins(phases + 1);
   if (datasetLength(file.get(), "begins") != hssize_t(begins.size()) ||
       !readDataset(file.get(), "begins", H5T_NATIVE_UINT64, {hsize_t(begins.size())}, begins.data()))
@@ -221,7 +223,7 @@ Result<LfmSparsePsf> readPsfCache(const std::string& path, const LfmOptics& micr
       !readDataset(file.get(), "lenslet_dy", H5T_NATIVE_INT8, dims, columns.dy.data()) ||
       !readDataset(file.get(), "weights", H5T_NATIVE_FLOAT, dims, columns.weights.data()))
     return notCache;
-  const int pixels = grid.pixelsPerLenslet * grid.pixelsPerLenslet;
+  const int pixels = grid.pixelsPerLenslet * grid.pixelsPerLenslet * optics.rowsPerPeriod();
   psf.begins.assign(begins.begin(), begins.end());
   psf.splats.resize(count);
   for (hssize_t k = 0; k < count; ++k) {

@@ -32,6 +32,11 @@ class DebyeIntegral {
 // The sensor pixels across a window of lensletsAcross lenslets: the odd count covering them.
 int windowPixels(const LfmOptics& optics, int lensletsAcross);
 
+// The pixels a rectified hexagonal frame has under each lenslet along x (optics.hpp's
+// pixelAspect and psf.hpp's frameOptics): N when pitch / pixel is a whole N and N pixels make a
+// row of lenslets, the pixels then tiling each lenslet's pitch x row-pitch brick; 0 otherwise.
+int hexagonalBrickPixels(const LfmOptics& optics);
+
 // Sample i of an n-sample axis sits at (i - (n - 1) / 2) * spacing.
 inline double sampleCoordinate(int i, int n, double spacing) { return (i - 0.5 * (n - 1)) * spacing; }
 
@@ -57,17 +62,25 @@ std::vector<std::complex<double>> nativeFieldFromProfile(const LfmOptics& optics
 std::vector<std::complex<double>> nativeFieldDirect(const LfmOptics& optics, PupilModel pupil, const LfmPoint& point,
                                                     int n);
 
+// The centre of the lenslet whose cell holds the image-side point (x, y), as optics.hpp places them.
+struct LensletCentre {
+  double xUm, yUm;
+};
+LensletCentre nearestLenslet(const LfmOptics& optics, double xUm, double yUm);
+
 // Multiplies the n x n field by the microlens array's transmission: exp(-i pi d^2 / (lambda f))
-// within each lenslet's square aperture (d: distance to its centre), 0 in the opaque border.
+// within each lenslet's aperture (d: distance to its centre; its cell shrunk to the fill factor),
+// 0 in the opaque border.
 template <class T>
 void applyMicrolenses(const LfmOptics& optics, int n, std::complex<T>* field);
 
-// Fresnel propagation over `distanceUm` of an n x n field sampled every `spacingUm` by its
-// transfer function exp(-i pi lambda z (fx^2 + fy^2)) (the constant exp(ikz) dropped), on FFTW
-// float plans made once; periodic. propagate() may run on several threads at once.
+// Fresnel propagation over `distanceUm` of an n x n field sampled every spacingX along x and
+// spacingY along y by its transfer function exp(-i pi lambda z (fx^2 + fy^2)) (the constant
+// exp(ikz) dropped), on FFTW float plans made once; periodic. propagate() may run on several
+// threads at once.
 class FresnelTransfer {
  public:
-  FresnelTransfer(int n, double spacingUm, double wavelengthUm, double distanceUm);
+  FresnelTransfer(int n, double spacingXUm, double spacingYUm, double wavelengthUm, double distanceUm);
   ~FresnelTransfer();
   FresnelTransfer(const FresnelTransfer&) = delete;
   FresnelTransfer& operator=(const FresnelTransfer&) = delete;
@@ -81,11 +94,15 @@ class FresnelTransfer {
 };
 
 // The reference: the Fresnel diffraction integral summed directly, in float64, aperiodic:
-// U2(x) = dx^2 / (i lambda z) sum U1(x') exp(i pi |x - x'|^2 / (lambda z)). O(n^4).
-std::vector<std::complex<double>> fresnelDirect(const std::vector<std::complex<double>>& field, int n, double spacingUm,
-                                                double wavelengthUm, double distanceUm);
+// U2(x) = dx dy / (i lambda z) sum U1(x') exp(i pi |x - x'|^2 / (lambda z)). O(n^4).
+std::vector<std::complex<double>> fresnelDirect(const std::vector<std::complex<double>>& field, int n,
+                                                double spacingXUm, double spacingYUm, double wavelengthUm,
+                                                double distanceUm);
 
-// |U|^2 dx^2 summed over each supersample x supersample block: the pixels' energies.
-Image integratePixels(const std::complex<float>* field, int n, int supersample, double spacingUm);
+// |U|^2 dx dy summed over each supersample x supersample block: the pixels' energies. On a
+// rectified hexagonal frame (hexagonalBrickPixels N > 0) the window's rows of N pixels alternate,
+// its middle one unshifted: every other row's pixels are read half a pitch (N supersample / 2
+// samples) further along x, periodically, as that row's lenslets sit.
+Image integratePixels(const std::complex<float>* field, int n, const LfmOptics& optics);
 
 }  // namespace lfcam::lfm

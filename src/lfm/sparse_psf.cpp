@@ -12,9 +12,12 @@ namespace lfcam {
 
 namespace {
 
+// Floor division: a window row above the centre lies in an earlier period.
+int floorDivide(int a, int d) { return a >= 0 ? a / d : -((-a + d - 1) / d); }
+
 // The splats of one dense PSF: its pixels by falling energy until `keep` of the total.
 std::vector<LfmSplat> splatsOf(const float* psf, int pixelsAcross, int lensletsAcross, int pixelsPerLenslet,
-                               double keep) {
+                               int rowsPerPeriod, double keep) {
   const std::size_t size = std::size_t(pixelsAcross) * pixelsAcross;
   std::vector<std::uint32_t> order;
   double total = 0;
@@ -29,9 +32,12 @@ std::vector<LfmSplat> splatsOf(const float* psf, int pixelsAcross, int lensletsA
     if (keep < 1 && kept >= keep * total) break;
     kept += psf[k];
     const int x = int(k % pixelsAcross), y = int(k / pixelsAcross);
-    splats.push_back({.pixel = std::uint16_t((y % pixelsPerLenslet) * pixelsPerLenslet + x % pixelsPerLenslet),
+    // The window's lenslet row r from the centre's is row r mod R of period floor(r / R).
+    const int row = y / pixelsPerLenslet - centre, period = floorDivide(row, rowsPerPeriod);
+    const int v = (row - period * rowsPerPeriod) * pixelsPerLenslet + y % pixelsPerLenslet;
+    splats.push_back({.pixel = std::uint16_t(v * pixelsPerLenslet + x % pixelsPerLenslet),
                       .dx = std::int8_t(x / pixelsPerLenslet - centre),
-                      .dy = std::int8_t(y / pixelsPerLenslet - centre),
+                      .dy = std::int8_t(period),
                       .weight = psf[k]});
   }
   // In memory order of the pixels they land on: the projectors stream through them.
@@ -43,13 +49,12 @@ std::vector<LfmSplat> splatsOf(const float* psf, int pixelsAcross, int lensletsA
 
 // Appends `set`'s splats (one slice or several) to `out`.
 void appendSplats(const LfmPsfSet& set, double keep, LfmSparsePsf& out) {
-  const int k = set.grid.voxelsPerLenslet;
-  const std::size_t phases = set.grid.depthsUm.size() * k * k;
+  const std::size_t phases = set.grid.depthsUm.size() * set.grid.voxelsPerLenslet * set.voxelRows();
   std::vector<std::vector<LfmSplat>> each(phases);
   parallelFor(0, phases, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t p = begin; p < end; ++p)
       each[p] = splatsOf(set.values.data() + p * set.pixelsAcross * set.pixelsAcross, set.pixelsAcross,
-                         set.lensletsAcross, set.grid.pixelsPerLenslet, keep);
+                         set.lensletsAcross, set.grid.pixelsPerLenslet, set.optics.rowsPerPeriod(), keep);
   });
   if (out.begins.empty()) out.begins.push_back(0);
   for (const auto& splats : each) {

@@ -13,6 +13,8 @@
 #include <sstream>
 
 #include "core/memory_budget.hpp"
+#include "io/hdf5_support.hpp"
+#include "lfcam/lfm/napari_lf_calibration.hpp"
 #include "lfcam/lfm/sparse_psf.hpp"
 
 #include "lfm/message_text.hpp"
@@ -68,8 +70,8 @@ std::string psfCacheName(const LfmVolumeRequest& r) {
   const LfmOptics& o = r.optics;
   key << o.magnification << ' ' << o.numericalAperture << ' ' << o.immersionIndex << ' ' << o.wavelengthNm << ' '
       << o.tubeFocalLengthMm << ' ' << o.microlensPitchUm << ' ' << o.microlensFocalLengthUm << ' '
-      << o.microlensFillFactor << ' ' << o.pixelSizeUm << ' ' << o.supersample << ' ' << r.slices << ' ' << r.umPerSlice
-      << ' ' << r.zCenterUm << ' ' << r.supersample << ' ' << r.psfEnergy;
+      << o.microlensFillFactor << ' ' << int(o.array) << ' ' << o.pixelSizeUm << ' ' << o.supersample << ' ' << r.slices
+      << ' ' << r.umPerSlice << ' ' << r.zCenterUm << ' ' << r.supersample << ' ' << r.psfEnergy;
   char name[64];
   std::snprintf(name, sizeof name, "lfcam-psf-%016zx.h5", std::hash<std::string>{}(key.str()));
   return name;
@@ -108,7 +110,15 @@ Result<int> checkFrame(const LightFieldShape& shape, const LfmVolumeRequest& req
   if (request.supersample > n)
     return usage(where + ": supersample " + std::to_string(request.supersample) + " above the " + std::to_string(n) +
                  " pixels a lenslet");
+  if (shape.nt < request.optics.rowsPerPeriod())
+    return usage(where + ": one row of lenslets: a hexagonal array's frame needs two");
   return n;
+}
+
+// The lenslet rows the volume covers: a hexagonal array repeats every two rows (LfmProjector),
+// so an odd last row is left out.
+int lensletRowsUsed(const LightFieldShape& shape, const LfmOptics& optics) {
+  return shape.nt - shape.nt % optics.rowsPerPeriod();
 }
 
 LfmGrid gridOf(const LfmVolumeRequest& request, int pixelsPerLenslet) {
@@ -183,10 +193,11 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
   if (Status checked = checkVolumeRequest(request); !checked) return checked.error();
   const LightFieldShape shape = frame.shape();
   LFCAM_ASSIGN_OR_RETURN(const int n, checkFrame(shape, request, where));
+  const int rows = lensletRowsUsed(shape, request.optics);
   // The solver holds about six volumes (the estimate, its correction, the sensitivity and the
   // padded planes of both projections) and a few frames.
   const auto voxels = checkedProduct({std::uint64_t(shape.ns) * request.supersample,
-                                      std::uint64_t(shape.nt) * request.supersample, std::uint64_t(request.slices)});
+                                      std::uint64_t(rows) * request.supersample, std::uint64_t(request.slices)});
   LFCAM_TRY(checkMemory(where, voxels ? checkedProduct({*voxels, 4 * 6}) : std::nullopt,
                         "the volume (" + std::to_string(request.slices) + " slices)"));
 
@@ -201,10 +212,10 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
   // A frame decoded with a white image holds radiance (the raw over the white) and the white as
   // its weight: the light collected is their product, and the white over the model's frame of a
   // uniform volume is the radiometry R of the model y = R (H x).
-  Image image(shape.ns * n, shape.nt * n, 1), white(shape.ns * n, shape.nt * n, 1);
+  Image image(shape.ns * n, rows * n, 1), white(shape.ns * n, rows * n, 1);
   for (int v = 0; v < n; ++v)
     for (int u = 0; u < n; ++u)
-      for (int t = 0; t < shape.nt; ++t)
+      for (int t = 0; t < rows; ++t)
         for (int s = 0; s < shape.ns; ++s) {
           double sum = 0;
           for (int c = 0; c < shape.channels; ++c) sum += frame.at(u, v, s, t, c);
@@ -212,7 +223,7 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
           image.at(s * n + u, t * n + v, 0) = float(sum / shape.channels) * weight;
           white.at(s * n + u, t * n + v, 0) = weight;
         }
-  const LfmProjector projector(psf, shape.ns, shape.nt);
+  const LfmProjector projector(psf, shape.ns, rows);
   std::optional<Image> radiometry;
   if (frame.hasWeight()) {
     Volume uniform = projector.emptyVolume();
@@ -238,10 +249,15 @@ Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolu
 Result<LfmVolumeRequest> volumeRequestFrom(const LfmVolumeSettings& given) {
   LfmVolumeRequest request;
   if (!given.opticsFile.empty()) {
-    std::ifstream file(given.opticsFile, std::ios::binary);
-    if (!file) return makeError(ErrorCode::Io, given.opticsFile + ": cannot open");
     std::ostringstream text;
-    text << file.rdbuf();
+    if (io::startsLikeHdf5(given.opticsFile)) {
+      LFCAM_ASSIGN_OR_RETURN(const std::string settings, napariLfCalibrationSettings(given.opticsFile));
+      text << settings;
+    } else {
+      std::ifstream file(given.opticsFile, std::ios::binary);
+      if (!file) return makeError(ErrorCode::Io, given.opticsFile + ": cannot open");
+      text << file.rdbuf();
+    }
     LFCAM_ASSIGN_OR_RETURN(request, parseLfmSettings(text.str(), given.opticsFile, request));
   }
   if (!given.objective.empty()) LFCAM_TRY(parseObjective(given.objective, request.optics));
@@ -253,6 +269,11 @@ Result<LfmVolumeRequest> volumeRequestFrom(const LfmVolumeSettings& given) {
   set(given.pitchUm, request.optics.microlensPitchUm);
   set(given.microlensFocalLengthUm, request.optics.microlensFocalLengthUm);
   set(given.pixelSizeUm, request.optics.pixelSizeUm);
+  if (!given.microlensArray.empty()) {
+    const auto array = parseMicrolensLayout(given.microlensArray);
+    if (!array) return usage("--microlens-array: expected square or hexagonal, got '" + given.microlensArray + "'");
+    request.optics.array = *array;
+  }
   set(given.slices, request.slices);
   set(given.umPerSlice, request.umPerSlice);
   set(given.zCenterUm, request.zCenterUm);

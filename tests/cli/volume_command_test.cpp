@@ -5,7 +5,9 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <thread>
 #include <tuple>
@@ -40,7 +42,8 @@ std::vector<std::string> smallMicroscope(const std::map<std::string, std::string
                                                        {"--pixel-size", "5.714"},
                                                        {"--slices", "3"},
                                                        {"--um-per-slice", "3"},
-                                                       {"--iterations", "2"}};
+                                                       {"--iterations", "2"},
+                                                       {"--microlens-array", "square"}};
   std::vector<std::string> args;
   for (const auto& [flag, value] : flags) {
     args.push_back(flag);
@@ -92,6 +95,40 @@ TEST(CliVolume, WritesAStackAndCachesItsPsf) {
   EXPECT_FALSE(std::filesystem::exists(dir / "volume.tif"));
 }
 
+TEST(CliVolume, ReconstructsAHexagonalFrameOnItsPeriod) {
+  // 6 x 5 lenslets of a hexagonal array: rows in pairs, the fifth left out; voxels sqrt(3)/2 as high.
+  test::TempDir dir;
+  const auto frame = writeFrame(dir);
+  const auto microscope = smallMicroscope({{"--microlens-array", "hexagonal"}});
+  std::vector<Volume> volumes;
+  for (const char* psf : {"computed into", "read from"}) {
+    std::vector<std::string> args{
+        "volume", frame.string(), "--psf", (dir / "psf.h5").string(), "-o", (dir / "volume.h5").string()};
+    args.insert(args.end(), microscope.begin(), microscope.end());
+    const auto result = runLfcam(args, dir.path());
+    ASSERT_EQ(result.exitStatus, 0) << result.err;
+    EXPECT_NE(result.out.find(psf), std::string::npos) << result.out;
+    auto volume = readVolume(dir / "volume.h5");
+    ASSERT_TRUE(volume) << volume.error().message;
+    EXPECT_EQ(volume->width(), 6);
+    EXPECT_EQ(volume->height(), 4);
+    EXPECT_EQ(volume->depth(), 3);
+    EXPECT_NEAR(volume->voxelWidthUm, 2, 1e-9);
+    EXPECT_NEAR(volume->voxelHeightUm, std::sqrt(3.0), 1e-9);
+    volumes.push_back(std::move(*volume));
+  }
+  EXPECT_TRUE(std::equal(volumes[0].voxels().begin(), volumes[0].voxels().end(), volumes[1].voxels().begin()));
+  // A raw decoded on the way would be sampled on square pixels, not bricks: refused.
+  std::vector<std::string> args{"volume", frame.string(), "--white", frame.string(), "-o", (dir / "raw.h5").string()};
+  args.insert(args.end(), microscope.begin(), microscope.end());
+  const auto refused = runLfcam(args, dir.path());
+  EXPECT_EQ(refused.exitStatus, 2) << refused.err;
+  EXPECT_EQ(refused.errLines(), 1) << refused.err;
+  EXPECT_NE(refused.err.find("--white: a hexagonal array's raw is not decoded on the way"), std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "raw.h5"));
+}
+
 TEST(CliVolume, RefusesInOneLineWithNoOutput) {
   test::TempDir dir;
   const auto frame = writeFrame(dir);
@@ -108,6 +145,7 @@ TEST(CliVolume, RefusesInOneLineWithNoOutput) {
       {{{"--objective", "60x/1.4/1.33"}}, out, "NA 1.4 above the immersion index 1.33"},
       {{{"--microlens-focal-length", "0"}}, out, "microlens focal length must be positive"},
       {{{"--pixel-size", "3"}}, out, "7 pixels a lenslet, but the optics give 13.3"},
+      {{{"--microlens-array", "round"}}, out, "--microlens-array: expected square or hexagonal, got 'round'"},
       {{}, (dir / "volume.png").string(), "unknown volume extension '.png'"},
   };
   for (const auto& [changed, output, message] : cases) {

@@ -34,6 +34,13 @@ def test_volume_is_float32_slices_of_the_lenslet_grid():
     assert dark.shape == (3, 6, 5) and np.isfinite(dark).all()
 
 
+def test_a_hexagonal_frame_uses_its_rows_in_pairs():
+    # 5 rows of lenslets: the hexagonal array's period is two rows, the last one is left out.
+    volume = lfcam.volume(frame(nt=5, ns=6), **SMALL, microlens_array="hexagonal")
+    assert volume.shape == (3, 4, 6)
+    assert np.isfinite(volume).all() and volume.max() > 0
+
+
 def test_the_psf_cache_is_written_and_read_back(tmp_path):
     lf = frame()
     cache = tmp_path / "psf.h5"
@@ -46,6 +53,7 @@ MESSAGES = [
     (dict(slices=None), "--slices: how many z-slices (or num_slices in --optics)"),
     (dict(slices=0), "slices 0 outside [1, 1000]"),
     (dict(objective="60/1.2/water"), "--objective: expected MAGx/NA/MEDIUM as 60x/1.2/water, got '60/1.2/water'"),
+    (dict(microlens_array="round"), "--microlens-array: expected square or hexagonal, got 'round'"),
 ]
 
 

@@ -4,6 +4,7 @@
 
 #include "lfcam/lfm/optics.hpp"
 #include "lfcam/lfm/psf.hpp"
+#include "lfcam/lfm/volume_request.hpp"
 #include "test_support.hpp"
 
 namespace lfcam {
@@ -25,6 +26,31 @@ TEST(LfmGuvOptics, ReadsNapariLfsMetadataAndPlansItsPsfWindow) {
   const int lenslets = LfmPsf::lensletsFor(optics.value(), 7);
   EXPECT_EQ(lenslets, 21);
   EXPECT_TRUE(LfmPsf::create(optics.value(), lenslets));
+}
+
+TEST(LfmGuvOptics, ReadsNapariLfsCalibrationFileAsItsMetadata) {
+  // The .lfc napari-LF made for its 10-slice reference volume: the same microscope as the
+  // metadata.txt beside it, and the slices it was made for.
+  LFCAM_REQUIRE_SHARED_DATA("lfm-guv", folder);
+  const auto fromLfc = volumeRequestFrom(
+      {.opticsFile = (folder / "reference_outputs_napariLF" / "Calibration_GUVExperim1-10.lfc").string()});
+  ASSERT_TRUE(fromLfc) << fromLfc.error().message;
+  const auto fromText =
+      volumeRequestFrom({.opticsFile = (folder / "reference_outputs_napariLF" / "metadata.txt").string()});
+  ASSERT_TRUE(fromText) << fromText.error().message;
+  const LfmOptics &a = fromLfc->optics, &b = fromText->optics;
+  EXPECT_EQ(a.magnification, b.magnification);
+  EXPECT_EQ(a.numericalAperture, b.numericalAperture);
+  EXPECT_EQ(a.immersionIndex, b.immersionIndex);
+  EXPECT_EQ(a.wavelengthNm, b.wavelengthNm);
+  EXPECT_EQ(a.tubeFocalLengthMm, b.tubeFocalLengthMm);
+  EXPECT_EQ(a.microlensPitchUm, b.microlensPitchUm);
+  EXPECT_EQ(a.microlensFocalLengthUm, b.microlensFocalLengthUm);
+  EXPECT_EQ(a.microlensFillFactor, b.microlensFillFactor);
+  EXPECT_EQ(a.pixelSizeUm, b.pixelSizeUm);
+  EXPECT_EQ(fromLfc->slices, 10);
+  EXPECT_EQ(fromLfc->umPerSlice, 1);
+  EXPECT_EQ(fromLfc->zCenterUm, 0);
 }
 
 }  // namespace lfcam

@@ -65,14 +65,18 @@ void addVolumeCommand(CLI::App& app, Job& job) {
   CLI::App* command = app.add_subcommand(
       "volume", "reconstruct a 3D volume from a light-field microscope frame (Richardson-Lucy, wave optics)");
   addInputOptions(*command, options->input);
-  command->add_option("--optics", options->settings.opticsFile,
-                      "microscope settings: napari-LF's metadata.txt, or a JSON object of its calibrate keys");
+  command->add_option(
+      "--optics", options->settings.opticsFile,
+      "microscope settings: napari-LF's metadata.txt or .lfc calibration, or a JSON object of its calibrate keys");
   command->add_option("--objective", options->settings.objective,
                       "MAGx/NA/MEDIUM, e.g. 60x/1.2/water (medium: water, oil, "
                       "glycerol, air or a refractive index)");
   command->add_option("--wavelength", options->settings.wavelengthNm, "emission wavelength, nm");
   command->add_option("--tube-lens", options->settings.tubeLensMm, "tube lens focal length, mm (default 200)");
   command->add_option("--pitch", options->settings.pitchUm, "microlens pitch, um");
+  command->add_option("--microlens-array", options->settings.microlensArray,
+                      "square (default) or hexagonal: a hexagonal frame's lenslets each N x N pixels over a pitch x "
+                      "sqrt(3)/2 pitch brick, odd rows shifted half a pitch right");
   command->add_option("--microlens-focal-length", options->settings.microlensFocalLengthUm,
                       "microlens focal length, um");
   command->add_option("--pixel-size", options->settings.pixelSizeUm, "camera pixel size, um");
@@ -99,6 +103,11 @@ void addVolumeCommand(CLI::App& app, Job& job) {
     job = [options]() -> Status {
       const Options& o = *options;
       LFCAM_ASSIGN_OR_RETURN(LfmVolumeRequest request, volumeRequestFrom(o.settings));
+      // The decoder samples every lenslet on the camera's square pixels, not a hexagonal array's bricks.
+      if (request.optics.array == MicrolensLayout::Hexagonal && o.input.decodesRaw())
+        return makeError(ErrorCode::Usage,
+                         "--white: a hexagonal array's raw is not decoded on the way; give its frame rectified to "
+                         "bricks (docs/formats.md)");
       LFCAM_TRY(checkVolumePath(o.output));
       if (!o.noCache) request.psfPath = o.psf.empty() ? defaultPsfPath(o.input.path, request) : o.psf;
       // Beside a frame in a read-only folder (a shared data set) the default cache cannot be kept.
@@ -135,7 +144,7 @@ void addVolumeCommand(CLI::App& app, Job& job) {
               ? std::string("computed")
               : std::string(result->psfFromCache ? "read from " : "computed into ") + request.psfPath;
       std::printf("%s: %d x %d x %d voxels of %.3g x %.3g x %.3g um; PSF %s (%zu splats); ", o.output.c_str(),
-                  r.volume.width(), r.volume.height(), r.volume.depth(), r.volume.voxelWidthUm, r.volume.voxelWidthUm,
+                  r.volume.width(), r.volume.height(), r.volume.depth(), r.volume.voxelWidthUm, r.volume.voxelHeightUm,
                   r.volume.voxelDepthUm, psfNote.c_str(), result->psfSplats);
       if (request.reconstruct.solver == LfmSolver::RichardsonLucy)
         std::printf("%d Richardson-Lucy iterations, residual %.4f -> %.4f\n", r.iterations, r.residuals.front(),

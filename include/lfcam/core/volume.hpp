@@ -28,7 +28,8 @@ class Volume {
   Volume copy() const {
     Volume out(width_, height_, depth_);
     out.data_ = data_;
-    out.voxelWidthUm = voxelWidthUm, out.voxelDepthUm = voxelDepthUm, out.firstSliceUm = firstSliceUm;
+    out.voxelWidthUm = voxelWidthUm, out.voxelHeightUm = voxelHeightUm, out.voxelDepthUm = voxelDepthUm;
+    out.firstSliceUm = firstSliceUm;
     return out;
   }
 
@@ -46,9 +47,9 @@ class Volume {
   std::span<float> voxels() { return data_; }
   std::span<const float> voxels() const { return data_; }
 
-  // Micrometres in the specimen: the lateral voxel (square), the slice spacing, and the depth of
-  // slice 0 from the native object plane.
-  double voxelWidthUm = 1, voxelDepthUm = 1, firstSliceUm = 0;
+  // Micrometres in the specimen: the voxel along x and y (a hexagonal microlens array's rows make
+  // them differ), the slice spacing, and the depth of slice 0 from the native object plane.
+  double voxelWidthUm = 1, voxelHeightUm = 1, voxelDepthUm = 1, firstSliceUm = 0;
 
  private:
   int width_ = 0, height_ = 0, depth_ = 0;

@@ -6,7 +6,9 @@
 // Frame: one channel, lensletsX N x lensletsY N pixels, lenslet (s, t) at pixels [s N, (s + 1) N)
 // x [t N, (t + 1) N). Volume: lensletsX K x lensletsY K voxels and one slice per PSF slice, voxel
 // (s K + i, t K + j) being voxel (i, j) of lenslet (s, t) (psf.hpp's LfmGrid). Light from beyond
-// the frame's edges is not modelled: the volume covers the frame's lenslets only.
+// the frame's edges is not modelled: the volume covers the frame's lenslets only. A hexagonal
+// array repeats every two rows of lenslets (its odd rows shifted): the PSFs are those of the
+// voxels of a pitch x two-rows period, and lensletsY must be even.
 #pragma once
 
 #include <memory>
@@ -19,7 +21,8 @@ namespace lfcam {
 
 class LfmProjector {
  public:
-  // Keeps a reference to `psf`, which must outlive the projector.
+  // Keeps a reference to `psf`, which must outlive the projector. lensletsY: a multiple of
+  // psf.optics.rowsPerPeriod().
   LfmProjector(const LfmSparsePsf& psf, int lensletsX, int lensletsY);
   ~LfmProjector();
   LfmProjector(LfmProjector&&) noexcept;

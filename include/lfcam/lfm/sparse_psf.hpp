@@ -1,6 +1,7 @@
 // The light-field PSF as the projectors use it: for each slice and each voxel of a lenslet, the
 // sensor pixels its light reaches, largest first until a chosen fraction of its energy (napari-LF
-// keeps 95 %), each as a pixel under a lenslet at an offset from the voxel's own. Most of a
+// keeps 95 %), each as a pixel of a period of the array (a lenslet; two rows of lenslets for a
+// hexagonal array, LfmOptics::rowsPerPeriod) at an offset from the voxel's own. Most of a
 // wave-optics PSF's window is dark: the splats are a few per cent of it (docs/design.md,
 // "Microscope volumes").
 #pragma once
@@ -18,8 +19,8 @@
 namespace lfcam {
 
 struct LfmSplat {
-  std::uint16_t pixel = 0;     // v N + u: the pixel (u, v) under its lenslet
-  std::int8_t dx = 0, dy = 0;  // that lenslet's offset from the voxel's lenslet
+  std::uint16_t pixel = 0;     // v N + u: the pixel (u, v) of its period, N x rowsPerPeriod N
+  std::int8_t dx = 0, dy = 0;  // that period's offset from the voxel's period
   float weight = 0;            // energy on the pixel from a voxel of unit brightness
 };
 
@@ -32,8 +33,9 @@ struct LfmSparsePsf {
   std::vector<std::size_t> begins;  // (depth, j, i) -> its splats [begins[p], begins[p + 1])
   std::vector<LfmSplat> splats;
 
+  int voxelRows() const { return optics.rowsPerPeriod() * grid.voxelsPerLenslet; }  // j in [0, voxelRows())
   std::span<const LfmSplat> of(int depth, int i, int j) const {
-    const std::size_t p = (std::size_t(depth) * grid.voxelsPerLenslet + j) * grid.voxelsPerLenslet + i;
+    const std::size_t p = (std::size_t(depth) * voxelRows() + j) * grid.voxelsPerLenslet + i;
     return {splats.data() + begins[p], begins[p + 1] - begins[p]};
   }
 };

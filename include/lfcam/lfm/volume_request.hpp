@@ -42,9 +42,12 @@ Result<LfmVolumeRequest> parseLfmSettings(const std::string& text, const std::st
 // What a front end was given (the command line's flags, Python's keywords): a settings file and the
 // values that override it. Empty strings and absent values leave the file's (or the default).
 struct LfmVolumeSettings {
-  std::string opticsFile;     // napari-LF's metadata.txt or lfcam's optics JSON (parseLfmSettings)
-  std::string objective;      // "MAGx/NA/MEDIUM" as "60x/1.2/water" (water, oil, glycerol, air, an index)
-  std::string solver = "rl";  // "rl" or "backprojection"
+  // napari-LF's metadata.txt or .lfc calibration (napari_lf_calibration.hpp), or lfcam's optics
+  // JSON (parseLfmSettings)
+  std::string opticsFile;
+  std::string objective;       // "MAGx/NA/MEDIUM" as "60x/1.2/water" (water, oil, glycerol, air, an index)
+  std::string solver = "rl";   // "rl" or "backprojection"
+  std::string microlensArray;  // "square" or "hexagonal"
   std::optional<double> wavelengthNm, tubeLensMm, pitchUm, microlensFocalLengthUm, pixelSizeUm, umPerSlice, zCenterUm,
       background, tolerance, tvWeight, psfEnergy;
   std::optional<int> slices, supersample, iterations;
@@ -70,8 +73,10 @@ struct LfmVolumeResult {
 };
 
 // The volume of a decoded frame: a light field of N x N views (colour averaged to grey),
-// its N within a quarter of the optics' pitch / pixel size. `where` (the frame's file) prefixes
-// every message. progress: the PSF's computation (when not cached) and the iterations.
+// its N within a quarter of the optics' pitch / pixel size. For a hexagonal array, lenslet (s, t)'s
+// N x N pixels tile its brick, a pitch wide and a row of lenslets (sqrt(3)/2 pitch) high, odd rows t
+// half a pitch toward +s (psf.hpp's LfmGrid); an odd last row is left out. `where` (the frame's
+// file) prefixes every message. progress: the PSF's computation (when not cached) and the iterations.
 Result<LfmVolumeResult> reconstructVolume(const LightField& frame, const LfmVolumeRequest& request,
                                           const std::string& where, const ProgressCallback& progress = {});
 
