@@ -63,6 +63,7 @@ class GuidedFilter {
   // Buffers of one apply, kept by the caller across slices (no allocation per slice).
   struct Scratch {
     std::vector<float> a, b, rows, product, meanIn, meanProduct;
+    std::vector<const float*> ringA, ringB;  // the rows of a and b a window covers
   };
   // `out` may be `in`: every read of it comes before the first write.
   void apply(const float* in, float* out) const;

@@ -79,6 +79,17 @@ LFCAM_CLONES void columnMeanRow(const float* __restrict in, const float* __restr
   for (int x = 0; x < width; ++x) target[x] *= inverse;
 }
 
+// The mean of `count` rows given in order, as columnMeanRow sums them (the same bits).
+LFCAM_CLONES void columnMeanOfRows(const float* const* rows, int count, int width, float* __restrict target) {
+  std::fill(target, target + width, 0.0f);
+  for (int k = 0; k < count; ++k) {
+    const float* __restrict row = rows[k];
+    for (int x = 0; x < width; ++x) target[x] += row[x];
+  }
+  const float inverse = 1.0f / float(count);
+  for (int x = 0; x < width; ++x) target[x] *= inverse;
+}
+
 // The mean over [x - r, x + r] (clipped) of one row: the interior as 2 r + 1 vectorised passes.
 LFCAM_CLONES void rowMean(const float* __restrict row, int width, int radius, float* __restrict target) {
   auto clipped = [&](int x) {
@@ -122,21 +133,23 @@ void GuidedFilter::apply(const float* in, float* out) const {
 }
 
 // q = mean(a) I + mean(b), a = cov(I, p) / (var(I) + eps), b = mean(p) - a mean(I). The guide's
-// statistics come from the constructor; per input two sweeps of rows: the means of p and I p and
-// from them a and b, then the means of a and b and q, each row's sums in row buffers (in cache).
+// statistics come from the constructor. Small windows: one sweep of rows, a and b kept for the
+// 2 r + 1 rows the window needs (a ring of rows in cache, where whole planes of a and b cost two
+// planes written and read again per input), each row's sums in row buffers. In place too: input
+// row y is last read for a and b's row y + r, made before output row y is written.
 void GuidedFilter::apply(const float* in, float* out, Scratch& scratch) const {
   const int w = width_, h = height_, r = radius_;
   const std::size_t n = std::size_t(w) * h;
-  scratch.a.resize(n);
-  scratch.b.resize(n);
   scratch.rows.resize(4 * std::size_t(w));
-  float* a = scratch.a.data();
-  float* b = scratch.b.data();
   float* column0 = scratch.rows.data();
   float* column1 = column0 + w;
   float* mean0 = column1 + w;
   float* mean1 = mean0 + w;
   if (r > kSmallRadius) {  // wide windows: whole-plane running sums
+    scratch.a.resize(n);
+    scratch.b.resize(n);
+    float* a = scratch.a.data();
+    float* b = scratch.b.data();
     std::vector<float>&product = scratch.product, &meanIn = scratch.meanIn, &meanProduct = scratch.meanProduct;
     product.resize(n), meanIn.resize(n), meanProduct.resize(n);
     for (std::size_t i = 0; i < n; ++i) product[i] = guide_[i] * in[i];
@@ -151,21 +164,33 @@ void GuidedFilter::apply(const float* in, float* out, Scratch& scratch) const {
     for (std::size_t i = 0; i < n; ++i) out[i] += meanIn[i] * guide_[i];
     return;
   }
+  const int ringRows = 2 * r + 1;
+  scratch.a.resize(std::size_t(ringRows) * w);
+  scratch.b.resize(std::size_t(ringRows) * w);
+  const auto ringRow = [&](std::vector<float>& ring, int y) { return ring.data() + std::size_t(y % ringRows) * w; };
+  std::vector<const float*>& aRows = scratch.ringA;
+  std::vector<const float*>& bRows = scratch.ringB;
+  int made = 0;  // rows of a and b made so far
   for (int y = 0; y < h; ++y) {
-    columnMeanRow(in, nullptr, w, h, y, r, column0);
-    columnMeanRow(in, guide_.data(), w, h, y, r, column1);
-    rowMean(column0, w, r, mean0);
-    rowMean(column1, w, r, mean1);
-    const std::size_t row = std::size_t(y) * w;
-    for (int x = 0; x < w; ++x) {
-      const float slope = (mean1[x] - meanGuide_[row + x] * mean0[x]) * inverseVariance_[row + x];
-      a[row + x] = slope;
-      b[row + x] = mean0[x] - slope * meanGuide_[row + x];
+    for (; made < std::min(h, y + r + 1); ++made) {
+      columnMeanRow(in, nullptr, w, h, made, r, column0);
+      columnMeanRow(in, guide_.data(), w, h, made, r, column1);
+      rowMean(column0, w, r, mean0);
+      rowMean(column1, w, r, mean1);
+      const std::size_t row = std::size_t(made) * w;
+      float* a = ringRow(scratch.a, made);
+      float* b = ringRow(scratch.b, made);
+      for (int x = 0; x < w; ++x) {
+        const float slope = (mean1[x] - meanGuide_[row + x] * mean0[x]) * inverseVariance_[row + x];
+        a[x] = slope;
+        b[x] = mean0[x] - slope * meanGuide_[row + x];
+      }
     }
-  }
-  for (int y = 0; y < h; ++y) {
-    columnMeanRow(a, nullptr, w, h, y, r, column0);
-    columnMeanRow(b, nullptr, w, h, y, r, column1);
+    const int y0 = std::max(0, y - r), y1 = std::min(h, y + r + 1);
+    aRows.clear(), bRows.clear();
+    for (int yy = y0; yy < y1; ++yy) aRows.push_back(ringRow(scratch.a, yy)), bRows.push_back(ringRow(scratch.b, yy));
+    columnMeanOfRows(aRows.data(), int(aRows.size()), w, column0);
+    columnMeanOfRows(bRows.data(), int(bRows.size()), w, column1);
     rowMean(column0, w, r, mean0);
     rowMean(column1, w, r, mean1);
     const std::size_t row = std::size_t(y) * w;
