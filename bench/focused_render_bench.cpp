@@ -59,10 +59,12 @@ int main(int argc, char** argv) {
     photo = std::move(rendered).value();
     ratios.push_back(totalSeconds.back() / floors.back());
   }
-  std::printf("total focus %dx%d, medians of %d runs: depth %.3f s, render %.3f s, total %.3f s; floor %.2f ms; "
-              "ratio %.0f\n",
-              photo.width(), photo.height(), runs, medianOf(depthSeconds), medianOf(renderSeconds),
-              medianOf(totalSeconds), medianOf(floors) * 1e3, medianOf(ratios));
-  std::printf("PSNR against the ideal photograph: %.2f dB\n", test::psnr(photo, c.truth.allInFocus, int(pixelsPerLens)));
+  std::printf(
+      "total focus %dx%d, medians of %d runs: depth %.3f s, render %.3f s, total %.3f s; floor %.2f ms; "
+      "ratio %.0f\n",
+      photo.width(), photo.height(), runs, medianOf(depthSeconds), medianOf(renderSeconds), medianOf(totalSeconds),
+      medianOf(floors) * 1e3, medianOf(ratios));
+  std::printf("PSNR against the ideal photograph: %.2f dB\n",
+              test::psnr(photo, c.truth.allInFocus, int(pixelsPerLens)));
   return 0;
 }

@@ -47,8 +47,8 @@ TEST(FocusedRender, TotalFocusFromEstimatedDepthsHasNoSeamsWhereFixedPatchesDo) 
   std::printf(
       "total focus from estimated depths: PSNR %.2f dB, seam energy %.2f x the ideal's; fixed patches: "
       "PSNR %.2f dB, seam energy %.2f x\n",
-      test::psnr(*totalFocus, c.truth.allInFocus, margin), seamsTotalFocus, test::psnr(*patches, c.truth.allInFocus, margin),
-      seamsPatches);
+      test::psnr(*totalFocus, c.truth.allInFocus, margin), seamsTotalFocus,
+      test::psnr(*patches, c.truth.allInFocus, margin), seamsPatches);
   EXPECT_GT(test::psnr(*totalFocus, c.truth.allInFocus, margin), 28);
   EXPECT_LT(seamsTotalFocus, 0.1 * seamsPatches);
 }

@@ -24,8 +24,8 @@ using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 
 // Adds the samples of lens `lens` to the sums of the pixels of row py its disc covers.
-void AddLens(const Image& grey, const LensesByRow& lenses, std::uint32_t lens, const FocusedPhotoFrame& frame,
-             double v, double sign, int py, DisagreementSums& sums) {
+void AddLens(const Image& grey, const LensesByRow& lenses, std::uint32_t lens, const FocusedPhotoFrame& frame, double v,
+             double sign, int py, DisagreementSums& sums) {
   const DF df;
   const DI di;
   const int lanes = int(hn::Lanes(df)), width = grey.width(), height = grey.height();
@@ -127,8 +127,8 @@ void disagreementRow(const Image& grey, const LensesByRow& lenses, const Focused
   HWY_DYNAMIC_DISPATCH(DisagreementRow)(grey, lenses, frame, v, sign, py, sums, raw, seen);
 }
 
-void disagreementRowReference(const Image& grey, const MicroImageViews& views, const FocusedPhotoFrame& frame,
-                              double v, int py, float* raw, float* seen) {
+void disagreementRowReference(const Image& grey, const MicroImageViews& views, const FocusedPhotoFrame& frame, double v,
+                              int py, float* raw, float* seen) {
   for (int px = 0; px < frame.width; ++px) {
     const auto q = frame.imagePoint(px + 0.5, py + 0.5);
     double sw = 0, s1 = 0, s2 = 0;

@@ -50,7 +50,7 @@ struct DisagreementSums {
 void disagreementRow(const Image& grey, const LensesByRow& lenses, const FocusedPhotoFrame& frame, double v,
                      double sign, int py, DisagreementSums& sums, float* raw, float* seen);
 
-void disagreementRowReference(const Image& grey, const MicroImageViews& views, const FocusedPhotoFrame& frame,
-                              double v, int py, float* raw, float* seen);
+void disagreementRowReference(const Image& grey, const MicroImageViews& views, const FocusedPhotoFrame& frame, double v,
+                              int py, float* raw, float* seen);
 
 }  // namespace lfcam::focused_detail

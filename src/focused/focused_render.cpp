@@ -80,8 +80,8 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
           const auto nearest = views.forEach(q[0], q[1], v, [&](const focused_detail::MicroImageSample& s) {
             if (request.nearestLensOnly) return;
             if (anySharp) {
-              const LensType& type =
-                  calibration.lensTypes[std::size_t(typeOfLens[std::size_t(s.j) * std::size_t(grid.columns) + std::size_t(s.i)])];
+              const LensType& type = calibration.lensTypes[std::size_t(
+                  typeOfLens[std::size_t(s.j) * std::size_t(grid.columns) + std::size_t(s.i)])];
               if (v < type.minVirtualDepth || v > type.maxVirtualDepth) return;
             }
             const double w = 1 - s.rho * s.rho;  // smoothly to 0 at the disc's rim: no seams
