@@ -95,7 +95,8 @@ inline Scene focusedLayers(const CameraModel& camera, const std::array<double, 3
 
 inline constexpr double kFocusedPixelsPerLens = 5;
 
-// One simulated capture (noise free, devignetted by its white image) with its truth.
+// One simulated capture (noise free, devignetted by its white image) with its truth on the frame of
+// `pixelsPerLens`.
 struct FocusedCapture {
   CameraModel camera;
   FocusedCalibration calibration;
@@ -104,13 +105,14 @@ struct FocusedCapture {
   FocusedTruth truth;
 };
 
-inline FocusedCapture simulateFocused(const test::FocusedCameraSpec& spec, const std::array<double, 3>& virtualDepths) {
+inline FocusedCapture simulateFocused(const test::FocusedCameraSpec& spec, const std::array<double, 3>& virtualDepths,
+                                      double pixelsPerLens = kFocusedPixelsPerLens, int samplesPerPixel = 16) {
   FocusedCapture c;
   c.camera = focusedCamera(spec);
-  const Scene scene = focusedLayers(c.camera, virtualDepths, kFocusedPixelsPerLens);
-  const SensorCapture capture = simulateCapture(scene, c.camera, {.samplesPerPixel = 16});
+  const Scene scene = focusedLayers(c.camera, virtualDepths, pixelsPerLens);
+  const SensorCapture capture = simulateCapture(scene, c.camera, {.samplesPerPixel = samplesPerPixel});
   const SensorCapture white =
-      simulateCapture(builtinScene("white", c.camera).value(), c.camera, {.samplesPerPixel = 16});
+      simulateCapture(builtinScene("white", c.camera).value(), c.camera, {.samplesPerPixel = samplesPerPixel});
   float brightest = 0;
   for (const float x : white.irradiance.pixels()) brightest = std::max(brightest, x);
   c.image = Image(spec.width, spec.height, 1);
@@ -123,8 +125,21 @@ inline FocusedCapture simulateFocused(const test::FocusedCameraSpec& spec, const
     c.image.pixels()[k] = w > 0.05f * brightest ? capture.irradiance.pixels()[k] / w : 0.0f;
   }
   c.calibration = focusedCalibrationFromCamera(c.camera).value();
-  c.truth = focusedTruth(scene, c.camera, focusedPhotoFrame(c.calibration, kFocusedPixelsPerLens)).value();
+  c.truth = focusedTruth(scene, c.camera, focusedPhotoFrame(c.calibration, pixelsPerLens)).value();
   return c;
+}
+
+// PSNR (peak 1) of channel 0 of `a` against `b`'s, leaving out `margin` pixels at each side.
+inline double psnr(const Image& a, const Image& b, int margin) {
+  double sum = 0;
+  int count = 0;
+  for (int y = margin; y < a.height() - margin; ++y)
+    for (int x = margin; x < a.width() - margin; ++x) {
+      const double d = a.at(x, y, 0) - b.at(x, y, 0);
+      sum += d * d;
+      ++count;
+    }
+  return 10 * std::log10(count / sum);
 }
 
 // The Galilean multi-focus camera looking at layers at virtual depths 3.2, 4.6 and 6, simulated once.

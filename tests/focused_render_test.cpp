@@ -11,19 +11,6 @@
 namespace lfcam {
 namespace {
 
-// PSNR (peak 1) of channel 0 of `a` against `b`'s, leaving out `margin` pixels at each side.
-double psnr(const Image& a, const Image& b, int margin) {
-  double sum = 0;
-  int count = 0;
-  for (int y = margin; y < a.height() - margin; ++y)
-    for (int x = margin; x < a.width() - margin; ++x) {
-      const double d = a.at(x, y, 0) - b.at(x, y, 0);
-      sum += d * d;
-      ++count;
-    }
-  return 10 * std::log10(count / sum);
-}
-
 TEST(FocusedRender, TotalFocusWithTheTrueDepthsMatchesTheIdealPhotograph) {
   const test::FocusedCapture& c = test::galileanCapture();
   FocusedRenderRequest request;
@@ -31,7 +18,7 @@ TEST(FocusedRender, TotalFocusWithTheTrueDepthsMatchesTheIdealPhotograph) {
   request.virtualDepthMap = &c.truth.virtualDepth;
   auto photo = renderFocused(c.image, c.calibration, request);
   ASSERT_TRUE(photo) << photo.error().message;
-  const double db = psnr(*photo, c.truth.allInFocus, int(test::kFocusedPixelsPerLens));
+  const double db = test::psnr(*photo, c.truth.allInFocus, int(test::kFocusedPixelsPerLens));
   std::printf("total focus with the true virtual depths: PSNR %.2f dB\n", db);
   EXPECT_GT(db, 30);
 }
@@ -60,9 +47,9 @@ TEST(FocusedRender, TotalFocusFromEstimatedDepthsHasNoSeamsWhereFixedPatchesDo) 
   std::printf(
       "total focus from estimated depths: PSNR %.2f dB, seam energy %.2f x the ideal's; fixed patches: "
       "PSNR %.2f dB, seam energy %.2f x\n",
-      psnr(*totalFocus, c.truth.allInFocus, margin), seamsTotalFocus, psnr(*patches, c.truth.allInFocus, margin),
-      seamsPatches);
-  EXPECT_GT(psnr(*totalFocus, c.truth.allInFocus, margin), 28);
+      test::psnr(*totalFocus, c.truth.allInFocus, margin), seamsTotalFocus,
+      test::psnr(*patches, c.truth.allInFocus, margin), seamsPatches);
+  EXPECT_GT(test::psnr(*totalFocus, c.truth.allInFocus, margin), 28);
   EXPECT_LT(seamsTotalFocus, 0.1 * seamsPatches);
 }
 

@@ -6,11 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
-#include "core/bilinear.hpp"
 #include "core/box_filter.hpp"
 #include "core/parabola.hpp"
 #include "core/parallel.hpp"
+#include "focused/disagreement_row.hpp"
 #include "focused/micro_image_views.hpp"
 #include "io/io_support.hpp"
 #include "lfcam/focused/photo_frame.hpp"
@@ -80,33 +81,22 @@ Result<FocusedDepth> estimateFocusedDepth(const Image& image, const FocusedCalib
   const Image grey = luminance(image);
   const focused_detail::MicroImageViews views(calibration);
   const std::size_t plane = std::size_t(w) * std::size_t(h);
-  std::vector<float> cost(labels.size() * plane);
+  // Every element is written before it is read: left uninitialised rather than zeroed page by page.
+  const std::unique_ptr<float[]> cost(new float[labels.size() * plane]);
 
   parallelFor(0, labels.size(), 1, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> raw(plane), windowed(plane), count(plane), countWindowed(plane);
+    const std::unique_ptr<float[]> raw(new float[plane]), windowed(new float[plane]), count(new float[plane]),
+        countWindowed(new float[plane]);
+    focused_detail::DisagreementSums sums;
     for (std::size_t l = begin; l < end; ++l) {
       const double v = d / labels[l];
+      const focused_detail::LensesByRow lenses(calibration.grid, frame, v * views.usableRadius());
       for (int py = 0; py < h; ++py)
-        for (int px = 0; px < w; ++px) {
-          const auto q = frame.imagePoint(px + 0.5, py + 0.5);
-          double sw = 0, s1 = 0, s2 = 0;
-          int seen = 0;
-          views.forEach(q[0], q[1], v, [&](const focused_detail::MicroImageSample& s) {
-            const double value = bilinearSample(grey.plane(0), grey.width(), grey.height(), s.x - 0.5, s.y - 0.5);
-            const double weight = 1 - s.rho * s.rho;
-            sw += weight;
-            s1 += weight * value;
-            s2 += weight * value * value;
-            ++seen;
-          });
-          const std::size_t k = std::size_t(py) * w + px;
-          // The weighted variance of what the micro-images see, where at least two see the point.
-          raw[k] = seen >= 2 ? float(std::max(0.0, s2 / sw - (s1 / sw) * (s1 / sw))) : 0.0f;
-          count[k] = seen >= 2 ? 1.0f : 0.0f;
-        }
-      boxFilter(raw.data(), windowed.data(), w, h, request.windowRadius);
-      boxFilter(count.data(), countWindowed.data(), w, h, request.windowRadius);
-      float* out = cost.data() + l * plane;
+        focused_detail::disagreementRow(grey, lenses, frame, v, calibration.orientationSign(), py, sums,
+                                        raw.get() + std::size_t(py) * w, count.get() + std::size_t(py) * w);
+      boxFilter(raw.get(), windowed.get(), w, h, request.windowRadius);
+      boxFilter(count.get(), countWindowed.get(), w, h, request.windowRadius);
+      float* out = cost.get() + l * plane;
       for (std::size_t k = 0; k < plane; ++k)
         out[k] = countWindowed[k] > 0.5f ? windowed[k] / countWindowed[k] : kNoEvidence;
     }

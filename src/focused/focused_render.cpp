@@ -50,6 +50,12 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
   const focused_detail::MicroImageViews views(calibration, request.aperture, request.viewpoint);
   const int channels = image.channels();
   Image photo(frame.width, frame.height, channels);
+  // Each lens's type, looked up once rather than at every visit.
+  const LensletGrid& grid = calibration.grid;
+  std::vector<int> typeOfLens(std::size_t(grid.columns) * std::size_t(grid.rows));
+  for (int j = 0; j < grid.rows; ++j)
+    for (int i = 0; i < grid.columns; ++i)
+      typeOfLens[std::size_t(j) * std::size_t(grid.columns) + std::size_t(i)] = calibration.lensType(i, j);
 
   parallelFor(0, std::size_t(frame.height), 1, [&](std::size_t begin, std::size_t end) {
     std::vector<double> sum(static_cast<std::size_t>(channels));
@@ -74,7 +80,8 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
           const auto nearest = views.forEach(q[0], q[1], v, [&](const focused_detail::MicroImageSample& s) {
             if (request.nearestLensOnly) return;
             if (anySharp) {
-              const LensType& type = calibration.lensTypes[std::size_t(calibration.lensType(s.i, s.j))];
+              const LensType& type = calibration.lensTypes[std::size_t(
+                  typeOfLens[std::size_t(s.j) * std::size_t(grid.columns) + std::size_t(s.i)])];
               if (v < type.minVirtualDepth || v > type.maxVirtualDepth) return;
             }
             const double w = 1 - s.rho * s.rho;  // smoothly to 0 at the disc's rim: no seams

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "lfcam/core/image.hpp"
 
@@ -41,14 +42,18 @@ class MicroImageViews {
         shiftX_(viewpoint[0] * usable_),
         shiftY_(viewpoint[1] * usable_),
         cos_(std::cos(grid_.rotationRad)),
-        sin_(std::sin(grid_.rotationRad)) {}
+        sin_(std::sin(grid_.rotationRad)) {
+    // The centres once: LensletGrid::centre turns and warps the lattice at every call.
+    centres_.reserve(std::size_t(grid_.columns) * std::size_t(grid_.rows));
+    for (int j = 0; j < grid_.rows; ++j)
+      for (int i = 0; i < grid_.columns; ++i) centres_.push_back(grid_.centre(i, j));
+  }
 
   double usableRadius() const { return usable_; }
 
   // The micro-image whose centre is nearest the image point (x, y), {-1, -1} far off the grid.
   std::array<int, 2> nearestLens(double x, double y) const {
-    const MicroImageViews centred(*this, 0);
-    const auto s = centred.forEach(x, y, 1, [](const MicroImageSample&) {});
+    const auto s = visitDiscs(x, y, 1, 0, 0, [](const MicroImageSample&) {});
     return {s.i, s.j};
   }
 
@@ -56,8 +61,15 @@ class MicroImageViews {
   // whose disc centre is nearest S (rho may be >= 1; i = -1 when the grid has none near).
   template <class Visit>
   MicroImageSample forEach(double qx, double qy, double v, Visit&& visit) const {
+    return visitDiscs(qx, qy, v, shiftX_, shiftY_, visit);
+  }
+
+ private:
+  // forEach with the discs moved by (shiftX, shiftY) from the centres.
+  template <class Visit>
+  MicroImageSample visitDiscs(double qx, double qy, double v, double shiftX, double shiftY, Visit&& visit) const {
     // S is in the disc when |Q - sign v shift - C| < v radius.
-    const double cx = qx - sign_ * v * shiftX_, cy = qy - sign_ * v * shiftY_;
+    const double cx = qx - sign_ * v * shiftX, cy = qy - sign_ * v * shiftY;
     const double reach = std::max(v * radius_, grid_.pitchX);
     MicroImageSample nearest;
     nearest.i = -1;
@@ -70,7 +82,7 @@ class MicroImageViews {
     const int i1 = std::min(grid_.columns - 1, int(std::ceil(across + reach / grid_.pitchX)) + 1);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
-        const auto c = grid_.centre(i, j);
+        const auto& c = centres_[std::size_t(j) * std::size_t(grid_.columns) + std::size_t(i)];
         const double ex = cx - c[0], ey = cy - c[1];
         if (ex * ex + ey * ey > reach * reach) continue;
         MicroImageSample s{i, j, c[0] + sign_ * (qx - c[0]) / v, c[1] + sign_ * (qy - c[1]) / v,
@@ -81,12 +93,9 @@ class MicroImageViews {
     return nearest;
   }
 
- private:
-  // The same disc unmoved.
-  MicroImageViews(const MicroImageViews& other, int) : MicroImageViews(other) { shiftX_ = shiftY_ = 0; }
-
   const LensletGrid& grid_;
   double sign_, usable_, radius_, shiftX_, shiftY_, cos_, sin_;
+  std::vector<std::array<double, 2>> centres_;  // lens (i, j)'s at j * columns + i
 };
 
 }  // namespace lfcam::focused_detail

@@ -1,0 +1,150 @@
+// The row kernel of disagreement_row.hpp in Highway; foreach_target.h compiles this file once per
+// instruction set and HWY_DYNAMIC_DISPATCH picks one on the first call. Positions are taken from
+// each lens's centre (whole column apart), so that float keeps them to a small fraction of a pixel.
+#include "focused/disagreement_row.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/bilinear.hpp"
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "focused/disagreement_row.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace lfcam::focused_detail {
+namespace HWY_NAMESPACE {
+
+namespace hn = hwy::HWY_NAMESPACE;
+
+using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+
+// Adds the samples of lens `lens` to the sums of the pixels of row py its disc covers.
+void AddLens(const Image& grey, const LensesByRow& lenses, std::uint32_t lens, const FocusedPhotoFrame& frame, double v,
+             double sign, int py, DisagreementSums& sums) {
+  const DF df;
+  const DI di;
+  const int lanes = int(hn::Lanes(df)), width = grey.width(), height = grey.height();
+  const auto [cx, cy] = lenses.centre(lens);
+  const double disc = lenses.discRadius(), ey = frame.imagePoint(0, py + 0.5)[1] - cy;
+  if (ey * ey >= disc * disc) return;
+  const double half = std::sqrt(disc * disc - ey * ey), step = frame.imagePxPerPixel, left = frame.originPx[0];
+  const int p0 = std::max(0, int(std::floor((cx - half - left) / step - 0.5)));
+  const int p1 = std::min(frame.width, int(std::ceil((cx + half - left) / step - 0.5)) + 1);
+  if (p0 >= p1) return;
+  // S's row is the same along the span: bilinearSample's two rows and weight.
+  const double y = std::clamp(cy + sign * ey / v - 0.5, 0.0, double(height - 1));
+  const int y0 = std::min(int(y), std::max(height - 2, 0)), y1 = std::min(y0 + 1, height - 1);
+  const VF fy = hn::Set(df, float(y - y0));
+  const float* row0 = grey.plane(0) + std::size_t(y0) * width;
+  const float* row1 = grey.plane(0) + std::size_t(y1) * width;
+  // Columns from xBase: S's x less xBase is cx - xBase - 0.5 + sign ex / v, at most a disc away.
+  const int xBase = int(std::floor(cx));
+  const VF centre = hn::Set(df, float(cx - xBase - 0.5)), slope = hn::Set(df, float(sign / v));
+  const VF lowest = hn::Set(df, float(-xBase)), highest = hn::Set(df, float(width - 1 - xBase));
+  const VF lastLeft = hn::Set(df, float(std::max(width - 2, 0) - xBase));
+  const auto base = hn::Set(di, xBase), lastColumn = hn::Set(di, width - 1);
+  const VF ey2 = hn::Set(df, float(ey * ey)), inverseDisc2 = hn::Set(df, float(1 / (disc * disc)));
+  const VF one = hn::Set(df, 1.0f), firstEx = hn::Set(df, float(left + (p0 + 0.5) * step - cx));
+  const VF stepV = hn::Set(df, float(step)), count = hn::Set(df, float(p1 - p0));
+  for (int p = p0; p < p1; p += lanes) {
+    const VF k = hn::Iota(df, float(p - p0));
+    const VF ex = hn::MulAdd(k, stepV, firstEx);
+    const VF r2 = hn::MulAdd(ex, ex, ey2);
+    const auto in = hn::And(hn::Lt(hn::Mul(r2, inverseDisc2), one), hn::Lt(k, count));
+    const VF x = hn::Min(hn::Max(hn::MulAdd(ex, slope, centre), lowest), highest);
+    const VF x0 = hn::Min(hn::Floor(x), lastLeft);
+    const VF fx = hn::Sub(x, x0);
+    const auto column0 = hn::Add(hn::ConvertTo(di, x0), base);
+    const auto column1 = hn::Min(hn::Add(column0, hn::Set(di, 1)), lastColumn);
+    const VF a = hn::GatherIndex(df, row0, column0), b = hn::GatherIndex(df, row0, column1);
+    const VF c = hn::GatherIndex(df, row1, column0), e = hn::GatherIndex(df, row1, column1);
+    const VF top = hn::MulAdd(fx, hn::Sub(b, a), a), bottom = hn::MulAdd(fx, hn::Sub(e, c), c);
+    const VF value = hn::MulAdd(fy, hn::Sub(bottom, top), top);
+    const VF weight = hn::IfThenElseZero(in, hn::NegMulAdd(r2, inverseDisc2, one));
+    const VF weighted = hn::Mul(weight, value);
+    float* sw = sums.weight.data() + p;
+    float* s1 = sums.value.data() + p;
+    float* s2 = sums.square.data() + p;
+    float* n = sums.seen.data() + p;
+    hn::StoreU(hn::Add(hn::LoadU(df, sw), weight), df, sw);
+    hn::StoreU(hn::Add(hn::LoadU(df, s1), weighted), df, s1);
+    hn::StoreU(hn::MulAdd(weighted, value, hn::LoadU(df, s2)), df, s2);
+    hn::StoreU(hn::Add(hn::LoadU(df, n), hn::IfThenElseZero(in, one)), df, n);
+  }
+}
+
+void DisagreementRow(const Image& grey, const LensesByRow& lenses, const FocusedPhotoFrame& frame, double v,
+                     double sign, int py, DisagreementSums& sums, float* raw, float* seen) {
+  const std::size_t padded = std::size_t(frame.width) + hn::Lanes(DF());
+  for (std::vector<float>* sum : {&sums.weight, &sums.value, &sums.square, &sums.seen}) sum->assign(padded, 0.0f);
+  for (const std::uint32_t lens : lenses.row(py)) AddLens(grey, lenses, lens, frame, v, sign, py, sums);
+  for (int px = 0; px < frame.width; ++px) {
+    const bool two = sums.seen[std::size_t(px)] >= 2;
+    const float mean = sums.value[std::size_t(px)] / sums.weight[std::size_t(px)];
+    raw[px] = two ? std::max(0.0f, sums.square[std::size_t(px)] / sums.weight[std::size_t(px)] - mean * mean) : 0.0f;
+    seen[px] = two ? 1.0f : 0.0f;
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace lfcam::focused_detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace lfcam::focused_detail {
+
+HWY_EXPORT(DisagreementRow);
+
+LensesByRow::LensesByRow(const LensletGrid& grid, const FocusedPhotoFrame& frame, double discRadius)
+    : discRadius_(discRadius), starts_(std::size_t(frame.height) + 2, 0) {
+  for (int j = 0; j < grid.rows; ++j)
+    for (int i = 0; i < grid.columns; ++i) centres_.push_back(grid.centre(i, j));
+  // The rows py whose centre's y, originPx[1] + (py + 0.5) step, lies within the disc.
+  const auto rowsOf = [&](const std::array<double, 2>& c) {
+    const double step = frame.imagePxPerPixel, top = frame.originPx[1];
+    return std::array<int, 2>{std::max(0, int(std::floor((c[1] - discRadius - top) / step - 0.5))),
+                              std::min(frame.height - 1, int(std::ceil((c[1] + discRadius - top) / step - 0.5)))};
+  };
+  for (const auto& c : centres_) {
+    const auto [first, last] = rowsOf(c);
+    for (int py = first; py <= last; ++py) ++starts_[std::size_t(py) + 2];
+  }
+  for (std::size_t k = 2; k < starts_.size(); ++k) starts_[k] += starts_[k - 1];
+  lenses_.resize(starts_.back());
+  for (std::uint32_t lens = 0; lens < centres_.size(); ++lens) {
+    const auto [first, last] = rowsOf(centres_[lens]);
+    for (int py = first; py <= last; ++py) lenses_[starts_[std::size_t(py) + 1]++] = lens;
+  }
+}
+
+void disagreementRow(const Image& grey, const LensesByRow& lenses, const FocusedPhotoFrame& frame, double v,
+                     double sign, int py, DisagreementSums& sums, float* raw, float* seen) {
+  HWY_DYNAMIC_DISPATCH(DisagreementRow)(grey, lenses, frame, v, sign, py, sums, raw, seen);
+}
+
+void disagreementRowReference(const Image& grey, const MicroImageViews& views, const FocusedPhotoFrame& frame, double v,
+                              int py, float* raw, float* seen) {
+  for (int px = 0; px < frame.width; ++px) {
+    const auto q = frame.imagePoint(px + 0.5, py + 0.5);
+    double sw = 0, s1 = 0, s2 = 0;
+    int visits = 0;
+    views.forEach(q[0], q[1], v, [&](const MicroImageSample& s) {
+      const double value = bilinearSample(grey.plane(0), grey.width(), grey.height(), s.x - 0.5, s.y - 0.5);
+      const double weight = 1 - s.rho * s.rho;
+      sw += weight;
+      s1 += weight * value;
+      s2 += weight * value * value;
+      ++visits;
+    });
+    raw[px] = visits >= 2 ? float(std::max(0.0, s2 / sw - (s1 / sw) * (s1 / sw))) : 0.0f;
+    seen[px] = visits >= 2 ? 1.0f : 0.0f;
+  }
+}
+
+}  // namespace lfcam::focused_detail
+#endif  // HWY_ONCE
