@@ -13,6 +13,7 @@ void bindPhotos(py::module_& module);
 void bindSimulate(py::module_& module);
 void bindBatch(py::module_& module);
 void bindVolume(py::module_& module);
+void bindFocused(py::module_& module);
 
 void registerErrors(py::module_& m) {
   static py::exception<LibraryError> error(m, "Error", PyExc_RuntimeError);
@@ -37,4 +38,5 @@ PYBIND11_MODULE(_lfcam, m) {
   lfcam::python::bindSimulate(m);
   lfcam::python::bindBatch(m);
   lfcam::python::bindVolume(m);
+  lfcam::python::bindFocused(m);
 }

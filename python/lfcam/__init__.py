@@ -7,14 +7,19 @@ The same C++ library as the `lfcam` command, with its names and defaults:
     photo = lfcam.refocus(lf, 0.5, aperture=2)            # an Image
     pixels = photo.array                                  # numpy, (channels, height, width), no copy
 
+A focused plenoptic (Raytrix) capture: lfcam.read_focused, then focused_depth, focused_photo and
+focused_total_focus (`lfcam depth`, `refocus` and `edof` of it).
+
 lfcam.simulate writes a simulated capture as `lfcam simulate` does; lfcam.batch.run applies steps to
 many captures, on this machine or on a Dask cluster (`lfcam batch`, docs/batch.md).
 
 Errors raise lfcam.UsageError (a wrong argument) or lfcam.Error (a file or input that fails),
 with the command line's one-line messages.
 """
-from ._lfcam import (AllInFocus, DepthMap, Error, Image, LensletGrid, LightField, UsageError, calibrate, choose_white, decode,
-                     denoise, depth, edof, observer, photo_fields, read, read_image, refocus, score, simulate, stack, volume, write, write_image)
+from ._lfcam import (AllInFocus, DepthMap, Error, FocusedCapture, FocusedDepth, Image, LensletGrid, LightField, UsageError,
+                     calibrate, choose_white, decode, denoise, depth, edof, focused_depth, focused_photo, focused_total_focus,
+                     observer, photo_fields, read, read_focused, read_image, refocus, score, simulate, stack, volume, write,
+                     write_image)
 
 
 def __getattr__(name):
@@ -25,6 +30,7 @@ def __getattr__(name):
     raise AttributeError(f"module 'lfcam' has no attribute '{name}'")
 
 
-__all__ = ["AllInFocus", "DepthMap", "Error", "Image", "LensletGrid", "LightField", "UsageError", "batch",
-           "calibrate", "choose_white", "decode", "denoise", "depth", "edof", "observer", "photo_fields", "read", "read_image", "refocus", "score", "simulate",
+__all__ = ["AllInFocus", "DepthMap", "Error", "FocusedCapture", "FocusedDepth", "Image", "LensletGrid", "LightField",
+           "UsageError", "batch", "calibrate", "choose_white", "decode", "denoise", "depth", "edof", "focused_depth",
+           "focused_photo", "focused_total_focus", "observer", "read_focused", "photo_fields", "read", "read_image", "refocus", "score", "simulate",
            "stack", "volume", "write", "write_image"]

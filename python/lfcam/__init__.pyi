@@ -75,6 +75,26 @@ class AllInFocus:
     slope: Image
     slopes: list[float]
 
+class FocusedCapture:
+    image: Image
+    packing: str
+    micro_image_diameter: float
+    micro_images: tuple[int, int]
+    micro_image_orientation: str
+    lens_types: list[dict[str, tuple[float, float]]]
+    calibration_path: Optional[str]
+    def write_calibration(self, path: _Path) -> None: ...
+
+class FocusedDepth:
+    virtual_depth: Image
+    confidence: Image
+
+def read_focused(path: _Path, *, calibration: _Path = "", white: _Path = "", self_calibrate: bool = False) -> FocusedCapture: ...
+def focused_depth(capture: FocusedCapture, *, pixels_per_lens: Optional[float] = None) -> FocusedDepth: ...
+def focused_photo(capture: FocusedCapture, *, pixels_per_lens: Optional[float] = None, virtual_depth: float,
+                  aperture: float = 1.0, viewpoint: tuple[float, float] = (0.0, 0.0), patches: bool = False) -> Image: ...
+def focused_total_focus(capture: FocusedCapture, *, pixels_per_lens: Optional[float] = None,
+                        depth: Optional[_Array] = None) -> Image: ...
 def read(path: _Path, *, lenslet_views: Optional[int] = None, progress: _Progress = None) -> LightField: ...
 def write(path: _Path, light_field: LightField, *, progress: _Progress = None) -> None: ...
 def read_image(path: _Path) -> Image: ...

@@ -10,6 +10,7 @@
 #include "core/parallel.hpp"
 #include "focused/micro_image_views.hpp"
 #include "io/io_support.hpp"
+#include "lfcam/focused/focused_depth.hpp"
 
 namespace lfcam {
 
@@ -95,6 +96,19 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
       }
   });
   return photo;
+}
+
+Result<Image> renderTotalFocus(const Image& image, const FocusedCalibration& calibration, double pixelsPerLens,
+                               const Image* virtualDepthMap) {
+  FocusedRenderRequest request;
+  request.pixelsPerLens = pixelsPerLens;
+  request.virtualDepthMap = virtualDepthMap;
+  if (virtualDepthMap) return renderFocused(image, calibration, request);
+  FocusedDepthRequest depthRequest;
+  depthRequest.pixelsPerLens = pixelsPerLens;
+  LFCAM_ASSIGN_OR_RETURN(const FocusedDepth depth, estimateFocusedDepth(image, calibration, depthRequest));
+  request.virtualDepthMap = &depth.virtualDepth;
+  return renderFocused(image, calibration, request);
 }
 
 }  // namespace lfcam

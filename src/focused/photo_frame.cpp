@@ -15,4 +15,8 @@ FocusedPhotoFrame focusedPhotoFrame(const FocusedCalibration& calibration, doubl
   return frame;
 }
 
+double defaultPixelsPerLens(const FocusedCalibration& calibration) {
+  return std::max(1.0, std::round(calibration.diameterPx() / 4));
+}
+
 }  // namespace lfcam

@@ -16,6 +16,7 @@
 #include "lfcam/simulate/simulate.hpp"
 
 #include "lfcam/focused/focused_calibration.hpp"
+#include "lfcam/focused/photo_frame.hpp"
 #include "lfcam/simulate/focused_truth.hpp"
 #include "simulate/camera_json.hpp"
 #include "simulate/tracing.hpp"
@@ -218,7 +219,7 @@ Status writeSimulation(const std::filesystem::path& folder, const Scene& scene, 
     json["rays_traced"] = capture.rays;
     if (camera.focusedPlenoptic()) {
       LFCAM_ASSIGN_OR_RETURN(const FocusedCalibration calibration, focusedCalibrationFromCamera(camera));
-      const double pixelsPerLens = std::max(1.0, std::round(calibration.diameterPx() / 4));
+      const double pixelsPerLens = defaultPixelsPerLens(calibration);
       LFCAM_TRY(writeFocusedCalibration(temporary / "raw.xml", calibration));
       json["focused"] = {{"calibration", "raw.xml"},
                          {"pixels_per_lens", pixelsPerLens},

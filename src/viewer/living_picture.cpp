@@ -20,18 +20,11 @@
 #include "lfcam/edof/depth.hpp"
 #include "lfcam/photo/photo_request.hpp"
 #include "viewer/image_encode.hpp"
-#include "viewer/viewer_assets.hpp"
+#include "viewer/living_page.hpp"
 
 namespace lfcam {
 
 namespace {
-
-constexpr std::string_view placeholder = "{{LFCAM_DATA}}", stylePlaceholder = "{{LFCAM_DUAL_RANGE_CSS}}";
-
-Result<std::string> dataUrl(const Image& image, int quality) {
-  LFCAM_ASSIGN_OR_RETURN(auto jpeg, encodeImage(image, {.format = EncodedFormat::Jpeg, .jpegQuality = quality}));
-  return "data:image/jpeg;base64," + base64Encode(jpeg);
-}
 
 // A number as text that reads back to the same double.
 std::string exact(double value) {
@@ -59,56 +52,9 @@ Result<nlohmann::json> requestedPhoto(const LightField& lightField,
   return nlohmann::json{{"request", text}, {"image", url}};
 }
 
-// The page template with `data` in its slot: JSON inside a <script> element, '<' escaped so that
-// no "</script>" can close it early.
-Result<std::string> pageWithData(const nlohmann::json& data) {
-  const viewer::Asset* page = viewer::findAsset("living.html");
-  if (!page) return makeError(ErrorCode::Format, "export-html: the page template is missing from the build");
-  std::string json = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  std::string escaped;
-  escaped.reserve(json.size());
-  for (char c : json) {
-    if (c == '<')
-      escaped += "\\u003c";
-    else
-      escaped += c;
-  }
-  // The two-ended slider's style, shared with lfcam view's page.
-  const viewer::Asset* dualRange = viewer::findAsset("viewer.dual-range.css");
-  std::string html(page->bytes);
-  const auto at = html.find(placeholder), styleAt = html.find(stylePlaceholder);
-  if (at == std::string::npos || styleAt >= at || !dualRange)
-    return makeError(ErrorCode::Format, "export-html: the page template has no data or style slot");
-  // The data first: the style slot lies before it, so its position holds.
-  html.replace(at, placeholder.size(), escaped);
-  html.replace(styleAt, stylePlaceholder.size(), dualRange->bytes);
-  return html;
-}
-
-Status writePage(const std::filesystem::path& output, const std::string& html) {
-  return writeFileAtomically(output, [&](const std::filesystem::path& temporary) -> Status {
-    std::FILE* file = std::fopen(temporary.c_str(), "wb");
-    if (!file) return makeError(ErrorCode::Io, output.string() + ": cannot write");
-    const bool written = std::fwrite(html.data(), 1, html.size(), file) == html.size();
-    if (std::fclose(file) != 0 || !written) return makeError(ErrorCode::Io, output.string() + ": cannot write");
-    return {};
-  });
-}
-
 // The small aperture: a third of the lens's radius in views, at least one view step.
 double smallApertureRadius(const LightField& lightField) {
   return std::max(1.0, (std::min(lightField.nu(), lightField.nv()) - 1) / 6.0);
-}
-
-// The slice the page opens on: the one most pixels of the image's central half (in each direction)
-// find sharpest, a vote over the page's own labels: a photograph is framed around its subject. Not
-// the middle of the stack, which on the Lytro flower (slopes -2 to 2) lies four slices behind the
-// flowers. Ties go to the lower slice.
-int openingSlice(int width, int height, int slices, const std::function<int(int x, int y)>& sliceAt) {
-  std::vector<int> votes(std::size_t(slices), 0);
-  for (int y = height / 4; y < height - height / 4; ++y)
-    for (int x = width / 4; x < width - width / 4; ++x) ++votes[std::size_t(sliceAt(x, y))];
-  return int(std::max_element(votes.begin(), votes.end()) - votes.begin());
 }
 
 // The focus range slider's stops (slice indices, ascending) and, for every pair of distinct stops,
@@ -240,22 +186,10 @@ Result<std::string> makeLytroLivingPicture(const LytroRefocusStack& stack, const
     slices.push_back(
         {{"lambda", slice.lambda},
          {"image", "data:image/jpeg;base64," + base64Encode(std::string(slice.jpeg.begin(), slice.jpeg.end()))}});
-  // Where each cell of the depth map lies in the stack: the fractional index of its lambda among
-  // the slices' (increasing), so that a click blends the two slices around it.
+  std::vector<double> lambdas;
+  for (const LytroRefocusSlice& slice : stack.slices) lambdas.push_back(slice.lambda);
   const int width = std::max(stack.depth.width(), 1), height = std::max(stack.depth.height(), 1);
-  std::vector<double> positions;
-  for (float lambda : stack.depth.pixels()) {
-    const auto above = std::upper_bound(stack.slices.begin(), stack.slices.end(), double(lambda),
-                                        [](double value, const LytroRefocusSlice& s) { return value < s.lambda; });
-    double position = 0;
-    if (above == stack.slices.end()) {
-      position = double(stack.slices.size() - 1);
-    } else if (above != stack.slices.begin()) {
-      const std::size_t k = std::size_t(above - stack.slices.begin()) - 1;
-      position = double(k) + (lambda - stack.slices[k].lambda) / (above->lambda - stack.slices[k].lambda);
-    }
-    positions.push_back(std::round(position * 1000) / 1000);
-  }
+  const std::vector<double> positions = slicePositions(lambdas, stack.depth);
   // Without a depth map, the middle slice.
   const int opening = stack.depth.empty() ? int(stack.slices.size()) / 2
                                           : openingSlice(width, height, int(stack.slices.size()), [&](int x, int y) {

@@ -35,33 +35,19 @@ double worstCentreError(const FocusedCalibration& found, const FocusedCalibratio
   return worst;
 }
 
-// The Galilean multi-focus camera of tests/focused_camera.hpp at 480 x 360: 5.5 um pixels, 50 mm
-// focused at 2 m, microlenses 0.4 mm from the sensor with a 20 px micro-image pitch, types sharp
-// near v = 3, 4.5 and 7; a value-noise plane at 1 m (v ~ 3.4) and a card at 0.8 m (v ~ 5.1).
-constexpr const char* kScene = R"({
-  "name": "focused cli", "background": 0.5,
-  "camera": {
-    "main_lens": {"focal_length_mm": 50, "focus_distance_mm": 2000, "image_f_number": 3.811},
-    "microlenses": {"pitch_mm": 0.109149, "focal_length_mm": 0.6, "focal_lengths_mm": [0.6, 0.514286, 0.466667],
-                    "packing": "hexagonal", "to_sensor_mm": 0.4},
-    "sensor": {"width": 480, "height": 360, "pixel_pitch_mm": 0.0055, "color_filter": "mono", "noise": false}
-  },
-  "planes": [
-    {"name": "background", "centre_mm": [0, 0, 1000], "size_mm": [90, 70],
-     "texture": {"type": "noise", "period_mm": 1.7, "seed": 1, "dark": 0.1, "light": 0.9}},
-    {"name": "card", "centre_mm": [-8, 0, 800], "size_mm": [25, 25],
-     "texture": {"type": "noise", "period_mm": 1.0, "seed": 2, "dark": 0.1, "light": 0.9}}
-  ]
-})";
+// tests/data/focused_multifocus_scene.json: the Galilean multi-focus camera of
+// tests/focused_camera.hpp at 480 x 360 (5.5 um pixels, 50 mm focused at 2 m, microlenses 0.4 mm
+// from the sensor, 20 px micro-images, types sharp near v = 3, 4.5 and 7) before a value-noise
+// plane at 1 m (v ~ 3.4) and a card at 0.8 m (v ~ 5.1).
+const fs::path kScene = fs::path(LFCAM_TEST_DATA_DIR) / "focused_multifocus_scene.json";
 
 class CliFocused : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new test::TempDir;
-    test::writeBytes(*dir_ / "scene.json", kScene);
-    const auto made = runLfcam({"simulate", (*dir_ / "scene.json").string(), "-o", (*dir_ / "capture").string(),
-                                "--samples", "4", "--no-ground-truth"},
-                               dir_->path());
+    const auto made = runLfcam(
+        {"simulate", kScene.string(), "-o", (*dir_ / "capture").string(), "--samples", "4", "--no-ground-truth"},
+        dir_->path());
     ASSERT_EQ(made.exitStatus, 0) << made.err;
     // The same capture with no calibration beside it.
     fs::create_directories(*dir_ / "bare");
@@ -127,6 +113,24 @@ TEST_F(CliFocused, WithFocusedAnUncalibratedCaptureIsCalibratedOnTheFly) {
       runLfcam({"edof", at("bare/capture.png").string(), "--focused", "-o", photo.string()}, dir_->path());
   ASSERT_EQ(edof.exitStatus, 0) << edof.err;
   EXPECT_TRUE(fs::exists(photo));
+}
+
+TEST_F(CliFocused, ExportHtmlWritesALivingPictureOverItsVirtualDepths) {
+  const fs::path page = at("page.html");
+  const auto result =
+      runLfcam({"export-html", at("capture/raw.png").string(), "--slices", "6", "--frames", "4", "-o", page.string()},
+               dir_->path());
+  ASSERT_EQ(result.exitStatus, 0) << result.err;
+  const std::string html = test::readBytes(page);
+  EXPECT_NE(html.find("a focused plenoptic capture: 6 slices, virtual depth"), std::string::npos);
+  // Six slices at virtual depths, a depth position per pixel, a total focus and four viewpoints.
+  std::size_t slices = 0;
+  for (auto at = html.find("\"virtualDepth\""); at != std::string::npos; at = html.find("\"virtualDepth\"", at + 1))
+    ++slices;
+  EXPECT_EQ(slices, 6u);
+  EXPECT_NE(html.find("\"positions\""), std::string::npos);
+  EXPECT_NE(html.find("\"allInFocus\":\"data:image/jpeg;base64,"), std::string::npos);
+  EXPECT_NE(html.find("\"sweepUnit\""), std::string::npos);
 }
 
 TEST_F(CliFocused, CalibrateRefusesWhatItCannotDoInOneLine) {

@@ -9,7 +9,6 @@
 #include "focused_input.hpp"
 #include "image_output.hpp"
 #include "lfcam/edof/all_in_focus.hpp"
-#include "lfcam/focused/focused_depth.hpp"
 #include "lfcam/focused/focused_render.hpp"
 #include "lfcam/io/color_map.hpp"
 #include "lfcam/io/image_io.hpp"
@@ -23,20 +22,12 @@ namespace {
 Result<Image> focusedTotalFocus(const InputOptions& input, const FocusedOptions& focused,
                                 const std::string& depthPath) {
   LFCAM_ASSIGN_OR_RETURN(auto capture, loadFocusedInput(input, focused));
-  FocusedRenderRequest request;
-  request.pixelsPerLens = pixelsPerLens(focused, capture.calibration);
-  Image virtualDepth;
+  std::optional<Image> virtualDepth;
   if (!depthPath.empty()) {
     LFCAM_ASSIGN_OR_RETURN(virtualDepth, readImage(depthPath));
-  } else {
-    FocusedDepthRequest depthRequest;
-    depthRequest.pixelsPerLens = request.pixelsPerLens;
-    auto depth = estimateFocusedDepth(capture.image, capture.calibration, depthRequest);
-    if (!depth) return makeError(depth.error().code, input.path + ": " + depth.error().message);
-    virtualDepth = std::move(depth->virtualDepth);
   }
-  request.virtualDepthMap = &virtualDepth;
-  auto photo = renderFocused(capture.image, capture.calibration, request);
+  auto photo = renderTotalFocus(capture.image, capture.calibration, pixelsPerLens(focused, capture.calibration),
+                                virtualDepth ? &*virtualDepth : nullptr);
   if (!photo) return makeError(photo.error().code, input.path + ": " + photo.error().message);
   return std::move(photo).value();
 }

@@ -1,11 +1,13 @@
 // lfcam export-html INPUT -o PAGE.html: a self-contained "living picture" that refocuses where it
 // is clicked, with a precomputed focus range slider, with no server (living_picture.hpp); of a processed Lytro
-// container (*-stk.lfp, an Illum picture), over its own stored slices and depth map.
+// container (*-stk.lfp, an Illum picture), over its own stored slices and depth map; of a focused
+// plenoptic capture, over photographs rendered from its micro-images at its virtual depths.
 #include <memory>
 
 #include "raw_io/lytro_container.hpp"
 
 #include "commands.hpp"
+#include "focused_input.hpp"
 #include "lfcam/viewer/living_picture.hpp"
 #include "progress_bar.hpp"
 
@@ -14,6 +16,7 @@ namespace lfcam::cli {
 void addExportHtmlCommand(CLI::App& app, Job& job) {
   struct Options {
     InputOptions input;
+    FocusedOptions focused;
     LivingPictureOptions page;
     std::string output;
   };
@@ -23,6 +26,7 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
       "write one self-contained HTML page that refocuses where it is clicked, with a focus range slider and a "
       "viewpoint sweep");
   addInputOptions(*command, options->input);
+  addFocusedOptions(*command, options->focused);
   command->add_option("-o,--output", options->output, "the page (.html)")->required();
   command->add_option("--slices", options->page.maxSlices, "focal stack depth")->check(CLI::Range(2, 255));
   command->add_option("--frames", options->page.sweepFrames, "viewpoints in the sweep")->check(CLI::Range(1, 360));
@@ -36,6 +40,13 @@ void addExportHtmlCommand(CLI::App& app, Job& job) {
   command->add_option("--title", options->page.title, "the page's title");
   command->callback([options, &job] {
     job = [options]() -> Status {
+      if (isFocusedInput(options->input, options->focused)) {
+        LFCAM_ASSIGN_OR_RETURN(auto capture, loadFocusedInput(options->input, options->focused));
+        ProgressBar bar("making " + options->output);
+        return writeFocusedLivingPicture(options->output, capture.image, capture.calibration,
+                                         pixelsPerLens(options->focused, capture.calibration), options->page,
+                                         [&](double f) { bar(f); });
+      }
       // A processed container: its own slices. (A raw frame is decoded like any raw, with --white or --whites.)
       if (!options->input.decodesRaw() && looksLikeLytroContainer(options->input.path)) {
         LFCAM_ASSIGN_OR_RETURN(auto stack, readLytroRefocusStack(options->input.path));

@@ -1,10 +1,12 @@
 // lfcam view INPUT [--port N] [--host ADDR]: the interactive viewer, a local web server whose page
 // refocuses where it is clicked (viewer.hpp, viewer_server.hpp); of a processed Lytro container, its
-// living picture over the container's own slices.
+// living picture over the container's own slices; of a focused plenoptic capture, its living picture
+// (living_picture.hpp: rendered once, then served).
 #include <cstdio>
 #include <memory>
 
 #include "commands.hpp"
+#include "focused_input.hpp"
 #include "lfcam/viewer/living_picture.hpp"
 #include "lfcam/viewer/viewer.hpp"
 #include "lfcam/viewer/viewer_server.hpp"
@@ -27,6 +29,7 @@ Status serve(ViewerServer& server, const ViewerServerOptions& options, const std
 void addViewCommand(CLI::App& app, Job& job) {
   struct Options {
     InputOptions input;
+    FocusedOptions focused;
     ViewerServerOptions server;
     int cacheMb = 64;
     int renders = 2;
@@ -47,6 +50,7 @@ void addViewCommand(CLI::App& app, Job& job) {
       "  Finer grid (2x)     the photograph on a grid twice as fine (refocus --upsample 2)\n"
       "  Tilt, range and the finer grid use the whole lens from its centre.\n");
   addInputOptions(*command, options->input);
+  addFocusedOptions(*command, options->focused);
   command->add_option("--port", options->server.port, "TCP port (0: any free port; the address is printed)")
       ->check(CLI::Range(0, 65535));
   command->add_option("--host", options->server.host,
@@ -56,6 +60,14 @@ void addViewCommand(CLI::App& app, Job& job) {
   command->add_option("--max-renders", options->renders, "photographs rendered at once")->check(CLI::Range(1, 64));
   command->callback([options, &job] {
     job = [options]() -> Status {
+      if (isFocusedInput(options->input, options->focused)) {
+        LFCAM_ASSIGN_OR_RETURN(auto capture, loadFocusedInput(options->input, options->focused));
+        LFCAM_ASSIGN_OR_RETURN(auto page,
+                               makeFocusedLivingPicture(capture.image, capture.calibration,
+                                                        pixelsPerLens(options->focused, capture.calibration)));
+        ViewerServer server(servePage(std::move(page)));
+        return serve(server, options->server, options->input.path);
+      }
       // A processed Lytro container: its living picture over its own slices (living_picture.hpp).
       if (!options->input.decodesRaw() && looksLikeLytroContainer(options->input.path)) {
         LFCAM_ASSIGN_OR_RETURN(auto stack, readLytroRefocusStack(options->input.path));

@@ -1,6 +1,6 @@
 #include "focused_input.hpp"
 
-#include <cmath>
+#include "lfcam/focused/photo_frame.hpp"
 
 namespace lfcam::cli {
 
@@ -31,7 +31,7 @@ Result<FocusedCapture> loadFocusedInput(const InputOptions& input, const Focused
 }
 
 double pixelsPerLens(const FocusedOptions& focused, const FocusedCalibration& calibration) {
-  return focused.pixelsPerLens > 0 ? focused.pixelsPerLens : std::max(1.0, std::round(calibration.diameterPx() / 4));
+  return focused.pixelsPerLens > 0 ? focused.pixelsPerLens : defaultPixelsPerLens(calibration);
 }
 
 }  // namespace lfcam::cli

@@ -40,4 +40,10 @@ struct FocusedRenderRequest {
 Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibration,
                             const FocusedRenderRequest& request);
 
+// Total focus (`lfcam edof` of a focused capture): every pixel of the frame of pixelsPerLens at its
+// own virtual depth, from `virtualDepthMap` or, when null, from the map estimated on that frame
+// (focused_depth.hpp, its default request).
+Result<Image> renderTotalFocus(const Image& image, const FocusedCalibration& calibration, double pixelsPerLens,
+                               const Image* virtualDepthMap = nullptr);
+
 }  // namespace lfcam

@@ -24,4 +24,8 @@ struct FocusedPhotoFrame {
 // size M; a point at virtual depth v is resolved up to D / v).
 FocusedPhotoFrame focusedPhotoFrame(const FocusedCalibration& calibration, double pixelsPerLens);
 
+// The frame a photograph takes unless asked otherwise: a quarter of the micro-image diameter,
+// rounded (about the finest a point at virtual depth 4, Raytrix's middle, resolves).
+double defaultPixelsPerLens(const FocusedCalibration& calibration);
+
 }  // namespace lfcam

@@ -20,6 +20,7 @@
 #include "lfcam/core/light_field.hpp"
 #include "lfcam/core/progress.hpp"
 #include "lfcam/core/result.hpp"
+#include "lfcam/focused/focused_calibration.hpp"
 #include "lfcam/raw_io/raw_io.hpp"
 
 namespace lfcam {
@@ -55,5 +56,17 @@ Status writeLivingPicture(const std::filesystem::path& output, const LightField&
 Result<std::string> makeLytroLivingPicture(const LytroRefocusStack& stack, const std::string& title);
 Status writeLytroLivingPicture(const std::filesystem::path& output, const LytroRefocusStack& stack,
                                const std::string& title);
+
+// A focused plenoptic capture's page (focused_render.hpp), on the frame of pixelsPerLens: its virtual
+// depth map estimated (focused_depth.hpp), maxSlices photographs refocused at virtual depths evenly
+// spaced in 1 / v over the map's confident range (2nd to 98th percentile), so that a click focuses
+// at the map's depth there; the total focus; sweepFrames viewpoints on a circle at half the usable
+// radius, each all in focus. No small aperture or focus range (LivingPictureOptions' are ignored).
+Result<std::string> makeFocusedLivingPicture(const Image& image, const FocusedCalibration& calibration,
+                                             double pixelsPerLens, const LivingPictureOptions& options = {},
+                                             const ProgressCallback& progress = {});
+Status writeFocusedLivingPicture(const std::filesystem::path& output, const Image& image,
+                                 const FocusedCalibration& calibration, double pixelsPerLens,
+                                 const LivingPictureOptions& options = {}, const ProgressCallback& progress = {});
 
 }  // namespace lfcam
