@@ -1,4 +1,6 @@
-// runBatchCapture (batch_run.hpp): one capture's steps, its outputs and its done-marker.
+// runBatchCapture (batch_run.hpp): one capture's steps, its outputs and its done-marker. A focused
+// plenoptic capture (its calibration beside it) takes the steps that apply to it, as the commands
+// do: edof its total focus, depth its virtual depth, page its living picture.
 #include "lfcam/batch/batch_run.hpp"
 
 #include <chrono>
@@ -12,6 +14,9 @@
 #include "lfcam/decode/decode_files.hpp"
 #include "lfcam/edof/all_in_focus.hpp"
 #include "lfcam/edof/depth.hpp"
+#include "lfcam/focused/focused_capture.hpp"
+#include "lfcam/focused/focused_depth.hpp"
+#include "lfcam/focused/focused_render.hpp"
 #include "lfcam/io/color_map.hpp"
 #include "lfcam/io/image_io.hpp"
 #include "lfcam/io/light_field_io.hpp"
@@ -42,6 +47,7 @@ nlohmann::json inputFingerprint(const fs::path& input) {
       if (entry.is_regular_file()) add(entry.path());
   } else {
     add(input);
+    if (const auto calibration = focusedCalibrationBeside(input)) add(*calibration);
   }
   return {{"bytes", bytes}, {"modified_ns", std::int64_t(latest.time_since_epoch().count())}};
 }
@@ -106,16 +112,48 @@ Status runStep(const BatchStep& step, const LightField& lightField, const fs::pa
   return {};
 }
 
+Status runFocusedStep(const BatchStep& step, const FocusedCapture& capture, const fs::path& folder) {
+  const double pixelsPerLens = defaultPixelsPerLens(capture.calibration);
+  switch (step.kind) {
+    case BatchStep::Kind::Edof: {
+      LFCAM_ASSIGN_OR_RETURN(auto photo, renderTotalFocus(capture.image, capture.calibration, pixelsPerLens));
+      return writeImage(folder / "all-in-focus.png", photo);
+    }
+    case BatchStep::Kind::Depth: {
+      FocusedDepthRequest request;
+      request.pixelsPerLens = pixelsPerLens;
+      LFCAM_ASSIGN_OR_RETURN(auto depth, estimateFocusedDepth(capture.image, capture.calibration, request));
+      LFCAM_TRY(writeImage(folder / "depth.pfm", depth.virtualDepth));
+      // The candidates' range, as a light field's map is coloured over its search range: one scale for every capture.
+      return writeImage(folder / "depth.png",
+                        colorMap(depth.virtualDepth, request.minVirtualDepth, request.maxVirtualDepth));
+    }
+    case BatchStep::Kind::Page:
+      return writeFocusedLivingPicture(folder / "page.html", capture.image, capture.calibration, pixelsPerLens);
+    default:
+      return makeError(ErrorCode::Usage, "is for light fields; a focused plenoptic capture takes edof, depth and page");
+  }
+}
+
 Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps, const BatchWhite& white,
                 const fs::path& outputFolder, const fs::path& folder, const nlohmann::json& marker) {
   std::error_code ec;
   fs::remove(folder / kBatchDoneMarker, ec);  // half-done until every step has written again
   removeStaleTemporaries(folder);             // of a run killed mid-write
-  LFCAM_ASSIGN_OR_RETURN(auto lightField, loadCapture(capture.input, white));
+  std::optional<FocusedCapture> focused;
+  std::optional<LightField> lightField;
+  if (focusedCalibrationBeside(capture.input)) {
+    if (!white.database.empty())
+      return makeError(ErrorCode::Usage, "a focused plenoptic capture takes --white, not --whites");
+    LFCAM_ASSIGN_OR_RETURN(focused, readFocusedCapture(capture.input, {.white = white.image}));
+  } else {
+    LFCAM_ASSIGN_OR_RETURN(lightField, loadCapture(capture.input, white));
+  }
   fs::create_directories(folder, ec);  // only now, so that an unreadable input leaves no folder
   if (ec) return makeError(ErrorCode::Io, folder.string() + ": cannot create the folder: " + ec.message());
   for (const BatchStep& step : steps) {
-    const Status status = runStep(step, lightField, capture.input, outputFolder, folder);
+    const Status status = focused ? runFocusedStep(step, *focused, folder)
+                                  : runStep(step, *lightField, capture.input, outputFolder, folder);
     if (!status) return makeError(status.error().code, step.text + ": " + status.error().message);
     // A cancelled step's outputs are meaningless (parallel.hpp): no marker, so a rerun redoes them.
     if (cancellationRequested()) return makeError(ErrorCode::Io, "cancelled");

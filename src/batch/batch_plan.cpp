@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lfcam/focused/focused_capture.hpp"
 #include "lfcam/io/light_field_io.hpp"
 #include "lfcam/render/focal_stack.hpp"
 #include "photo/focal_stack_output.hpp"
@@ -187,6 +188,14 @@ Result<std::vector<BatchCapture>> expandBatchInputs(const std::vector<std::strin
         const bool lightFieldFolder = entry.is_directory() && detectLightFieldFormat(entry.path());
         if (!hidden && (entry.is_regular_file() || lightFieldFolder)) entries.push_back(entry.path());
       }
+      // A focused capture's calibration beside it (NAME.xml) is part of it, not an input.
+      std::vector<fs::path> calibrations;
+      for (const fs::path& entry : entries)
+        if (const auto calibration = focusedCalibrationBeside(entry); calibration && *calibration != entry)
+          calibrations.push_back(*calibration);
+      std::erase_if(entries, [&](const fs::path& entry) {
+        return std::find(calibrations.begin(), calibrations.end(), entry) != calibrations.end();
+      });
       std::sort(entries.begin(), entries.end());
       paths.insert(paths.end(), entries.begin(), entries.end());
     } else {

@@ -133,6 +133,29 @@ TEST_F(CliFocused, ExportHtmlWritesALivingPictureOverItsVirtualDepths) {
   EXPECT_NE(html.find("\"sweepUnit\""), std::string::npos);
 }
 
+TEST_F(CliFocused, BatchTakesAFolderOfCapturesWithTheirXmlAndTheStepsThatApply) {
+  const fs::path inputs = at("batch-in"), out = at("batch-out");
+  fs::create_directories(inputs);
+  fs::copy_file(at("capture/raw.png"), inputs / "f.png");
+  fs::copy_file(at("capture/raw.xml"), inputs / "f.xml");
+  const auto result =
+      runLfcam({"batch", inputs.string(), "-o", out.string(), "--steps", "edof,depth,page"}, dir_->path());
+  ASSERT_EQ(result.exitStatus, 0) << result.err;
+  for (const char* file : {"all-in-focus.png", "depth.pfm", "depth.png", "page.html"})
+    EXPECT_TRUE(fs::is_regular_file(out / "f" / file)) << file;
+  const auto report = nlohmann::json::parse(test::readBytes(out / "batch-report.json"));
+  EXPECT_EQ(report["done"], 1);  // the XML is part of its capture, not one more input
+  // A light field's step is refused for it, by name, in the report.
+  const auto refocus =
+      runLfcam({"batch", inputs.string(), "-o", at("batch-refocus").string(), "--steps", "refocus:0.5"}, dir_->path());
+  EXPECT_NE(refocus.exitStatus, 0);
+  const auto failed = nlohmann::json::parse(test::readBytes(at("batch-refocus") / "batch-report.json"));
+  EXPECT_EQ(failed["failed"], 1);
+  EXPECT_NE(failed["captures"][0]["error"].get<std::string>().find("a focused plenoptic capture takes edof"),
+            std::string::npos)
+      << failed["captures"][0]["error"];
+}
+
 TEST_F(CliFocused, CalibrateRefusesWhatItCannotDoInOneLine) {
   // Not a calibration's extension: wrong usage, nothing written.
   const auto extension = runLfcam(
