@@ -56,6 +56,15 @@ Result<FocusedSelfCalibration> calibrateFocusedCapture(const Image& capture, con
                             capture.width(), capture.height());
   calibration.borderPx = options.borderPx;
   calibration.lensTypes = {LensType{}};
+  // A capture's lenses show their centres by their vignetting. Without it (a capture devignetted
+  // by the camera's software, as the R42 crop is: 35 of 891 lenses) the lattice found is the
+  // period of what the lenses show, D (1 - 1 / v), not theirs; the simulator's give 60 % or more.
+  const int lenses = calibration.grid.columns * calibration.grid.rows;
+  if (!white && grid.fit.lensletsUsed < lenses / 5)
+    return makeError(ErrorCode::Format, where + ": no micro-image lattice to be found in it (only " +
+                                            std::to_string(grid.fit.lensletsUsed) + " of " + std::to_string(lenses) +
+                                            " micro-images show their vignetting: devignetted?); give its "
+                                            "calibration or a white image");
 
   // Coarse maps: a few photograph pixels a micro-image, candidates up to half its diameter.
   FocusedDepthRequest request;

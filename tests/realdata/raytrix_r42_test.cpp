@@ -55,6 +55,19 @@ TEST(RaytrixR42, ItsCalibrationIsTheGridTheMicroImagesAgreeOn) {
   }
 }
 
+// The crop is devignetted (Raytrix's software divides by the white): its lenses do not show where
+// they are, and what they show repeats at D (1 - 1 / v), not at D. Calibrating it from itself is
+// refused, saying why, rather than a wrong lattice returned.
+TEST(RaytrixR42, WithoutItsCalibrationTheDevignettedCropIsRefusedNotMiscalibrated) {
+  LFCAM_REQUIRE_SHARED_DATA("focused-raytrix-r42", folder);
+  test::TempDir dir;
+  std::filesystem::copy_file(folder / "sc2_klein.png", dir / "sc2_klein.png");
+  auto capture = readFocusedCapture(dir / "sc2_klein.png", {.calibrateIfNone = true});
+  ASSERT_FALSE(capture);
+  EXPECT_NE(capture.error().message.find("devignetted?"), std::string::npos) << capture.error().message;
+  EXPECT_NE(capture.error().message.find("sc2_klein.png"), std::string::npos) << capture.error().message;
+}
+
 TEST(RaytrixR42, LensTypesAreSharpWhereItsCalibrationSays) {
   LFCAM_REQUIRE_SHARED_DATA("focused-raytrix-r42", folder);
   auto capture = readFocusedCapture(folder / "sc2_klein.png");
