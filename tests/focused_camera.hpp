@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -105,28 +106,64 @@ struct FocusedCapture {
   FocusedTruth truth;
 };
 
-inline FocusedCapture simulateFocused(const test::FocusedCameraSpec& spec, const std::array<double, 3>& virtualDepths,
-                                      double pixelsPerLens = kFocusedPixelsPerLens, int samplesPerPixel = 16) {
+// `scene` through `camera`, devignetted by the white image, with its truth on the frame of
+// pixelsPerLens. electronsAtWhite > 0: photon noise, the white's brightest pixel collecting that
+// many electrons (0: noise free).
+inline FocusedCapture simulateFocusedScene(const CameraModel& camera, const Scene& scene, double pixelsPerLens,
+                                           int samplesPerPixel = 16, double electronsAtWhite = 0) {
   FocusedCapture c;
-  c.camera = focusedCamera(spec);
-  const Scene scene = focusedLayers(c.camera, virtualDepths, pixelsPerLens);
+  c.camera = camera;
   const SensorCapture capture = simulateCapture(scene, c.camera, {.samplesPerPixel = samplesPerPixel});
   const SensorCapture white =
       simulateCapture(builtinScene("white", c.camera).value(), c.camera, {.samplesPerPixel = samplesPerPixel});
   float brightest = 0;
   for (const float x : white.irradiance.pixels()) brightest = std::max(brightest, x);
-  c.image = Image(spec.width, spec.height, 1);
-  c.raw = Image(spec.width, spec.height, 1);
-  c.white = Image(spec.width, spec.height, 1);
+  const int width = camera.sensor.width, height = camera.sensor.height;
+  c.image = Image(width, height, 1);
+  c.raw = Image(width, height, 1);
+  c.white = Image(width, height, 1);
   std::copy(capture.irradiance.pixels().begin(), capture.irradiance.pixels().end(), c.raw.pixels().begin());
   std::copy(white.irradiance.pixels().begin(), white.irradiance.pixels().end(), c.white.pixels().begin());
+  if (electronsAtWhite > 0) {
+    std::mt19937_64 random(7);
+    const double gain = electronsAtWhite / brightest;
+    for (float& x : c.raw.pixels()) x = float(std::poisson_distribution<long>(std::max(0.0, x * gain))(random) / gain);
+  }
   for (std::size_t k = 0; k < c.image.pixels().size(); ++k) {
     const float w = white.irradiance.pixels()[k];
-    c.image.pixels()[k] = w > 0.05f * brightest ? capture.irradiance.pixels()[k] / w : 0.0f;
+    c.image.pixels()[k] = w > 0.05f * brightest ? c.raw.pixels()[k] / w : 0.0f;
   }
   c.calibration = focusedCalibrationFromCamera(c.camera).value();
   c.truth = focusedTruth(scene, c.camera, focusedPhotoFrame(c.calibration, pixelsPerLens)).value();
   return c;
+}
+
+inline FocusedCapture simulateFocused(const test::FocusedCameraSpec& spec, const std::array<double, 3>& virtualDepths,
+                                      double pixelsPerLens = kFocusedPixelsPerLens, int samplesPerPixel = 16) {
+  const CameraModel camera = focusedCamera(spec);
+  return simulateFocusedScene(camera, focusedLayers(camera, virtualDepths, pixelsPerLens), pixelsPerLens,
+                              samplesPerPixel);
+}
+
+// A virtual depth map against the truth, leaving out `margin` pixels at each side.
+struct VirtualDepthScore {
+  double badPix = 0;         // share of pixels whose disparity D / v is off by more than 0.25 px
+  double relativeError = 0;  // mean |v - v_true| / v_true
+};
+
+inline VirtualDepthScore scoreVirtualDepth(const Image& estimate, const Image& truth, double diameter, int margin) {
+  VirtualDepthScore s;
+  int count = 0;
+  for (int y = margin; y < truth.height() - margin; ++y)
+    for (int x = margin; x < truth.width() - margin; ++x) {
+      const double v = estimate.at(x, y, 0), t = truth.at(x, y, 0);
+      s.badPix += std::abs(diameter / v - diameter / t) > 0.25;
+      s.relativeError += std::abs(v - t) / t;
+      ++count;
+    }
+  s.badPix /= count;
+  s.relativeError /= count;
+  return s;
 }
 
 // PSNR (peak 1) of channel 0 of `a` against `b`'s, leaving out `margin` pixels at each side.
