@@ -95,6 +95,15 @@ void bindFocused(py::module_& m) {
       "`lfcam depth` of a focused capture: the virtual depth of every pixel of the photograph's frame "
       "(pixels_per_lens per micro-image; default a quarter of its diameter) and its confidence.");
   m.def(
+      "focused_distance",
+      [](const FocusedCapture& capture, const py::array& virtualDepth) {
+        const Image map = imageFromArray(virtualDepth, "virtual_depth");
+        return valueOrThrow(focusedDistanceMap(capture.calibration, map, "focused_distance"));
+      },
+      py::arg("capture"), py::arg("virtual_depth"),
+      "`lfcam depth --metric` of a focused capture: a virtual depth map as distances from the main lens, mm, "
+      "through the optics its calibration holds (lfcam_optics; a simulated capture's has them).");
+  m.def(
       "focused_photo",
       [](const FocusedCapture& capture, std::optional<double> pixelsPerLens, double virtualDepth, double aperture,
          std::pair<double, double> viewpoint, bool patches) {

@@ -105,6 +105,8 @@ TEST(FocusedCalibration, XmlAndJsonRoundTrip) {
   ASSERT_TRUE(original) << original.error().message;
   FocusedCalibration changed = original.value();
   changed.orientation = MicroImageOrientation::Inverted;
+  changed.optics =
+      FocusedOptics{.mainFocalLengthMm = 50, .mainLensToMicrolensesMm = 51.25, .microlensesToSensorMm = 0.4};
   for (const char* name : {"c.xml", "c.json"}) {
     ASSERT_TRUE(writeFocusedCalibration(dir.path() / name, changed));
     const auto back = readFocusedCalibration(dir.path() / name, 500, 400);
@@ -121,6 +123,9 @@ TEST(FocusedCalibration, XmlAndJsonRoundTrip) {
         ASSERT_EQ(changed.lensType(i, j), back->lensType(i, j)) << name;
       }
     EXPECT_DOUBLE_EQ(back->lensTypes[2].maxVirtualDepth, 100) << name;
+    ASSERT_TRUE(back->optics) << name;
+    EXPECT_NEAR(back->optics->mainLensToMicrolensesMm, 51.25, 1e-9) << name;
+    EXPECT_NEAR(back->optics->microlensesToSensorMm, 0.4, 1e-9) << name;
   }
 }
 
@@ -160,6 +165,13 @@ TEST(FocusedCalibration, RefusesWhatIsNotACalibrationOfThisImage) {
                 .find("lens distortion is not supported"),
             std::string::npos);
   EXPECT_NE(refusal(raytrixLikeXml(900, 0)).find("outside the 640x480 image"), std::string::npos);
+  // Microlenses nearer the main lens than its focal length: no real image falls on them.
+  EXPECT_NE(refusal(replaced(good, "</RayCalibData>",
+                             "<lfcam_optics><main_focal_length>50</main_focal_length><main_to_microlenses>40"
+                             "</main_to_microlenses><microlenses_to_sensor>0.4</microlenses_to_sensor></lfcam_optics>"
+                             "</RayCalibData>"))
+                .find("lfcam_optics"),
+            std::string::npos);
   EXPECT_NE(refusal(good, 60, 480).find("smaller than three micro-images"), std::string::npos);
   const auto json = parseFocusedCalibrationJson(R"({"offset": {"x": 0, "y": 0}, "diameter": 20, "lens_typez": []})",
                                                 "bad.json", 640, 480);

@@ -22,5 +22,21 @@ TEST(FocusedDepth, FindsTheLayersVirtualDepths) {
   EXPECT_LT(s.badPix, 0.1);
 }
 
+// The calibration's optics turn virtual depth back into the distance the simulator put it at (its
+// forward formula, focusedVirtualDepth, is written apart from the library's inverse).
+TEST(FocusedDepth, VirtualDepthTurnsIntoTheDistanceOfThePoint) {
+  for (const bool galilean : {true, false}) {
+    const CameraModel camera = test::focusedCamera({.galilean = galilean});
+    const auto calibration = focusedCalibrationFromCamera(camera);
+    ASSERT_TRUE(calibration && calibration->optics);
+    for (const double z : {galilean ? 700.0 : 800.0, 1000.0, 1500.0}) {
+      const double v = focusedVirtualDepth(camera, z);
+      EXPECT_GT(v, 0) << z;
+      EXPECT_NEAR(distanceOfVirtualDepth(*calibration->optics, calibration->orientation, v), z, 1e-9 * z)
+          << (galilean ? "Galilean" : "Keplerian") << " at " << z << " mm (v " << v << ")";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lfcam

@@ -17,9 +17,9 @@ Errors raise lfcam.UsageError (a wrong argument) or lfcam.Error (a file or input
 with the command line's one-line messages.
 """
 from ._lfcam import (AllInFocus, DepthMap, Error, FocusedCapture, FocusedDepth, Image, LensletGrid, LightField, UsageError,
-                     calibrate, choose_white, decode, denoise, depth, edof, focused_depth, focused_photo, focused_total_focus,
-                     observer, photo_fields, read, read_focused, read_image, refocus, score, simulate, stack, volume, write,
-                     write_image)
+                     calibrate, choose_white, decode, denoise, depth, edof, focused_depth, focused_distance, focused_photo,
+                     focused_total_focus, observer, photo_fields, read, read_focused, read_image, refocus, score, simulate,
+                     stack, volume, write, write_image)
 
 
 def __getattr__(name):
@@ -32,5 +32,5 @@ def __getattr__(name):
 
 __all__ = ["AllInFocus", "DepthMap", "Error", "FocusedCapture", "FocusedDepth", "Image", "LensletGrid", "LightField",
            "UsageError", "batch", "calibrate", "choose_white", "decode", "denoise", "depth", "edof", "focused_depth",
-           "focused_photo", "focused_total_focus", "observer", "read_focused", "photo_fields", "read", "read_image", "refocus", "score", "simulate",
-           "stack", "volume", "write", "write_image"]
+           "focused_distance", "focused_photo", "focused_total_focus", "observer", "photo_fields", "read", "read_focused",
+           "read_image", "refocus", "score", "simulate", "stack", "volume", "write", "write_image"]

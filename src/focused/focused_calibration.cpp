@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/text_file.hpp"
 #include "focused/ray_calib_document.hpp"
@@ -45,6 +46,36 @@ int FocusedCalibration::lensType(int i, int j) const {
     // PlenopticToolbox 2.0 places them and as the R42 capture's sharpness shows (LensTypes test).
     if (colourClass(-colourOf(grid.packing, lensTypes[t].offset[0], -lensTypes[t].offset[1])) == wanted) return int(t);
   return 0;
+}
+
+double mainLensImageInFrontMm(const FocusedOptics& optics, MicroImageOrientation orientation, double virtualDepth) {
+  const double b = optics.microlensesToSensorMm, F = optics.mainLensToMicrolensesMm;
+  const double side = orientation == MicroImageOrientation::Inverted ? 1.0 : -1.0;
+  return side * virtualDepth * b * F / (F + b + side * virtualDepth * b);
+}
+
+double distanceOfVirtualDepth(const FocusedOptics& optics, MicroImageOrientation orientation, double virtualDepth) {
+  const double f = optics.mainFocalLengthMm;
+  const double imageDistance =
+      optics.mainLensToMicrolensesMm - mainLensImageInFrontMm(optics, orientation, virtualDepth);
+  return imageDistance > f ? f * imageDistance / (imageDistance - f) : std::numeric_limits<double>::infinity();
+}
+
+Status checkFocusedOptics(const FocusedCalibration& calibration, const std::string& where) {
+  if (calibration.optics) return {};
+  return makeError(ErrorCode::Usage, where +
+                                         ": its calibration holds no optics (lfcam_optics, docs/formats.md), so no "
+                                         "distance; the virtual depth needs none");
+}
+
+Result<Image> focusedDistanceMap(const FocusedCalibration& calibration, const Image& virtualDepth,
+                                 const std::string& where) {
+  LFCAM_TRY(checkFocusedOptics(calibration, where));
+  Image distance(virtualDepth.width(), virtualDepth.height(), 1);
+  std::transform(
+      virtualDepth.plane(0), virtualDepth.plane(0) + distance.pixels().size(), distance.pixels().begin(),
+      [&](float v) { return float(distanceOfVirtualDepth(*calibration.optics, calibration.orientation, v)); });
+  return distance;
 }
 
 FocusedCalibration focusedGrid(std::array<double, 2> referenceCentrePx, double diameterPx, Packing packing,
@@ -104,6 +135,10 @@ Result<FocusedCalibration> calibrationFromDocument(const RayCalibDocument& d, co
   if (!(std::abs(d.rotation) <= M_PI)) return bad(ErrorCode::Format, "rotation", "expected radians in [-pi, pi]");
   if (!(d.lensBorder >= 0 && d.lensBorder < d.diameter / 2))
     return bad(ErrorCode::Format, "lens_border", "expected 0 to half the diameter");
+  if (d.optics && !(d.optics->mainFocalLengthMm > 0 && d.optics->microlensesToSensorMm > 0 &&
+                    d.optics->mainLensToMicrolensesMm > d.optics->mainFocalLengthMm))
+    return bad(ErrorCode::Format, "lfcam_optics",
+               "expected a focal length and a microlens distance above 0, the microlenses beyond the focal length");
   if (d.tcp && !(*d.tcp > 0 && std::isfinite(*d.tcp)))
     return bad(ErrorCode::Format, "tcp", "expected a positive virtual depth");
   if (!near(d.lensBaseX[0], 1) || !near(d.lensBaseX[1], 0))
@@ -146,6 +181,7 @@ Result<FocusedCalibration> calibrationFromDocument(const RayCalibDocument& d, co
   calibration.totalCoveringPlane = d.tcp;
   calibration.lensTypes = d.lensTypes.empty() ? std::vector<LensType>{LensType{}} : d.lensTypes;
   calibration.orientation = d.orientation;
+  calibration.optics = d.optics;
   return calibration;
 }
 
@@ -162,6 +198,7 @@ RayCalibDocument documentFromCalibration(const FocusedCalibration& calibration) 
     d.subGridBase = std::array<double, 2>{3, -kSqrt3};  // Raytrix's: two steps of the same type
   d.lensTypes = calibration.lensTypes;
   d.orientation = calibration.orientation;
+  d.optics = calibration.optics;
   return d;
 }
 

@@ -86,6 +86,17 @@ Result<FocusedCalibration> parseFocusedCalibrationJson(const std::string& text, 
       d.lensTypes.push_back(type);
     }
   }
+  root.markSeen("optics");
+  if (root.has("optics")) {
+    JsonObject o(root.at("optics"), where, "optics");
+    LFCAM_TRY(o.requireObject());
+    FocusedOptics optics;
+    LFCAM_TRY(o.number("main_focal_length_mm", optics.mainFocalLengthMm, 0, kLarge, true));
+    LFCAM_TRY(o.number("main_to_microlenses_mm", optics.mainLensToMicrolensesMm, 0, kLarge, true));
+    LFCAM_TRY(o.number("microlenses_to_sensor_mm", optics.microlensesToSensorMm, 0, kLarge, true));
+    LFCAM_TRY(o.noUnknownKeys());
+    d.optics = optics;
+  }
   LFCAM_TRY(root.noUnknownKeys());
   return focused_detail::calibrationFromDocument(d, where, width, height);
 }
@@ -106,6 +117,10 @@ std::string focusedCalibrationJson(const FocusedCalibration& calibration) {
     out["lens_types"].push_back({{"offset", pairJson(type.offset)},
                                  {"depth_range", {{"min", type.minVirtualDepth}, {"max", type.maxVirtualDepth}}}});
   out["micro_images"] = focused_detail::orientationName(d.orientation);
+  if (d.optics)
+    out["optics"] = {{"main_focal_length_mm", d.optics->mainFocalLengthMm},
+                     {"main_to_microlenses_mm", d.optics->mainLensToMicrolensesMm},
+                     {"microlenses_to_sensor_mm", d.optics->microlensesToSensorMm}};
   return out.dump(2) + "\n";
 }
 

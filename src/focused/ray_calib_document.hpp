@@ -21,6 +21,7 @@ struct RayCalibDocument {
   std::optional<std::array<double, 2>> subGridBase;                            // lens units, y up
   std::vector<LensType> lensTypes;
   MicroImageOrientation orientation = MicroImageOrientation::Upright;
+  std::optional<FocusedOptics> optics;
 };
 
 // Checks what lfcam can use (one of the two lattices, sizes, lens types telling lenses apart) and

@@ -109,6 +109,16 @@ Result<FocusedCalibration> parseRayCalibXml(const std::string& text, const std::
                          "expected \"upright\" or \"inverted\", got \"" + io::oneLine(node.child_value()) + "\"");
     d.orientation = *orientation;
   }
+  if (const pugi::xml_node node = root.child("lfcam_optics")) {
+    FocusedOptics optics;
+    LFCAM_ASSIGN_OR_RETURN(optics.mainFocalLengthMm,
+                           reader.number(node, "main_focal_length", "lfcam_optics.main_focal_length"));
+    LFCAM_ASSIGN_OR_RETURN(optics.mainLensToMicrolensesMm,
+                           reader.number(node, "main_to_microlenses", "lfcam_optics.main_to_microlenses"));
+    LFCAM_ASSIGN_OR_RETURN(optics.microlensesToSensorMm,
+                           reader.number(node, "microlenses_to_sensor", "lfcam_optics.microlenses_to_sensor"));
+    d.optics = optics;
+  }
   return focused_detail::calibrationFromDocument(d, where, width, height);
 }
 
@@ -146,6 +156,12 @@ std::string rayCalibXml(const FocusedCalibration& calibration) {
         << "  </lens_type>\n";
   }
   out << "  <lfcam_micro_images>" << focused_detail::orientationName(d.orientation) << "</lfcam_micro_images>\n";
+  if (d.optics)
+    out << "  <lfcam_optics units=\"mm\">\n"
+        << "    <main_focal_length>" << number(d.optics->mainFocalLengthMm) << "</main_focal_length>\n"
+        << "    <main_to_microlenses>" << number(d.optics->mainLensToMicrolensesMm) << "</main_to_microlenses>\n"
+        << "    <microlenses_to_sensor>" << number(d.optics->microlensesToSensorMm) << "</microlenses_to_sensor>\n"
+        << "  </lfcam_optics>\n";
   out << "</RayCalibData>\n";
   return out.str();
 }

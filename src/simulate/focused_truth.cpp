@@ -14,12 +14,18 @@ namespace {
 // +1 when the main lens's image of the scene lies in front of the microlenses (Keplerian).
 double keplerian(const MicrolensArray& m) { return m.focalLengthOf(0, 0) < m.separationMm() ? 1.0 : -1.0; }
 
-// The main lens's image `a` mm in front of the microlenses of the points at virtual depth v:
-// a = v b F / (F + b + v b) solves v = (a / b) (F + b) / (F - a) (behind them: a < 0).
+FocusedOptics opticsOf(const CameraModel& camera) {
+  return {.mainFocalLengthMm = camera.mainLens.focalLengthMm,
+          .mainLensToMicrolensesMm = camera.mainLens.imageDistanceMm(),
+          .microlensesToSensorMm = camera.microlenses->separationMm()};
+}
+
+MicroImageOrientation orientationOf(const MicrolensArray& m) {
+  return keplerian(m) > 0 ? MicroImageOrientation::Inverted : MicroImageOrientation::Upright;
+}
+
 double imageInFront(const CameraModel& camera, double v) {
-  const double b = camera.microlenses->separationMm(), F = camera.mainLens.imageDistanceMm();
-  const double side = keplerian(*camera.microlenses);
-  return side * v * b * F / (F + b + side * v * b);
+  return mainLensImageInFrontMm(opticsOf(camera), orientationOf(*camera.microlenses), v);
 }
 
 constexpr double kSqrt3 = 1.7320508075688772;
@@ -56,9 +62,7 @@ double focusedVirtualDepth(const CameraModel& camera, double depthMm) {
 }
 
 double depthOfFocusedVirtualDepth(const CameraModel& camera, double virtualDepth) {
-  const double f = camera.mainLens.focalLengthMm;
-  const double imageDistance = camera.mainLens.imageDistanceMm() - imageInFront(camera, virtualDepth);
-  return imageDistance > f ? f * imageDistance / (imageDistance - f) : std::numeric_limits<double>::infinity();
+  return distanceOfVirtualDepth(opticsOf(camera), orientationOf(*camera.microlenses), virtualDepth);
 }
 
 Result<FocusedCalibration> focusedCalibrationFromCamera(const CameraModel& camera) {
@@ -89,8 +93,8 @@ Result<FocusedCalibration> focusedCalibrationFromCamera(const CameraModel& camer
   const double imageRadius = 0.5 * std::min(d, camera.microlensImageDiameterPx());
   calibration.borderPx = std::max(0.5, 0.5 * d - imageRadius + 0.5);
   const double usable = 0.5 * d - calibration.borderPx;
-  calibration.orientation =
-      m.focalLengthOf(0, 0) < b ? MicroImageOrientation::Inverted : MicroImageOrientation::Upright;
+  calibration.orientation = orientationOf(m);
+  calibration.optics = opticsOf(camera);
   // Raw lens (i, j) is the simulator's (columns - 1 - i, rows - 1 - j): the raw is turned by 180
   // degrees. Raytrix's types are named by offsets (0, 0), (1, 0) and (-1, 0): a type's lenses lie
   // at the reference lens less its offset (focused_calibration.hpp).

@@ -7,6 +7,7 @@
 
 #include "cli_support.hpp"
 #include "lfcam/focused/focused_calibration.hpp"
+#include "lfcam/io/image_io.hpp"
 
 namespace lfcam {
 namespace {
@@ -154,6 +155,27 @@ TEST_F(CliFocused, BatchTakesAFolderOfCapturesWithTheirXmlAndTheStepsThatApply) 
   EXPECT_NE(failed["captures"][0]["error"].get<std::string>().find("a focused plenoptic capture takes edof"),
             std::string::npos)
       << failed["captures"][0]["error"];
+}
+
+TEST_F(CliFocused, DepthGivesDistancesWithTheOpticsTheSimulatorWroteAndRefusesThemWithout) {
+  const auto result = runLfcam(
+      {"depth", at("capture/raw.png").string(), "-o", at("v.pfm").string(), "--distance", at("distance.pfm").string()},
+      dir_->path());
+  ASSERT_EQ(result.exitStatus, 0) << result.err;
+  auto distance = readImage(at("distance.pfm"));
+  ASSERT_TRUE(distance) << distance.error().message;
+  std::vector<float> values(distance->pixels().begin(), distance->pixels().end());
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  // Most of the frame is the plane at 1 m.
+  EXPECT_NEAR(values[values.size() / 2], 1000, 100);
+  // Calibrated from itself, the capture has no optics: no distance, and nothing written.
+  const auto without =
+      runLfcam({"depth", at("bare/capture.png").string(), "--focused", "-o", at("bare/v.pfm").string(), "--metric"},
+               dir_->path());
+  EXPECT_EQ(without.exitStatus, 2) << without.err;
+  EXPECT_EQ(without.errLines(), 1) << without.err;
+  EXPECT_NE(without.err.find("no optics"), std::string::npos) << without.err;
+  EXPECT_FALSE(fs::exists(at("bare/v.pfm")));
 }
 
 TEST_F(CliFocused, CalibrateRefusesWhatItCannotDoInOneLine) {

@@ -39,6 +39,8 @@ def test_depth_and_total_focus_agree_with_the_map_handed_back(capture_folder):
     estimated = lfcam.focused_total_focus(capture).array
     given = lfcam.focused_total_focus(capture, depth=v).array
     np.testing.assert_array_equal(estimated, given)
+    distance = lfcam.focused_distance(capture, v).array
+    assert 900 < np.median(distance) < 1100  # most of the frame is the plane at 1 m
     moved = lfcam.focused_photo(capture, virtual_depth=3.4, aperture=0.3, viewpoint=(0.5, 0)).array
     assert moved.shape == given.shape and np.isfinite(moved).all()
     with pytest.raises(lfcam.UsageError):

@@ -26,10 +26,10 @@ namespace {
 // A focused plenoptic capture: its virtual depth on the photograph's frame (focused_depth.hpp).
 template <class Options>
 Status focusedDepth(const Options& options, const CLI::App& command) {
-  if (options.metric || !options.distance.empty() || !options.ply.empty() || !options.optionsFile.empty())
-    return makeError(ErrorCode::Usage, options.input.path +
-                                           ": a focused plenoptic capture gives virtual depth; --metric, --distance, "
-                                           "--ply and --options are for light fields");
+  if (!options.ply.empty() || !options.optionsFile.empty())
+    return makeError(
+        ErrorCode::Usage,
+        options.input.path + ": --ply and --options are for light fields, not a focused plenoptic capture");
   for (const DepthKnob& knob : depthKnobs())
     if (command.count(std::string("--") + knob.name) > 0)
       return makeError(ErrorCode::Usage, options.input.path + ": --" + knob.name +
@@ -38,9 +38,16 @@ Status focusedDepth(const Options& options, const CLI::App& command) {
   LFCAM_ASSIGN_OR_RETURN(auto capture, loadFocusedInput(options.input, options.focused));
   FocusedDepthRequest request;
   request.pixelsPerLens = pixelsPerLens(options.focused, capture.calibration);
+  std::optional<Image> distance;
+  if (options.metric || !options.distance.empty())
+    LFCAM_TRY(checkFocusedOptics(capture.calibration, options.input.path));
   auto depth = estimateFocusedDepth(capture.image, capture.calibration, request);
   if (!depth) return makeError(depth.error().code, options.input.path + ": " + depth.error().message);
-  LFCAM_TRY(writeImage(options.output, depth->virtualDepth));
+  if (options.metric || !options.distance.empty()) {
+    LFCAM_ASSIGN_OR_RETURN(distance, focusedDistanceMap(capture.calibration, depth->virtualDepth, options.input.path));
+  }
+  LFCAM_TRY(writeImage(options.output, options.metric ? *distance : depth->virtualDepth));
+  if (!options.distance.empty()) LFCAM_TRY(writeImage(options.distance, *distance));
   if (!options.confidence.empty()) LFCAM_TRY(writeImage(options.confidence, depth->confidence));
   if (!options.png.empty()) {
     float lo = 1e30f, hi = 0;
@@ -74,7 +81,8 @@ void addDepthCommand(CLI::App& app, Job& job) {
                       "distance from the main lens in mm, float image (needs optics with a focal length)");
   command->add_flag("--metric", options->metric,
                     "the output holds the distance from the main lens in mm instead of the disparity (needs optics "
-                    "with a focal length: decoded raws, simulator captures, HCI folders with parameters.cfg)");
+                    "with a focal length: decoded raws, simulator captures, HCI folders with parameters.cfg, focused "
+                    "captures whose calibration holds lfcam_optics)");
   command->add_option("--ply", options->ply,
                       "coloured point cloud (binary PLY, mm: x right, y down, z away; a confidence property per "
                       "point) for MeshLab, Open3D (needs optics with a focal length)");

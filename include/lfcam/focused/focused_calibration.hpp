@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "lfcam/calibrate/lenslet_grid.hpp"
+#include "lfcam/core/image.hpp"
 #include "lfcam/core/result.hpp"
 
 namespace lfcam {
@@ -43,6 +44,12 @@ struct LensType {
   double minVirtualDepth = 1, maxVirtualDepth = 100;
 };
 
+// What turns virtual depth into distance: the main lens's focal length f, its distance F to the
+// microlenses, theirs b to the sensor, mm. Raytrix's file holds none (lfcam's <lfcam_optics> does).
+struct FocusedOptics {
+  double mainFocalLengthMm = 0, mainLensToMicrolensesMm = 0, microlensesToSensorMm = 0;
+};
+
 struct FocusedCalibration {
   // Micro-image centres: pitchX is the micro-image diameter D (Raytrix's "diameter", centre to
   // centre), pitchY D sqrt(3) / 2 on a hexagonal array.
@@ -53,6 +60,7 @@ struct FocusedCalibration {
   std::vector<LensType> lensTypes;           // one, or three on a multi-focus array
   MicroImageOrientation orientation = MicroImageOrientation::Upright;
   int imageWidth = 0, imageHeight = 0;  // the image it describes
+  std::optional<FocusedOptics> optics;  // when known: distances (distanceOfVirtualDepth)
 
   double diameterPx() const { return grid.pitchX; }
   // Index into lensTypes of lens (i, j) of the grid.
@@ -60,6 +68,20 @@ struct FocusedCalibration {
   // +1 upright, -1 inverted (the formula above).
   double orientationSign() const { return orientation == MicroImageOrientation::Upright ? 1.0 : -1.0; }
 };
+
+// How far in front of the microlenses (mm; negative: behind them) the main lens images the points
+// at virtual depth v: a = s v b F / (F + b + s v b), s = +1 inverted (Keplerian), -1 upright, which
+// solves v = s (a / b) (F + b) / (F - a) (the micro-image's magnification b / a, corrected for the
+// main lens's perspective).
+double mainLensImageInFrontMm(const FocusedOptics& optics, MicroImageOrientation orientation, double virtualDepth);
+// The distance from the main lens (mm) of the points at virtual depth v; infinity at or beyond its
+// focal plane.
+double distanceOfVirtualDepth(const FocusedOptics& optics, MicroImageOrientation orientation, double virtualDepth);
+// A Usage error naming `where` when the calibration holds no optics.
+Status checkFocusedOptics(const FocusedCalibration& calibration, const std::string& where);
+// A virtual depth map (focused_depth.hpp) as distances, mm (checkFocusedOptics first).
+Result<Image> focusedDistanceMap(const FocusedCalibration& calibration, const Image& virtualDepth,
+                                 const std::string& where);
 
 // Raytrix's calibration XML (<RayCalibData>, docs/formats.md) and a JSON document of the same
 // contents (its elements as keys, lens_type as an array "lens_types"), for an image of width x
