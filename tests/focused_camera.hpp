@@ -145,6 +145,34 @@ inline FocusedCapture simulateFocused(const test::FocusedCameraSpec& spec, const
                               samplesPerPixel);
 }
 
+struct CentreErrors {
+  double worst = 0, rms = 0;
+};
+
+// Over the true micro-image centres inside the image, `margin` pixels or more from its sides: the
+// distance to the nearest found one.
+inline CentreErrors centreErrors(const FocusedCalibration& found, const FocusedCalibration& truth, double margin = 0) {
+  CentreErrors errors;
+  int count = 0;
+  for (int j = 0; j < truth.grid.rows; ++j)
+    for (int i = 0; i < truth.grid.columns; ++i) {
+      const auto t = truth.grid.centre(i, j);
+      if (t[0] < margin || t[1] < margin || t[0] > truth.imageWidth - margin || t[1] > truth.imageHeight - margin)
+        continue;
+      double nearest = 1e9;
+      for (int fj = 0; fj < found.grid.rows; ++fj)
+        for (int fi = 0; fi < found.grid.columns; ++fi) {
+          const auto f = found.grid.centre(fi, fj);
+          nearest = std::min(nearest, std::hypot(f[0] - t[0], f[1] - t[1]));
+        }
+      errors.worst = std::max(errors.worst, nearest);
+      errors.rms += nearest * nearest;
+      ++count;
+    }
+  errors.rms = std::sqrt(errors.rms / std::max(count, 1));
+  return errors;
+}
+
 // A virtual depth map against the truth, leaving out `margin` pixels at each side.
 struct VirtualDepthScore {
   double badPix = 0;         // share of pixels whose disparity D / v is off by more than 0.25 px

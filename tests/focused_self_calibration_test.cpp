@@ -13,32 +13,6 @@
 namespace lfcam {
 namespace {
 
-struct CentreErrors {
-  double worst = 0, rms = 0;
-};
-
-// Over the true micro-image centres inside the image: the distance to the nearest found one.
-CentreErrors centreErrors(const FocusedCalibration& found, const FocusedCalibration& truth) {
-  CentreErrors errors;
-  int count = 0;
-  for (int j = 0; j < truth.grid.rows; ++j)
-    for (int i = 0; i < truth.grid.columns; ++i) {
-      const auto t = truth.grid.centre(i, j);
-      if (t[0] < 0 || t[1] < 0 || t[0] > truth.imageWidth || t[1] > truth.imageHeight) continue;
-      double nearest = 1e9;
-      for (int fj = 0; fj < found.grid.rows; ++fj)
-        for (int fi = 0; fi < found.grid.columns; ++fi) {
-          const auto f = found.grid.centre(fi, fj);
-          nearest = std::min(nearest, std::hypot(f[0] - t[0], f[1] - t[1]));
-        }
-      errors.worst = std::max(errors.worst, nearest);
-      errors.rms += nearest * nearest;
-      ++count;
-    }
-  errors.rms = std::sqrt(errors.rms / std::max(count, 1));
-  return errors;
-}
-
 // Found types against true ones, lens by lens: the share of lenses whose found type is the one
 // most lenses of their true type got (1 when the found types split the lenses as the true ones do),
 // and whether that correspondence keeps the order of the types' ranges (nearest-focused first).
@@ -80,7 +54,7 @@ TypeMatch matchTypes(const FocusedCalibration& found, const FocusedCalibration& 
 }
 
 void print(const char* what, const FocusedSelfCalibration& s, const FocusedCalibration& truth) {
-  const CentreErrors errors = centreErrors(s.calibration, truth);
+  const test::CentreErrors errors = test::centreErrors(s.calibration, truth);
   std::printf(
       "%s: diameter %.4f (true %.4f), rotation %.5f rad (true %.5f), centre error worst %.3f px, RMS %.3f "
       "px (per-lens fit RMS %.3f px); confidence upright %.3f, inverted %.3f; type spread %.3f\n",
@@ -99,7 +73,7 @@ TEST(FocusedSelfCalibration, FindsTheGridTheWayUpAndTheLensTypesOfAGalileanCaptu
   auto found = calibrateFocusedCapture(c.raw, nullptr, {}, "galilean");
   ASSERT_TRUE(found) << found.error().message;
   print("from the capture", *found, c.calibration);
-  const CentreErrors errors = centreErrors(found->calibration, c.calibration);
+  const test::CentreErrors errors = test::centreErrors(found->calibration, c.calibration);
   EXPECT_LT(errors.worst, 0.5);
   EXPECT_LT(errors.rms, 0.25);
   EXPECT_EQ(found->calibration.orientation, MicroImageOrientation::Upright);
@@ -120,7 +94,7 @@ TEST(FocusedSelfCalibration, TheWhiteImageGivesTheGrid) {
   auto found = calibrateFocusedCapture(c.image, &c.white, {}, "galilean");
   ASSERT_TRUE(found) << found.error().message;
   print("from the white image", *found, c.calibration);
-  EXPECT_LT(centreErrors(found->calibration, c.calibration).worst, 0.1);
+  EXPECT_LT(test::centreErrors(found->calibration, c.calibration).worst, 0.1);
   const TypeMatch match = matchTypes(found->calibration, c.calibration);
   EXPECT_GT(match.agreement, 0.99);
   EXPECT_TRUE(match.sameOrder);
@@ -131,7 +105,7 @@ TEST(FocusedSelfCalibration, AKeplerianOneFocusCaptureIsInvertedWithOneType) {
   auto found = calibrateFocusedCapture(c.raw, nullptr, {}, "keplerian");
   ASSERT_TRUE(found) << found.error().message;
   print("keplerian", *found, c.calibration);
-  const CentreErrors errors = centreErrors(found->calibration, c.calibration);
+  const test::CentreErrors errors = test::centreErrors(found->calibration, c.calibration);
   EXPECT_LT(errors.worst, 0.5);
   EXPECT_LT(errors.rms, 0.25);
   EXPECT_EQ(found->calibration.orientation, MicroImageOrientation::Inverted);

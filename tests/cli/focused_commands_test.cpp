@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
+#include "focused_camera.hpp"
 #include "lfcam/focused/focused_calibration.hpp"
 #include "lfcam/io/image_io.hpp"
 
@@ -14,27 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::runLfcam;
-
-// The farthest any micro-image centre of `truth` (a diameter or more inside the image) lies from
-// the nearest one of `found`, pixels.
-double worstCentreError(const FocusedCalibration& found, const FocusedCalibration& truth) {
-  double worst = 0;
-  const double margin = truth.diameterPx();
-  for (int j = 0; j < truth.grid.rows; ++j)
-    for (int i = 0; i < truth.grid.columns; ++i) {
-      const auto t = truth.grid.centre(i, j);
-      if (t[0] < margin || t[1] < margin || t[0] > truth.imageWidth - margin || t[1] > truth.imageHeight - margin)
-        continue;
-      double nearest = 1e9;
-      for (int fj = 0; fj < found.grid.rows; ++fj)
-        for (int fi = 0; fi < found.grid.columns; ++fi) {
-          const auto f = found.grid.centre(fi, fj);
-          nearest = std::min(nearest, std::hypot(f[0] - t[0], f[1] - t[1]));
-        }
-      worst = std::max(worst, nearest);
-    }
-  return worst;
-}
 
 // tests/data/focused_multifocus_scene.json: the Galilean multi-focus camera of
 // tests/focused_camera.hpp at 480 x 360 (5.5 um pixels, 50 mm focused at 2 m, microlenses 0.4 mm
@@ -97,7 +77,7 @@ TEST_F(CliFocused, CalibrateWritesARayCalibDataThatMatchesTheCameras) {
     auto foundGrid = readFocusedCalibration(xml, 480, 360);
     ASSERT_TRUE(truthGrid.ok() && foundGrid.ok());
     // From the simulator's calibration tests: 0.02 px from a white, 0.4 px from a capture.
-    const double worst = worstCentreError(*foundGrid, *truthGrid);
+    const double worst = test::centreErrors(*foundGrid, *truthGrid, truthGrid->diameterPx()).worst;
     std::printf("calibrated from the %s: worst centre error %.3f px\n", fromWhite ? "white" : "capture", worst);
     EXPECT_LT(worst, fromWhite ? 0.1 : 0.6);
     if (fromWhite) {
