@@ -266,6 +266,29 @@ TEST(CliVolume, DecodesAHexagonalRawIntoItsBricks) {
   EXPECT_LT(std::abs(fromRaw[1] + 4 - fromFrame[1]), 1);  // two rows of lenslets, two voxels each
   EXPECT_LT(std::abs(fromRaw[2] - fromFrame[2]), 1);
 
+  // lfcam batch's volume step decodes it as lfcam volume does (a batch takes no dark frame), from
+  // the same PSF.
+  const std::filesystem::path out = dir / "out";
+  std::filesystem::create_directories(out);
+  std::filesystem::copy_file(request->psfPath, out / psfCacheName(*request));
+  test::writeBytes(dir / "optics.json", R"({"calibrate": {"objective_magnification": 20, "objective_na": 0.5,
+      "medium_index": 1.333, "center_wavelength": 500, "ulens_pitch": 40, "ulens_focal_length": 800,
+      "pixel_size": 5.714, "ulens_array": "hexagonal", "num_slices": 3, "um_per_slice": 3, "supersample": 2},
+      "deconvolve": {"max_iter": 10}})");
+  const auto batch = runLfcam(
+      {"batch", raw, "--white", whiteFile, "-o", out.string(), "--steps", "volume:" + (dir / "optics.json").string()},
+      dir.path());
+  ASSERT_EQ(batch.exitStatus, 0) << batch.err;
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(out), {}), 3) << "the PSF, the capture, the report";
+  std::vector<std::string> single{
+      "volume", raw, "--white", whiteFile, "--psf", request->psfPath, "-o", (dir / "single.tif").string()};
+  single.insert(single.end(), microscope.begin(), microscope.end());
+  ASSERT_EQ(runLfcam(single, dir.path()).exitStatus, 0);
+  const auto fromBatch = readVolume(out / "raw" / "volume.tif"), fromSingle = readVolume(dir / "single.tif");
+  ASSERT_TRUE(fromBatch && fromSingle);
+  EXPECT_TRUE(std::equal(fromBatch->voxels().begin(), fromBatch->voxels().end(), fromSingle->voxels().begin(),
+                         fromSingle->voxels().end()));
+
   // Sampled as the paper's integral pitch, it would not be the bricks: refused.
   std::vector<std::string> integral{"volume",     raw,        "--white", whiteFile,
                                     "--sampling", "integral", "-o",      (dir / "no.h5").string()};
