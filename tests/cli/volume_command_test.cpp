@@ -169,6 +169,9 @@ TEST(CliVolume, DecodesAHexagonalRawIntoItsBricks) {
   // on 10 x 10 lenslets, and a camera's raw and white image of them (cameraView) over an offset its
   // dark frame holds: the raw decoded on the way is the frame again and its bead lands where the
   // frame's does.
+  // Two voxels a lenslet: a uniform volume's voxels then lie symmetric about every lenslet, as a
+  // white image's light does (with one, half a pitch off the shifted rows', whose images calibration
+  // then does not take for lenslets).
   test::TempDir dir;
   const auto microscope =
       smallMicroscope({{"--microlens-array", "hexagonal"}, {"--iterations", "10"}, {"--supersample", "2"}});
