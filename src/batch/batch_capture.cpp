@@ -158,7 +158,8 @@ Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps
       LFCAM_ASSIGN_OR_RETURN(lightField, loadCapture(capture.input, white));
     }
     if (std::any_of(steps.begin(), steps.end(), onBricks)) {
-      LFCAM_ASSIGN_OR_RETURN(bricks, loadCapture(capture.input, white, Sampling::Bricks));
+      LFCAM_ASSIGN_OR_RETURN(
+          bricks, loadCapture(capture.input, white, {.sampling = Sampling::Bricks, .packing = Packing::Hexagonal}));
     }
   }
   fs::create_directories(folder, ec);  // only now, so that an unreadable input leaves no folder
@@ -181,13 +182,13 @@ Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps
 
 }  // namespace
 
-Result<LightField> loadCapture(const fs::path& input, const BatchWhite& white, Sampling sampling) {
+Result<LightField> loadCapture(const fs::path& input, const BatchWhite& white, const DecodeOptions& decode) {
   if (white.image.empty() && white.database.empty()) return readLightField(input);
   return decodeRawFiles({.raw = input.string(),
                          .white = white.image.string(),
                          .whites = white.database.string(),
                          .anyCamera = white.anyCamera,
-                         .decode = {.sampling = sampling}});
+                         .decode = decode});
 }
 
 BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps, const BatchWhite& white,

@@ -156,6 +156,9 @@ Status checkInputs(const RawImage& raw, const LensletGrid& grid, const DecodeOpt
                                            " is not above black level " + std::to_string(raw.blackLevel));
   if (!(grid.pitchX > 1 && grid.pitchY > 1) || grid.columns < 1 || grid.rows < 1 || !std::isfinite(grid.rotationRad))
     return makeError(ErrorCode::Usage, "decode: the lenslet grid is empty or its pitch is below 2 pixels");
+  if (options.packing && *options.packing != grid.packing)
+    return makeError(ErrorCode::Usage, std::string("decode: the lenslet grid is ") + packingName(grid.packing) +
+                                           ", not the " + packingName(*options.packing) + " array expected");
   if (options.views < 0 || options.views > 256)
     return makeError(ErrorCode::Usage, "decode: views must be in [1, 256], not " + std::to_string(options.views));
   if (options.dark) LFCAM_TRY(checkSameSize(options.dark->mosaic, mosaic, "dark frame"));

@@ -292,17 +292,24 @@ TEST(CliVolume, DecodesAHexagonalRawIntoItsBricks) {
   EXPECT_TRUE(std::equal(fromBatch->voxels().begin(), fromBatch->voxels().end(), fromSingle->voxels().begin(),
                          fromSingle->voxels().end()));
 
-  // Sampled as the paper's integral pitch, it would not be the bricks: refused.
-  std::vector<std::string> integral{"volume",     raw,        "--white", whiteFile,
-                                    "--sampling", "integral", "-o",      (dir / "no.h5").string()};
-  integral.insert(integral.end(), microscope.begin(), microscope.end());
-  const auto refused = runLfcam(integral, dir.path());
-  EXPECT_EQ(refused.exitStatus, 2) << refused.err;
-  EXPECT_EQ(refused.errLines(), 1) << refused.err;
-  EXPECT_NE(refused.err.find("--sampling integral: a hexagonal array's raw is sampled on its bricks"),
-            std::string::npos)
-      << refused.err;
-  EXPECT_FALSE(std::filesystem::exists(dir / "no.h5"));
+  // Sampled as the paper's integral pitch, it would not be the bricks; a square array's optics do
+  // not describe its lattice: refused.
+  const std::pair<std::map<std::string, std::string>, std::string> refusals[] = {
+      {{{"--microlens-array", "hexagonal"}, {"--sampling", "integral"}},
+       "--sampling integral: a hexagonal array's raw is sampled on its bricks"},
+      {{{"--microlens-array", "square"}},
+       "raw.png: decode: the lenslet grid is hexagonal, not the square array expected"}};
+  for (const auto& [changed, message] : refusals) {
+    std::vector<std::string> args{"volume", raw, "--white", whiteFile, "-o", (dir / "no.h5").string()};
+    const auto flags = smallMicroscope(changed);
+    args.insert(args.end(), flags.begin(), flags.end());
+    if (changed.count("--sampling")) args.insert(args.end(), {"--sampling", changed.at("--sampling")});
+    const auto refused = runLfcam(args, dir.path());
+    EXPECT_EQ(refused.exitStatus, 2) << refused.err;
+    EXPECT_EQ(refused.errLines(), 1) << refused.err;
+    EXPECT_NE(refused.err.find(message), std::string::npos) << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "no.h5"));
+  }
 }
 
 TEST(CliVolume, RefusesInOneLineWithNoOutput) {

@@ -103,9 +103,12 @@ void addVolumeCommand(CLI::App& app, Job& job) {
     job = [options]() -> Status {
       const Options& o = *options;
       LFCAM_ASSIGN_OR_RETURN(LfmVolumeRequest request, volumeRequestFrom(o.settings));
-      // A hexagonal array's raw is decoded into the bricks its PSF is computed on.
+      // A raw's grid has the optics' packing; a hexagonal array's raw is decoded into the bricks
+      // its PSF is computed on.
       InputOptions input = o.input;
-      if (request.optics.array == MicrolensLayout::Hexagonal && input.decodesRaw()) {
+      const bool hexagonal = request.optics.array == MicrolensLayout::Hexagonal;
+      input.decode.packing = hexagonal ? Packing::Hexagonal : Packing::Square;
+      if (hexagonal && input.decodesRaw()) {
         if (input.decode.sampling == Sampling::IntegralPitch)
           return makeError(ErrorCode::Usage, "--sampling integral: a hexagonal array's raw is sampled on its bricks");
         input.decode.sampling = Sampling::Bricks;

@@ -71,6 +71,9 @@ struct DecodeOptions {
   bool hexToRectangular = true;
   bool applyWhiteBalance = true;  // raw.whiteBalance and raw.colorMatrix, when present
   std::optional<Optics> optics;   // copied into metadata (the grid alone has no millimetres)
+  // The packing the caller knows (a microscope's array): a grid of the other is refused, as a
+  // white image calibrated wrongly would otherwise give a frame of the wrong layout.
+  std::optional<Packing> packing;
 };
 
 Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options = {});
