@@ -3,6 +3,7 @@
 // do: edof its total focus, depth its virtual depth, page its living picture.
 #include "lfcam/batch/batch_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -140,20 +141,33 @@ Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps
   std::error_code ec;
   fs::remove(folder / kBatchDoneMarker, ec);  // half-done until every step has written again
   removeStaleTemporaries(folder);             // of a run killed mid-write
+  // A hexagonal microscope's raw is decoded into the bricks its PSF is computed on; other steps
+  // take the ordinary light field. Each is decoded only when a step needs it.
+  const bool raw = !white.image.empty() || !white.database.empty();
+  const auto onBricks = [&](const BatchStep& step) {
+    return raw && step.kind == BatchStep::Kind::Volume && step.volume.optics.array == MicrolensLayout::Hexagonal;
+  };
   std::optional<FocusedCapture> focused;
-  std::optional<LightField> lightField;
+  std::optional<LightField> lightField, bricks;
   if (focusedCalibrationBeside(capture.input)) {
     if (!white.database.empty())
       return makeError(ErrorCode::Usage, "a focused plenoptic capture takes --white, not --whites");
     LFCAM_ASSIGN_OR_RETURN(focused, readFocusedCapture(capture.input, {.white = white.image}));
   } else {
-    LFCAM_ASSIGN_OR_RETURN(lightField, loadCapture(capture.input, white));
+    if (!std::all_of(steps.begin(), steps.end(), onBricks)) {
+      LFCAM_ASSIGN_OR_RETURN(lightField, loadCapture(capture.input, white));
+    }
+    if (std::any_of(steps.begin(), steps.end(), onBricks)) {
+      LFCAM_ASSIGN_OR_RETURN(
+          bricks, loadCapture(capture.input, white, {.sampling = Sampling::Bricks, .packing = Packing::Hexagonal}));
+    }
   }
   fs::create_directories(folder, ec);  // only now, so that an unreadable input leaves no folder
   if (ec) return makeError(ErrorCode::Io, folder.string() + ": cannot create the folder: " + ec.message());
   for (const BatchStep& step : steps) {
-    const Status status = focused ? runFocusedStep(step, *focused, folder)
-                                  : runStep(step, *lightField, capture.input, outputFolder, folder);
+    const Status status =
+        focused ? runFocusedStep(step, *focused, folder)
+                : runStep(step, onBricks(step) ? *bricks : *lightField, capture.input, outputFolder, folder);
     if (!status) return makeError(status.error().code, step.text + ": " + status.error().message);
     // A cancelled step's outputs are meaningless (parallel.hpp): no marker, so a rerun redoes them.
     if (cancellationRequested()) return makeError(ErrorCode::Io, "cancelled");
@@ -168,12 +182,13 @@ Status runSteps(const BatchCapture& capture, const std::vector<BatchStep>& steps
 
 }  // namespace
 
-Result<LightField> loadCapture(const fs::path& input, const BatchWhite& white) {
+Result<LightField> loadCapture(const fs::path& input, const BatchWhite& white, const DecodeOptions& decode) {
   if (white.image.empty() && white.database.empty()) return readLightField(input);
   return decodeRawFiles({.raw = input.string(),
                          .white = white.image.string(),
                          .whites = white.database.string(),
-                         .anyCamera = white.anyCamera});
+                         .anyCamera = white.anyCamera,
+                         .decode = decode});
 }
 
 BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps, const BatchWhite& white,

@@ -156,6 +156,9 @@ Status checkInputs(const RawImage& raw, const LensletGrid& grid, const DecodeOpt
                                            " is not above black level " + std::to_string(raw.blackLevel));
   if (!(grid.pitchX > 1 && grid.pitchY > 1) || grid.columns < 1 || grid.rows < 1 || !std::isfinite(grid.rotationRad))
     return makeError(ErrorCode::Usage, "decode: the lenslet grid is empty or its pitch is below 2 pixels");
+  if (options.packing && *options.packing != grid.packing)
+    return makeError(ErrorCode::Usage, std::string("decode: the lenslet grid is ") + packingName(grid.packing) +
+                                           ", not the " + packingName(*options.packing) + " array expected");
   if (options.views < 0 || options.views > 256)
     return makeError(ErrorCode::Usage, "decode: views must be in [1, 256], not " + std::to_string(options.views));
   if (options.dark) LFCAM_TRY(checkSameSize(options.dark->mosaic, mosaic, "dark frame"));
@@ -216,15 +219,24 @@ Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& 
     return makeError(ErrorCode::Usage, "decode: the demosaiced planes do not match the raw");
   const int n = viewCount(grid, options);
   const bool hasWhite = options.white || options.whiteImage;
+  const bool hexagonal = grid.packing == Packing::Hexagonal;
 
   // 4. Dicing.
-  // Written once here: ordinary pages fault in faster (huge_page_allocator.hpp).
-  LightField lf(LightFieldShape{n, n, grid.columns, grid.rows, channels}, Pages::Ordinary);
-  lf.enableWeight(0);
   ViewLayout layout;
   layout.views = n;
   layout.sampling = options.sampling;
-  layout.integralScale = grid.pitchX / std::max(1.0, std::round(grid.pitchX));
+  if (options.sampling == Sampling::IntegralPitch)
+    layout.step.fill(grid.pitchX / std::max(1.0, std::round(grid.pitchX)));
+  if (options.sampling == Sampling::Bricks) {
+    layout.step = {grid.pitchX / n, grid.pitchY / n};
+    layout.firstRow = hexagonal && grid.hexParity == 1 ? 1 : 0;
+    if (grid.rows == layout.firstRow)
+      return makeError(ErrorCode::Usage,
+                       "decode: the grid's only row of microlenses is shifted, and bricks start with an unshifted one");
+  }
+  // Written once here: ordinary pages fault in faster (huge_page_allocator.hpp).
+  LightField lf(LightFieldShape{n, n, grid.columns, grid.rows - layout.firstRow, channels}, Pages::Ordinary);
+  lf.enableWeight(0);
   sampleLenslets(planes, weight, grid, layout, lf, kernels == Kernels::Reference);
   planes = Image();
   weight = Image();
@@ -232,10 +244,9 @@ Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& 
   // Without a white image the aperture is a disc of the microlens image's diameter.
   if (!hasWhite) {
     const double diameter = options.apertureDiameterPx > 0 ? options.apertureDiameterPx : grid.pitchX;
-    const double scale = options.sampling == Sampling::IntegralPitch ? layout.integralScale : 1.0;
     for (int v = 0; v < n; ++v)
       for (int u = 0; u < n; ++u) {
-        const double du = lf.uFromCentre(u) * scale, dv = lf.vFromCentre(v) * scale;
+        const double du = lf.uFromCentre(u) * layout.step[0], dv = lf.vFromCentre(v) * layout.step[1];
         if (du * du + dv * dv <= 0.25 * diameter * diameter) continue;
         float* wt = lf.weightPlane(u, v);
         std::fill(wt, wt + lf.shape().viewPixels(), 0.0f);
@@ -252,7 +263,8 @@ Result<LightField> decodeDemosaiced(Image planes, Image weight, const RawImage& 
   }
 
   // 6. Hexagonal rows onto a rectangular s grid.
-  if (grid.packing == Packing::Hexagonal && options.hexToRectangular) hexRowsToRectangular(lf, 1 - grid.hexParity);
+  if (hexagonal && options.hexToRectangular && options.sampling != Sampling::Bricks)
+    hexRowsToRectangular(lf, 1 - grid.hexParity);
 
   lf.metadata.optics = options.optics;
   lf.metadata.source = "lfcam decode" + (raw.source.empty() ? std::string() : " of a " + raw.source + " raw") + ": " +

@@ -89,10 +89,13 @@ std::vector<int> microlensLabels(const LensletGrid& grid, int width, int height)
 struct ViewLayout {
   int views = 1;
   Sampling sampling = Sampling::SubPixel;
-  double integralScale = 1;  // IntegralPitch: sensor pixels per resampled pixel (pitch / round(pitch))
+  // Sensor pixels from one view to the next along the lattice's axes: IntegralPitch's pitch /
+  // round(pitch), Bricks' pitchX / views and pitchY / views (SubPixel's: one, along the raw's axes).
+  std::array<double, 2> step{1, 1};
+  int firstRow = 0;  // the light field's row t is the grid's row t + firstRow
 };
 
-// Fills lf (views x views, grid.columns x grid.rows, planes.channels() channels, weight enabled)
+// Fills lf (views x views, grid.columns x (grid.rows - firstRow), planes.channels() channels, weight enabled)
 // by sampling `planes` (and `weight`, one plane, when not empty) under every microlens, in the
 // orientation of decode.hpp. Without `weight`, samples get weight 1 (0 off the sensor).
 // `reference`: one sample at a time, the plain version the fast kernel is tested against.

@@ -8,6 +8,7 @@
 // IntegralPitch (the paper's section 5.2): the raw rotated and scaled to round(pitch) pixels per
 // microlens with bilinear interpolation, then diced; sampled here directly at the points that
 // resampling and dicing would read, which gives the same values without the resampled image.
+// Bricks: as SubPixel, the views a step of the lattice's axes apart that tiles each brick.
 #include <algorithm>
 #include <cmath>
 
@@ -57,15 +58,15 @@ inline float cleanWeight(float w) { return w < 0.02f ? 0.0f : std::min(w, 1.0f);
 void sampleMicrolensPlain(const Image& planes, const Image& weight, const LensletGrid& grid, const ViewLayout& layout,
                           LightField& lf, int i, int j) {
   const int n = layout.views, w = planes.width(), h = planes.height();
-  const int s = i, t = j;
+  const int s = i, t = j - layout.firstRow;
   const auto centre = grid.centre(i, j);
-  const bool cubic = layout.sampling == Sampling::SubPixel;
+  const bool cubic = layout.sampling != Sampling::IntegralPitch;
   const double cs = std::cos(grid.rotationRad), sn = std::sin(grid.rotationRad);
   for (int v = 0; v < n; ++v)
     for (int u = 0; u < n; ++u) {
       double ox = u - 0.5 * (n - 1), oy = v - 0.5 * (n - 1);
-      if (!cubic) {  // the resampled image's pixels: lattice axes, pitch / round(pitch) apart
-        const double rx = ox * layout.integralScale, ry = oy * layout.integralScale;
+      if (layout.sampling != Sampling::SubPixel) {  // the lattice's axes, a step apart
+        const double rx = ox * layout.step[0], ry = oy * layout.step[1];
         ox = cs * rx - sn * ry, oy = sn * rx + cs * ry;
       }
       const double x = centre[0] + ox, y = centre[1] + oy;
@@ -133,10 +134,10 @@ void sampleLenslets(const Image& planes, const Image& weight, const LensletGrid&
   // instead of one per microlens (the views are (channels + 1) n^2 planes apart in memory).
   constexpr int kBatch = 16;
   const std::size_t perLens = std::size_t(channels + 1) * n * n;
-  parallelFor(0, std::size_t(grid.rows), 1, [&](std::size_t begin, std::size_t end) {
+  parallelFor(std::size_t(layout.firstRow), std::size_t(grid.rows), 1, [&](std::size_t begin, std::size_t end) {
     std::vector<float> rows(std::size_t(n + 3) * n), buffer(perLens * kBatch);
     for (int j = int(begin); j < int(end); ++j) {
-      const int t = j;
+      const int t = j - layout.firstRow;
       for (int i0 = 0; i0 < grid.columns; i0 += kBatch) {
         const int count = std::min(kBatch, grid.columns - i0);
         bool done[kBatch] = {};

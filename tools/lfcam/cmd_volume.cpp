@@ -103,11 +103,16 @@ void addVolumeCommand(CLI::App& app, Job& job) {
     job = [options]() -> Status {
       const Options& o = *options;
       LFCAM_ASSIGN_OR_RETURN(LfmVolumeRequest request, volumeRequestFrom(o.settings));
-      // The decoder samples every lenslet on the camera's square pixels, not a hexagonal array's bricks.
-      if (request.optics.array == MicrolensLayout::Hexagonal && o.input.decodesRaw())
-        return makeError(ErrorCode::Usage,
-                         "--white: a hexagonal array's raw is not decoded on the way; give its frame rectified to "
-                         "bricks (docs/formats.md)");
+      // A raw's grid has the optics' packing; a hexagonal array's raw is decoded into the bricks
+      // its PSF is computed on.
+      InputOptions input = o.input;
+      const bool hexagonal = request.optics.array == MicrolensLayout::Hexagonal;
+      input.decode.packing = hexagonal ? Packing::Hexagonal : Packing::Square;
+      if (hexagonal && input.decodesRaw()) {
+        if (input.decode.sampling == Sampling::IntegralPitch)
+          return makeError(ErrorCode::Usage, "--sampling integral: a hexagonal array's raw is sampled on its bricks");
+        input.decode.sampling = Sampling::Bricks;
+      }
       LFCAM_TRY(checkVolumePath(o.output));
       if (!o.noCache) request.psfPath = o.psf.empty() ? defaultPsfPath(o.input.path, request) : o.psf;
       // Beside a frame in a read-only folder (a shared data set) the default cache cannot be kept.
@@ -128,7 +133,7 @@ void addVolumeCommand(CLI::App& app, Job& job) {
 
       InterruptGuard guard;
       const auto stopped = [&] { return makeError(ErrorCode::Io, o.input.path + ": interrupted; nothing written"); };
-      Result<LightField> loaded = loadInput(o.input);
+      Result<LightField> loaded = loadInput(input);
       if (interrupted) return stopped();
       LFCAM_ASSIGN_OR_RETURN(const LightField frame, std::move(loaded));
       Result<LfmVolumeResult> result = makeError(ErrorCode::Io, "");

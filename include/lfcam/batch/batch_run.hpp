@@ -10,6 +10,7 @@
 #include "lfcam/core/light_field.hpp"
 #include "lfcam/core/progress.hpp"
 #include "lfcam/core/result.hpp"
+#include "lfcam/decode/decode.hpp"
 
 namespace lfcam {
 
@@ -31,8 +32,10 @@ struct BatchOutcome {
 BatchOutcome runBatchCapture(const BatchCapture& capture, const std::vector<BatchStep>& steps, const BatchWhite& white,
                              const std::filesystem::path& outputFolder);
 
-// A capture's light field: read, or decoded when `white` names an image or a database.
-Result<LightField> loadCapture(const std::filesystem::path& input, const BatchWhite& white);
+// A capture's light field: read, or decoded with `decode` when `white` names an image or a
+// database (a hexagonal microscope's volume step decodes into bricks, as lfcam volume does).
+Result<LightField> loadCapture(const std::filesystem::path& input, const BatchWhite& white,
+                               const DecodeOptions& decode = {});
 
 // The work every capture shares, done once in OUTDIR (created) before the captures are dispatched,
 // here or to a cluster: each volume step's PSF cache (batchPsfPath) computed from the first capture

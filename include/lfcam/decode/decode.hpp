@@ -47,6 +47,11 @@ enum class Sampling {
                   // Catmull-Rom cubic interpolation: no vernier error (section 6.3)
   IntegralPitch,  // the paper's: rotate and scale the raw to round(pitch) pixels per microlens
                   // (bilinear), then dice: kept for comparison
+  Bricks,         // a light-field microscope's rectified frame (docs/formats.md): each microlens's
+                  // views tile its brick, pitchX wide and pitchY high in the lattice's axes, centred
+                  // on its fitted centre (Catmull-Rom); a hexagonal grid's rows stay shifted
+                  // (hexToRectangular is not applied) and start with an unshifted one (a grid whose
+                  // row 0 is shifted loses that row)
 };
 
 struct DecodeOptions {
@@ -66,6 +71,9 @@ struct DecodeOptions {
   bool hexToRectangular = true;
   bool applyWhiteBalance = true;  // raw.whiteBalance and raw.colorMatrix, when present
   std::optional<Optics> optics;   // copied into metadata (the grid alone has no millimetres)
+  // The packing the caller knows (a microscope's array): a grid of the other is refused, as a
+  // white image calibrated wrongly would otherwise give a frame of the wrong layout.
+  std::optional<Packing> packing;
 };
 
 Result<LightField> decodeLightField(const RawImage& raw, const LensletGrid& grid, const DecodeOptions& options = {});
