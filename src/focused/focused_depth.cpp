@@ -90,9 +90,9 @@ Result<FocusedDepth> estimateFocusedDepth(const Image& image, const FocusedCalib
     focused_detail::DisagreementSums sums;
     for (std::size_t l = begin; l < end; ++l) {
       const double v = d / labels[l];
-      const focused_detail::LensesByRow lenses(calibration.grid, frame, v * views.usableRadius());
+      const focused_detail::LensesByRow lenses(views, frame, v * views.usableRadius(), 0, h);
       for (int py = 0; py < h; ++py)
-        focused_detail::disagreementRow(grey, lenses, frame, v, calibration.orientationSign(), py, sums,
+        focused_detail::disagreementRow(grey, lenses, frame, v, calibration.orientationSign(), py, 0, w, sums,
                                         raw.get() + std::size_t(py) * w, count.get() + std::size_t(py) * w);
       boxFilter(raw.get(), windowed.get(), w, h, request.windowRadius);
       boxFilter(count.get(), countWindowed.get(), w, h, request.windowRadius);
