@@ -23,6 +23,9 @@ namespace {
 constexpr float kNoEvidence = std::numeric_limits<float>::infinity();
 // Rows a task takes through the labels: the window's rows above and below are costed again.
 constexpr int kBandRows = 32;
+// Columns of a row between two runs that are costed anyway: fewer than going through the row's
+// lenses once more.
+constexpr int kRunGap = 16;
 // The coarse-to-fine search (searchPyramid): its frames have at least this many pixels per lens,
 constexpr double kLeastPixelsPerLens = 2;
 constexpr int kCoarsestStride = 2;  // the coarsest searches every other label,
@@ -64,9 +67,15 @@ void fillUnconfident(Image& depth, const Image& confidence, double minConfidence
   depth = std::move(filled);
 }
 
-// The labels [first, last] a pixel is searched over (none when last < first).
+// Labels [first, last] (none when last < first).
 struct LabelRange {
   int first = 0, last = -1;
+};
+
+// The labels a pixel searches: one range, or two far apart (the two sides of a depth edge).
+struct LabelSet {
+  LabelRange low, high;
+  bool holds(int l) const { return (l >= low.first && l <= low.last) || (l >= high.first && l <= high.last); }
 };
 
 // Per pixel: the label of least cost (a fractional index, refined by a parabola when both
@@ -75,13 +84,13 @@ struct LabelSearch {
   std::vector<float> label, least, worst;
 };
 
-// The least windowed cost of each pixel of `frame` over its labels (ranges, row-major, increasing
-// within a band of rows, so that the least, its neighbours and the greatest are kept as they come).
-// Pixels with no labels keep `start`'s values; the others start from its worst (their cost beyond
-// their range, when known), label -1 and least kNoEvidence.
+// The least windowed cost of each pixel of `frame` over its labels (sets, row-major), taken in
+// increasing order within a band of rows, so that the least, its neighbours and the greatest are
+// kept as they come. Pixels with no labels keep `start`'s values; the others start from its worst
+// (their cost beyond their labels, when known), label -1 and least kNoEvidence.
 LabelSearch searchLabels(const Image& grey, const FocusedCalibration& calibration,
                          const focused_detail::MicroImageViews& views, const FocusedPhotoFrame& frame,
-                         const std::vector<double>& labels, int radius, const std::vector<LabelRange>& ranges,
+                         const std::vector<double>& labels, int radius, const std::vector<LabelSet>& sets,
                          LabelSearch start) {
   const int w = frame.width, h = frame.height, count = int(labels.size());
   const double d = calibration.diameterPx();
@@ -90,6 +99,7 @@ LabelSearch searchLabels(const Image& grey, const FocusedCalibration& calibratio
   parallelFor(0, bands, 1, [&](std::size_t bandBegin, std::size_t bandEnd) {
     std::vector<float> raw, seen, windowed, seenWindowed, before, after, last;
     std::vector<LabelRange> columns;
+    std::vector<unsigned char> searching, reached;
     std::vector<int> best;
     focused_detail::DisagreementSums sums;
     for (std::size_t band = bandBegin; band < bandEnd; ++band) {
@@ -99,12 +109,14 @@ LabelSearch searchLabels(const Image& grey, const FocusedCalibration& calibratio
       columns.assign(std::size_t(y1 - y0) * std::size_t(count), LabelRange{w, -1});
       for (int y = y0; y < y1; ++y)
         for (int x = 0; x < w; ++x) {
-          const LabelRange r = ranges[std::size_t(y) * std::size_t(w) + std::size_t(x)];
-          for (int l = r.first; l <= r.last; ++l) {
-            LabelRange& c = columns[std::size_t(y - y0) * std::size_t(count) + std::size_t(l)];
-            c = {std::min(c.first, x), std::max(c.last, x)};
-          }
+          const LabelSet& set = sets[std::size_t(y) * std::size_t(w) + std::size_t(x)];
+          for (const LabelRange& r : {set.low, set.high})
+            for (int l = r.first; l <= r.last; ++l) {
+              LabelRange& c = columns[std::size_t(y - y0) * std::size_t(count) + std::size_t(l)];
+              c = {std::min(c.first, x), std::max(c.last, x)};
+            }
         }
+      searching.assign(pixels, 0);
       best.assign(pixels, -1);
       before.assign(pixels, kNoEvidence);
       after.assign(pixels, kNoEvidence);
@@ -132,33 +144,51 @@ LabelSearch searchLabels(const Image& grey, const FocusedCalibration& calibratio
         seenWindowed.resize(area);
         const double v = d / labels[std::size_t(l)];
         const focused_detail::LensesByRow lenses(views, frame, v * views.usableRadius(), ya, yb);
+        // Which pixels of the band search l; then on each row [ya, yb) the runs of columns their
+        // windows reach (the two sides of a card, say, rather than all between).
+        for (int y = rowFirst; y <= rowLast; ++y)
+          for (int x = columnsOf(y).first; x <= columnsOf(y).last; ++x) {
+            const std::size_t k = std::size_t(y - y0) * std::size_t(w) + std::size_t(x);
+            searching[k] = sets[first + k].holds(l);
+          }
         for (int yy = ya; yy < yb; ++yy) {
-          int begin = w, end = 0;
+          reached.assign(std::size_t(xb - xa), 0);
           for (int y = std::max(y0, yy - radius); y <= std::min(y1 - 1, yy + radius); ++y)
-            if (const LabelRange c = columnsOf(y); c.first <= c.last) {
-              begin = std::min(begin, std::max(0, c.first - radius));
-              end = std::max(end, std::min(w, c.last + radius + 1));
+            for (int x = columnsOf(y).first; x <= columnsOf(y).last; ++x)
+              reached[std::size_t(x - xa)] |= searching[std::size_t(y - y0) * std::size_t(w) + std::size_t(x)];
+          for (int x = xa; x < xb;) {
+            if (!reached[std::size_t(x - xa)]) {
+              ++x;
+              continue;
             }
-          if (begin >= end) continue;
-          const std::size_t at = std::size_t(yy - ya) * bw + std::size_t(begin - xa);
-          focused_detail::disagreementRow(grey, lenses, frame, v, calibration.orientationSign(), yy, begin, end, sums,
-                                          raw.data() + at, seen.data() + at);
+            // Runs closer than kRunGap beyond the windows' reach go together.
+            int lastReached = x, next = x + 1;
+            for (; next < xb && next <= lastReached + 2 * radius + kRunGap; ++next)
+              if (reached[std::size_t(next - xa)]) lastReached = next;
+            const int begin = std::max(xa, x - radius), end = std::min(xb, lastReached + radius + 1);
+            const std::size_t at = std::size_t(yy - ya) * bw + std::size_t(begin - xa);
+            focused_detail::disagreementRow(grey, lenses, frame, v, calibration.orientationSign(), yy, begin, end, sums,
+                                            raw.data() + at, seen.data() + at);
+            x = next;
+          }
         }
+        for (int y = rowFirst; y <= rowLast; ++y)
+          for (int x = columnsOf(y).first; x <= columnsOf(y).last; ++x)
+            searching[std::size_t(y - y0) * std::size_t(w) + std::size_t(x)] = 0;
         boxFilter(raw.data(), windowed.data(), xb - xa, yb - ya, radius);
         boxFilter(seen.data(), seenWindowed.data(), xb - xa, yb - ya, radius);
         for (int y = rowFirst; y <= rowLast; ++y) {
           const LabelRange c = columnsOf(y);
           for (int x = c.first; x <= c.last; ++x) {
             const std::size_t k = std::size_t(y - y0) * std::size_t(w) + std::size_t(x);
-            const LabelRange r = ranges[first + k];
-            if (l < r.first || l > r.last) continue;
+            if (!sets[first + k].holds(l)) continue;
             const std::size_t at = std::size_t(y - ya) * bw + std::size_t(x - xa);
             const float cost = seenWindowed[at] > 0.5f ? windowed[at] / seenWindowed[at] : kNoEvidence;
             float& least = result.least[first + k];
             if (cost < least) {
               least = cost;
               best[k] = l;
-              before[k] = l > r.first ? last[k] : kNoEvidence;
+              before[k] = sets[first + k].holds(l - 1) ? last[k] : kNoEvidence;
               after[k] = kNoEvidence;
             } else if (l == best[k] + 1) {
               after[k] = cost;
@@ -181,10 +211,10 @@ LabelSearch searchLabels(const Image& grey, const FocusedCalibration& calibratio
 
 // searchLabels on the frame of `pixelsPerLens`. Where a frame of half the pixels per lens is
 // allowed, the search there comes first (a quarter of the pixels) and each pixel then searches only
-// the labels its 3x3 nearest coarse pixels found, kMargin either side, their nearest one's greatest
-// cost standing for the rest; where those agree within kAgreement labels, having searched every
-// label themselves, it takes their labels interpolated and searches none (depth edges are where it
-// searches). The coarsest frame searches every kCoarsestStride-th label.
+// the least and the greatest label its 3x3 nearest coarse pixels found, kMargin either side (and
+// those between when near), their nearest one's greatest cost standing for the rest; where those agree within
+// kAgreement labels, having searched every label themselves, it takes their labels interpolated and searches none
+// (depth edges are where it searches). The coarsest frame searches every kCoarsestStride-th label.
 LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibration,
                           const focused_detail::MicroImageViews& views, double pixelsPerLens,
                           const std::vector<double>& labels, int radius) {
@@ -198,14 +228,14 @@ LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibrati
     std::vector<double> sparse;
     for (std::size_t l = 0; l < labels.size(); l += kCoarsestStride) sparse.push_back(labels[l]);
     LabelSearch found = searchLabels(grey, calibration, views, frame, sparse, radius,
-                                     std::vector<LabelRange>(plane, {0, int(sparse.size()) - 1}), std::move(start));
+                                     std::vector<LabelSet>(plane, {{0, int(sparse.size()) - 1}, {}}), std::move(start));
     for (float& l : found.label)
       if (l >= 0) l *= float(kCoarsestStride);
     return found;
   }
   const LabelSearch found = searchPyramid(grey, calibration, views, pixelsPerLens / 2, labels, radius);
   const bool everyLabel = pixelsPerLens / 4 >= kLeastPixelsPerLens;
-  std::vector<LabelRange> ranges(plane);
+  std::vector<LabelSet> sets(plane);
   parallelFor(0, std::size_t(h), 1, [&](std::size_t begin, std::size_t end) {
     const auto coarseAt = [&](const std::vector<float>& values, int x, int y) {
       return values[std::size_t(y) * std::size_t(coarse.width) + std::size_t(x)];
@@ -237,14 +267,19 @@ LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibrati
           start.label[k] = float((1 - ay) * row(y0) + ay * row(y0 + 1));
           start.least[k] = coarseAt(found.least, cx, cy);
         } else if (greatest >= 0) {
-          ranges[k] = {std::max(0, int(std::lround(least)) - kMargin),
-                       std::min(last, int(std::lround(greatest)) + kMargin)};
+          // Around the least and the greatest, not all labels between: an edge's two sides.
+          const int low = int(std::lround(least)), high = int(std::lround(greatest));
+          const LabelRange around{std::max(0, low - kMargin), std::min(last, low + kMargin)};
+          if (high - low <= 2 * kMargin + 1)
+            sets[k].low = {around.first, std::min(last, high + kMargin)};
+          else
+            sets[k] = {around, {high - kMargin, std::min(last, high + kMargin)}};
         } else {
-          ranges[k] = {0, last};
+          sets[k].low = {0, last};
         }
       }
   });
-  return searchLabels(grey, calibration, views, frame, labels, radius, ranges, std::move(start));
+  return searchLabels(grey, calibration, views, frame, labels, radius, sets, std::move(start));
 }
 
 }  // namespace
