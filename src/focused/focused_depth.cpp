@@ -29,7 +29,8 @@ constexpr int kRunGap = 16;
 // The coarse-to-fine search (searchPyramid): its frames have at least this many pixels per lens,
 constexpr double kLeastPixelsPerLens = 2;
 constexpr int kCoarsestStride = 2;  // the coarsest searches every other label,
-constexpr int kMargin = 2;          // a finer one that many either side of the coarse labels near,
+constexpr int kMargin = 2;          // a finer one that many either side of the coarse labels near
+                                    // (one when those came from every label),
 constexpr float kAgreement = 1;     // or none where those are within one label of each other.
 
 Image luminance(const Image& image) {
@@ -211,10 +212,11 @@ LabelSearch searchLabels(const Image& grey, const FocusedCalibration& calibratio
 
 // searchLabels on the frame of `pixelsPerLens`. Where a frame of half the pixels per lens is
 // allowed, the search there comes first (a quarter of the pixels) and each pixel then searches only
-// the least and the greatest label its 3x3 nearest coarse pixels found, kMargin either side (and
-// those between when near), their nearest one's greatest cost standing for the rest; where those agree within
-// kAgreement labels, having searched every label themselves, it takes their labels interpolated and searches none
-// (depth edges are where it searches). The coarsest frame searches every kCoarsestStride-th label.
+// the least and the greatest label its 3x3 nearest coarse pixels found, kMargin either side (1
+// when they searched every label; and those between when near), their nearest one's greatest cost standing for the
+// rest; where those agree within kAgreement labels, having searched every label themselves, it takes their labels
+// interpolated and searches none (depth edges are where it searches). The coarsest frame searches every
+// kCoarsestStride-th label.
 LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibration,
                           const focused_detail::MicroImageViews& views, double pixelsPerLens,
                           const std::vector<double>& labels, int radius) {
@@ -269,11 +271,12 @@ LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibrati
         } else if (greatest >= 0) {
           // Around the least and the greatest, not all labels between: an edge's two sides.
           const int low = int(std::lround(least)), high = int(std::lround(greatest));
-          const LabelRange around{std::max(0, low - kMargin), std::min(last, low + kMargin)};
-          if (high - low <= 2 * kMargin + 1)
-            sets[k].low = {around.first, std::min(last, high + kMargin)};
+          const int margin = everyLabel ? 1 : kMargin;
+          const LabelRange around{std::max(0, low - margin), std::min(last, low + margin)};
+          if (high - low <= 2 * margin + 1)
+            sets[k].low = {around.first, std::min(last, high + margin)};
           else
-            sets[k] = {around, {high - kMargin, std::min(last, high + kMargin)}};
+            sets[k] = {around, {high - margin, std::min(last, high + margin)}};
         } else {
           sets[k].low = {0, last};
         }
