@@ -94,10 +94,10 @@ class MicroImageViews {
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         const auto& c = centres_[std::size_t(j) * std::size_t(grid_.columns) + std::size_t(i)];
-        const double ex = cx - c[0], ey = cy - c[1];
-        if (ex * ex + ey * ey > reach * reach) continue;
+        const double ex = cx - c[0], ey = cy - c[1], distance2 = ex * ex + ey * ey;
+        if (distance2 > reach * reach) continue;
         MicroImageSample s{i, j, c[0] + sign_ * (qx - c[0]) / v, c[1] + sign_ * (qy - c[1]) / v,
-                           std::hypot(ex, ey) / (v * radius_)};
+                           std::sqrt(distance2) / (v * radius_)};  // hypot took a third of the render
         if (s.rho < nearest.rho) nearest = s;
         if (s.rho < 1) visit(s);
       }
