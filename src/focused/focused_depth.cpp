@@ -210,12 +210,18 @@ LabelSearch searchLabels(const Image& grey, const FocusedCalibration& calibratio
   return result;
 }
 
-// searchLabels on the frame of `pixelsPerLens`. Where a frame of half the pixels per lens is
-// allowed, the search there comes first (a quarter of the pixels) and each pixel then searches only
-// the least and the greatest label its 3x3 nearest coarse pixels found, kMargin either side (1
-// when they searched every label; and those between when near), their nearest one's greatest cost standing for the
-// rest; where those agree within kAgreement labels, having searched every label themselves, it takes their labels
-// interpolated and searches none (depth edges are where it searches). The coarsest frame searches every
+// Whether the frame of `pixelsPerLens` is searched after one of half the pixels per lens.
+bool refinesCoarser(const FocusedCalibration& calibration, double pixelsPerLens) {
+  const FocusedPhotoFrame coarse = focusedPhotoFrame(calibration, pixelsPerLens / 2);
+  return pixelsPerLens / 2 >= kLeastPixelsPerLens && coarse.width >= 2 && coarse.height >= 2;
+}
+
+// searchLabels on the frame of `pixelsPerLens`. When it refines a coarser frame's search (a
+// quarter of the pixels), each pixel searches only around the least and the greatest label its
+// 3x3 nearest coarse pixels found (and between them when near), kMargin either side, or 1 when
+// those searched every label; their nearest one's greatest cost stands for the labels left out.
+// Where they agree within kAgreement, having searched every label, it takes their labels
+// interpolated and searches none: it searches at depth edges. The coarsest frame searches every
 // kCoarsestStride-th label.
 LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibration,
                           const focused_detail::MicroImageViews& views, double pixelsPerLens,
@@ -226,7 +232,7 @@ LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibrati
   const std::size_t plane = std::size_t(w) * std::size_t(h);
   LabelSearch start{std::vector<float>(plane, -1.0f), std::vector<float>(plane, kNoEvidence),
                     std::vector<float>(plane, 0.0f)};
-  if (pixelsPerLens / 2 < kLeastPixelsPerLens || coarse.width < 2 || coarse.height < 2) {
+  if (!refinesCoarser(calibration, pixelsPerLens)) {
     std::vector<double> sparse;
     for (std::size_t l = 0; l < labels.size(); l += kCoarsestStride) sparse.push_back(labels[l]);
     LabelSearch found = searchLabels(grey, calibration, views, frame, sparse, radius,
@@ -236,7 +242,7 @@ LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibrati
     return found;
   }
   const LabelSearch found = searchPyramid(grey, calibration, views, pixelsPerLens / 2, labels, radius);
-  const bool everyLabel = pixelsPerLens / 4 >= kLeastPixelsPerLens;
+  const bool everyLabel = refinesCoarser(calibration, pixelsPerLens / 2);
   std::vector<LabelSet> sets(plane);
   parallelFor(0, std::size_t(h), 1, [&](std::size_t begin, std::size_t end) {
     const auto coarseAt = [&](const std::vector<float>& values, int x, int y) {
@@ -258,7 +264,10 @@ LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibrati
           for (int x = std::max(0, cx - 1); x <= std::min(coarse.width - 1, cx + 1); ++x) {
             const float l = coarseAt(found.label, x, y);
             all &= l >= 0;
-            if (l >= 0) least = std::min(least, l), greatest = std::max(greatest, l);
+            if (l >= 0) {
+              least = std::min(least, l);
+              greatest = std::max(greatest, l);
+            }
           }
         if (everyLabel && all && greatest - least <= kAgreement) {
           const int x0 = std::min(int(fx), coarse.width - 2), y0 = std::min(int(fy), coarse.height - 2);
