@@ -222,10 +222,10 @@ bool refinesCoarser(const FocusedCalibration& calibration, double pixelsPerLens)
 // those searched every label; their nearest one's greatest cost stands for the labels left out.
 // Where they agree within kAgreement, having searched every label, it takes their labels
 // interpolated and searches none: it searches at depth edges. The coarsest frame searches every
-// kCoarsestStride-th label.
+// kCoarsestStride-th label, or every label when it is the one asked for (`refined` false).
 LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibration,
                           const focused_detail::MicroImageViews& views, double pixelsPerLens,
-                          const std::vector<double>& labels, int radius) {
+                          const std::vector<double>& labels, int radius, bool refined) {
   const FocusedPhotoFrame frame = focusedPhotoFrame(calibration, pixelsPerLens),
                           coarse = focusedPhotoFrame(calibration, pixelsPerLens / 2);
   const int w = frame.width, h = frame.height, last = int(labels.size()) - 1;
@@ -233,15 +233,16 @@ LabelSearch searchPyramid(const Image& grey, const FocusedCalibration& calibrati
   LabelSearch start{std::vector<float>(plane, -1.0f), std::vector<float>(plane, kNoEvidence),
                     std::vector<float>(plane, 0.0f)};
   if (!refinesCoarser(calibration, pixelsPerLens)) {
+    const int stride = refined ? kCoarsestStride : 1;
     std::vector<double> sparse;
-    for (std::size_t l = 0; l < labels.size(); l += kCoarsestStride) sparse.push_back(labels[l]);
+    for (std::size_t l = 0; l < labels.size(); l += std::size_t(stride)) sparse.push_back(labels[l]);
     LabelSearch found = searchLabels(grey, calibration, views, frame, sparse, radius,
                                      std::vector<LabelSet>(plane, {{0, int(sparse.size()) - 1}, {}}), std::move(start));
     for (float& l : found.label)
-      if (l >= 0) l *= float(kCoarsestStride);
+      if (l >= 0) l *= float(stride);
     return found;
   }
-  const LabelSearch found = searchPyramid(grey, calibration, views, pixelsPerLens / 2, labels, radius);
+  const LabelSearch found = searchPyramid(grey, calibration, views, pixelsPerLens / 2, labels, radius, true);
   const bool everyLabel = refinesCoarser(calibration, pixelsPerLens / 2);
   std::vector<LabelSet> sets(plane);
   parallelFor(0, std::size_t(h), 1, [&](std::size_t begin, std::size_t end) {
@@ -321,7 +322,7 @@ Result<FocusedDepth> estimateFocusedDepth(const Image& image, const FocusedCalib
   Image mixed;
   const Image& grey = image.channels() == 1 ? image : (mixed = luminance(image));
   const LabelSearch search =
-      searchPyramid(grey, calibration, views, request.pixelsPerLens, labels, request.windowRadius);
+      searchPyramid(grey, calibration, views, request.pixelsPerLens, labels, request.windowRadius, false);
   FocusedDepth result{Image(w, h, 1), Image(w, h, 1), {}};
   // Confidence 1 - least / greatest: how much worse the other labels are.
   for (std::size_t k = 0; k < plane; ++k) {

@@ -8,10 +8,10 @@
 // the micro-images that see it disagree (the weighted variance of their samples, luminance), over
 // a small window; the map takes the least cost, refined to a fraction of a label by a parabola.
 // The search goes coarse to fine over frames of half the pixels per lens in turn (down to 2): the
-// coarsest costs every other label; each finer one only the labels within two (one, after a
-// frame that costed every label) of the least and the greatest found around a pixel, and none
-// where those agree within one label, having costed every label (their labels interpolated
-// stand): it searches at depth edges, on their two sides.
+// coarsest costs every other label (every label when it is the map's own frame); each finer one
+// only the labels within two (one, after a frame that costed every label) of the least and the
+// greatest found around a pixel, and none where those agree within one label, having costed every
+// label (their labels interpolated stand): it searches at depth edges, on their two sides.
 // Confidence: 1 - the least cost over the greatest (how much worse the other labels are, the
 // coarser frame's greatest standing for labels not costed); pixels below `minConfidence` are
 // filled from confident neighbours. With fewer than two micro-images seeing a point there is no
