@@ -27,7 +27,7 @@ constexpr int kBandRows = 32;
 // lenses once more.
 constexpr int kRunGap = 16;
 // The coarse-to-fine search (searchPyramid): its frames have at least this many pixels per lens,
-constexpr double kLeastPixelsPerLens = 2;
+constexpr double kLeastPixelsPerLens = 1;
 constexpr int kCoarsestStride = 2;  // the coarsest searches every other label,
 constexpr int kMargin = 2;          // a finer one that many either side of the coarse labels near
                                     // (one when those came from every label),

@@ -7,7 +7,7 @@
 // each candidate v (labels evenly spaced in that disparity D / v) the cost of a pixel is how much
 // the micro-images that see it disagree (the weighted variance of their samples, luminance), over
 // a small window; the map takes the least cost, refined to a fraction of a label by a parabola.
-// The search goes coarse to fine over frames of half the pixels per lens in turn (down to 2): the
+// The search goes coarse to fine over frames of half the pixels per lens in turn (down to 1): the
 // coarsest costs every other label (every label when it is the map's own frame); each finer one
 // only the labels within two (one, after a frame that costed every label) of the least and the
 // greatest found around a pixel, and none where those agree within one label, having costed every
