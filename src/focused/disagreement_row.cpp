@@ -23,18 +23,21 @@ using DF = hn::ScalableTag<float>;
 using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 
-// Adds the samples of lens `lens` to the sums of the pixels of row py its disc covers.
+// Adds the samples of lens `lens` to the sums of the pixels of row py in [begin, end) its disc
+// covers (pixel p's at p - begin).
 void AddLens(const Image& grey, const LensesByRow& lenses, std::uint32_t lens, const FocusedPhotoFrame& frame, double v,
-             double sign, int py, DisagreementSums& sums) {
+             double sign, int py, int begin, int end, DisagreementSums& sums) {
   const DF df;
   const DI di;
   const int lanes = int(hn::Lanes(df)), width = grey.width(), height = grey.height();
   const auto [cx, cy] = lenses.centre(lens);
   const double disc = lenses.discRadius(), ey = frame.imagePoint(0, py + 0.5)[1] - cy;
-  if (ey * ey >= disc * disc) return;
-  const double half = std::sqrt(disc * disc - ey * ey), step = frame.imagePxPerPixel, left = frame.originPx[0];
-  const int p0 = std::max(0, int(std::floor((cx - half - left) / step - 0.5)));
-  const int p1 = std::min(frame.width, int(std::ceil((cx + half - left) / step - 0.5)) + 1);
+  const double step = frame.imagePxPerPixel, left = frame.originPx[0];
+  // Most lenses of a row miss a short span: left before the square root.
+  if (ey * ey >= disc * disc || cx + disc < left + (begin - 1) * step || cx - disc > left + (end + 1) * step) return;
+  const double half = std::sqrt(disc * disc - ey * ey);
+  const int p0 = std::max(begin, int(std::floor((cx - half - left) / step - 0.5)));
+  const int p1 = std::min(end, int(std::ceil((cx + half - left) / step - 0.5)) + 1);
   if (p0 >= p1) return;
   // S's row is the same along the span: bilinearSample's two rows and weight.
   const double y = std::clamp(cy + sign * ey / v - 0.5, 0.0, double(height - 1));
@@ -67,10 +70,11 @@ void AddLens(const Image& grey, const LensesByRow& lenses, std::uint32_t lens, c
     const VF value = hn::MulAdd(fy, hn::Sub(bottom, top), top);
     const VF weight = hn::IfThenElseZero(in, hn::NegMulAdd(r2, inverseDisc2, one));
     const VF weighted = hn::Mul(weight, value);
-    float* sw = sums.weight.data() + p;
-    float* s1 = sums.value.data() + p;
-    float* s2 = sums.square.data() + p;
-    float* n = sums.seen.data() + p;
+    const std::size_t at = std::size_t(p - begin);
+    float* sw = sums.weight.data() + at;
+    float* s1 = sums.value.data() + at;
+    float* s2 = sums.square.data() + at;
+    float* n = sums.seen.data() + at;
     hn::StoreU(hn::Add(hn::LoadU(df, sw), weight), df, sw);
     hn::StoreU(hn::Add(hn::LoadU(df, s1), weighted), df, s1);
     hn::StoreU(hn::MulAdd(weighted, value, hn::LoadU(df, s2)), df, s2);
@@ -79,15 +83,15 @@ void AddLens(const Image& grey, const LensesByRow& lenses, std::uint32_t lens, c
 }
 
 void DisagreementRow(const Image& grey, const LensesByRow& lenses, const FocusedPhotoFrame& frame, double v,
-                     double sign, int py, DisagreementSums& sums, float* raw, float* seen) {
-  const std::size_t padded = std::size_t(frame.width) + hn::Lanes(DF());
+                     double sign, int py, int begin, int end, DisagreementSums& sums, float* raw, float* seen) {
+  const std::size_t padded = std::size_t(end - begin) + hn::Lanes(DF());
   for (std::vector<float>* sum : {&sums.weight, &sums.value, &sums.square, &sums.seen}) sum->assign(padded, 0.0f);
-  for (const std::uint32_t lens : lenses.row(py)) AddLens(grey, lenses, lens, frame, v, sign, py, sums);
-  for (int px = 0; px < frame.width; ++px) {
-    const bool two = sums.seen[std::size_t(px)] >= 2;
-    const float mean = sums.value[std::size_t(px)] / sums.weight[std::size_t(px)];
-    raw[px] = two ? std::max(0.0f, sums.square[std::size_t(px)] / sums.weight[std::size_t(px)] - mean * mean) : 0.0f;
-    seen[px] = two ? 1.0f : 0.0f;
+  for (const std::uint32_t lens : lenses.row(py)) AddLens(grey, lenses, lens, frame, v, sign, py, begin, end, sums);
+  for (std::size_t k = 0; k < std::size_t(end - begin); ++k) {
+    const bool two = sums.seen[k] >= 2;
+    const float mean = sums.value[k] / sums.weight[k];
+    raw[k] = two ? std::max(0.0f, sums.square[k] / sums.weight[k] - mean * mean) : 0.0f;
+    seen[k] = two ? 1.0f : 0.0f;
   }
 }
 
@@ -100,36 +104,50 @@ namespace lfcam::focused_detail {
 
 HWY_EXPORT(DisagreementRow);
 
-LensesByRow::LensesByRow(const LensletGrid& grid, const FocusedPhotoFrame& frame, double discRadius)
-    : discRadius_(discRadius), starts_(std::size_t(frame.height) + 2, 0) {
-  for (int j = 0; j < grid.rows; ++j)
-    for (int i = 0; i < grid.columns; ++i) centres_.push_back(grid.centre(i, j));
-  // The rows py whose centre's y, originPx[1] + (py + 0.5) step, lies within the disc.
+LensesByRow::LensesByRow(const MicroImageViews& views, const FocusedPhotoFrame& frame, double discRadius, int firstRow,
+                         int endRow)
+    : discRadius_(discRadius),
+      firstRow_(firstRow),
+      centres_(&views.centres()),
+      starts_(std::size_t(std::max(endRow - firstRow, 0)) + 2, 0) {
+  const double step = frame.imagePxPerPixel, top = frame.originPx[1];
+  // The rows py in [firstRow, endRow) whose centre's y, top + (py + 0.5) step, lies within the disc,
+  // less firstRow.
   const auto rowsOf = [&](const std::array<double, 2>& c) {
-    const double step = frame.imagePxPerPixel, top = frame.originPx[1];
-    return std::array<int, 2>{std::max(0, int(std::floor((c[1] - discRadius - top) / step - 0.5))),
-                              std::min(frame.height - 1, int(std::ceil((c[1] + discRadius - top) / step - 0.5)))};
+    return std::array<int, 2>{std::max(firstRow, int(std::floor((c[1] - discRadius - top) / step - 0.5))) - firstRow,
+                              std::min(endRow - 1, int(std::ceil((c[1] + discRadius - top) / step - 0.5))) - firstRow};
   };
-  for (const auto& c : centres_) {
-    const auto [first, last] = rowsOf(c);
-    for (int py = first; py <= last; ++py) ++starts_[std::size_t(py) + 2];
-  }
+  // Only the lattice rows that can reach those rows.
+  const auto forEachLens = [&](auto&& visit) {
+    const int columns = views.columns();
+    for (std::size_t j = 0; j < views.rowSpans().size(); ++j) {
+      const auto [least, greatest] = views.rowSpans()[j];
+      if (greatest + discRadius < top + (firstRow - 1) * step || least - discRadius > top + (endRow + 1) * step)
+        continue;
+      for (std::uint32_t lens = std::uint32_t(j * columns); lens < std::uint32_t((j + 1) * columns); ++lens) {
+        const auto [first, last] = rowsOf((*centres_)[lens]);
+        visit(lens, first, last);
+      }
+    }
+  };
+  forEachLens([&](std::uint32_t, int first, int last) {
+    for (int k = first; k <= last; ++k) ++starts_[std::size_t(k) + 2];
+  });
   for (std::size_t k = 2; k < starts_.size(); ++k) starts_[k] += starts_[k - 1];
   lenses_.resize(starts_.back());
-  for (std::uint32_t lens = 0; lens < centres_.size(); ++lens) {
-    const auto [first, last] = rowsOf(centres_[lens]);
-    for (int py = first; py <= last; ++py) lenses_[starts_[std::size_t(py) + 1]++] = lens;
-  }
+  forEachLens([&](std::uint32_t lens, int first, int last) {
+    for (int k = first; k <= last; ++k) lenses_[starts_[std::size_t(k) + 1]++] = lens;
+  });
 }
 
 void disagreementRow(const Image& grey, const LensesByRow& lenses, const FocusedPhotoFrame& frame, double v,
-                     double sign, int py, DisagreementSums& sums, float* raw, float* seen) {
-  HWY_DYNAMIC_DISPATCH(DisagreementRow)(grey, lenses, frame, v, sign, py, sums, raw, seen);
+                     double sign, int py, int begin, int end, DisagreementSums& sums, float* raw, float* seen) {
+  HWY_DYNAMIC_DISPATCH(DisagreementRow)(grey, lenses, frame, v, sign, py, begin, end, sums, raw, seen);
 }
 
 void disagreementRowReference(const Image& grey, const MicroImageViews& views, const FocusedPhotoFrame& frame, double v,
-                              int py, float* raw, float* seen) {
-  for (int px = 0; px < frame.width; ++px) {
+                              int py, int begin, int end, float* raw, float* seen) {
+  for (int px = begin; px < end; ++px) {
     const auto q = frame.imagePoint(px + 0.5, py + 0.5);
     double sw = 0, s1 = 0, s2 = 0;
     int visits = 0;
@@ -141,8 +159,8 @@ void disagreementRowReference(const Image& grey, const MicroImageViews& views, c
       s2 += weight * value * value;
       ++visits;
     });
-    raw[px] = visits >= 2 ? float(std::max(0.0, s2 / sw - (s1 / sw) * (s1 / sw))) : 0.0f;
-    seen[px] = visits >= 2 ? 1.0f : 0.0f;
+    raw[px - begin] = visits >= 2 ? float(std::max(0.0, s2 / sw - (s1 / sw) * (s1 / sw))) : 0.0f;
+    seen[px - begin] = visits >= 2 ? 1.0f : 0.0f;
   }
 }
 

@@ -20,37 +20,41 @@
 
 namespace lfcam::focused_detail {
 
-// The lenses whose disc of radius `discRadius` (image pixels) around their centre meets each row
-// of the frame (within half a pixel), in the grid's (j, i) order.
+// The lenses whose disc of radius `discRadius` (image pixels) around their centre meets each of
+// the frame's rows [firstRow, endRow) (within half a pixel), in the grid's (j, i) order. `views`
+// outlives this.
 class LensesByRow {
  public:
-  LensesByRow(const LensletGrid& grid, const FocusedPhotoFrame& frame, double discRadius);
+  LensesByRow(const MicroImageViews& views, const FocusedPhotoFrame& frame, double discRadius, int firstRow,
+              int endRow);
 
   double discRadius() const { return discRadius_; }
-  const std::array<double, 2>& centre(std::uint32_t lens) const { return centres_[lens]; }
+  const std::array<double, 2>& centre(std::uint32_t lens) const { return (*centres_)[lens]; }
   std::span<const std::uint32_t> row(int py) const {
-    return {lenses_.data() + starts_[std::size_t(py)], lenses_.data() + starts_[std::size_t(py) + 1]};
+    const std::size_t k = std::size_t(py - firstRow_);
+    return {lenses_.data() + starts_[k], lenses_.data() + starts_[k + 1]};
   }
 
  private:
   double discRadius_;
-  std::vector<std::array<double, 2>> centres_;
-  std::vector<std::size_t> starts_;  // row py's lenses: [starts_[py], starts_[py + 1])
+  int firstRow_;
+  const std::vector<std::array<double, 2>>* centres_;
+  std::vector<std::size_t> starts_;  // row py's lenses: [starts_[py - firstRow], starts_[py - firstRow + 1])
   std::vector<std::uint32_t> lenses_;
 };
 
-// The sums one row gathers (frame width plus a vector's padding each).
+// The sums one row gathers (the span's width plus a vector's padding each).
 struct DisagreementSums {
   std::vector<float> weight, value, square, seen;
 };
 
-// Row py of the raw cost and of the two-or-more mask, at v with the lenses' discs of radius
-// v * (the micro-images' usable radius) = lenses.discRadius(). `sign`: the micro-images'
-// orientation (FocusedCalibration::orientationSign).
+// Pixels [begin, end) of row py of the raw cost and of the two-or-more mask, into raw[0, end -
+// begin) and seen[...], at v with the lenses' discs of radius v * (the micro-images' usable radius)
+// = lenses.discRadius(). `sign`: the micro-images' orientation (FocusedCalibration::orientationSign).
 void disagreementRow(const Image& grey, const LensesByRow& lenses, const FocusedPhotoFrame& frame, double v,
-                     double sign, int py, DisagreementSums& sums, float* raw, float* seen);
+                     double sign, int py, int begin, int end, DisagreementSums& sums, float* raw, float* seen);
 
 void disagreementRowReference(const Image& grey, const MicroImageViews& views, const FocusedPhotoFrame& frame, double v,
-                              int py, float* raw, float* seen);
+                              int py, int begin, int end, float* raw, float* seen);
 
 }  // namespace lfcam::focused_detail

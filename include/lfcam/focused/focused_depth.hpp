@@ -7,9 +7,15 @@
 // each candidate v (labels evenly spaced in that disparity D / v) the cost of a pixel is how much
 // the micro-images that see it disagree (the weighted variance of their samples, luminance), over
 // a small window; the map takes the least cost, refined to a fraction of a label by a parabola.
-// Confidence: 1 - the least cost over the greatest (how much worse the other labels are); pixels below
-// `minConfidence` are filled from confident neighbours. With fewer than two micro-images seeing a
-// point there is no evidence: labels whose disc reaches fewer are not candidates.
+// The search goes coarse to fine over frames of half the pixels per lens in turn (down to 1): the
+// coarsest costs every other label (every label when it is the map's own frame); each finer one
+// only the labels within two (one, after a frame that costed every label) of the least and the
+// greatest found around a pixel, and none where those agree within one label, having costed every
+// label (their labels interpolated stand): it searches at depth edges, on their two sides.
+// Confidence: 1 - the least cost over the greatest (how much worse the other labels are, the
+// coarser frame's greatest standing for labels not costed); pixels below `minConfidence` are
+// filled from confident neighbours. With fewer than two micro-images seeing a point there is no
+// evidence: labels whose disc reaches fewer are not candidates.
 #pragma once
 
 #include <vector>
