@@ -5,31 +5,11 @@
 #include "core/parabola.hpp"
 #include "core/parallel.hpp"
 #include "edof/edof_internal.hpp"
+#include "edof/path_step.hpp"
 
 namespace lfcam::edof {
 
 namespace {
-
-// Schedule: the label loop vectorises (LFCAM_CLONES).
-// One step of a path: cur = Lr(p, .) from prev = Lr(p - r, .); sum += cur.
-LFCAM_CLONES void pathStep(const float* __restrict cost, const float* __restrict prev, float* __restrict cur,
-                           float* __restrict sum, int labels, float p1, float p2) {
-  float minPrev = prev[0];
-  for (int l = 1; l < labels; ++l) minPrev = std::min(minPrev, prev[l]);
-  const float jump = minPrev + p2;
-  if (labels == 1) {
-    cur[0] = cost[0];
-    sum[0] += cur[0];
-    return;
-  }
-  cur[0] = cost[0] + std::min(std::min(prev[0], prev[1] + p1), jump) - minPrev;
-  for (int l = 1; l < labels - 1; ++l) {
-    const float neighbour = std::min(prev[l - 1], prev[l + 1]) + p1;
-    cur[l] = cost[l] + std::min(std::min(prev[l], neighbour), jump) - minPrev;
-  }
-  cur[labels - 1] = cost[labels - 1] + std::min(std::min(prev[labels - 1], prev[labels - 2] + p1), jump) - minPrev;
-  for (int l = 0; l < labels; ++l) sum[l] += cur[l];
-}
 
 LFCAM_CLONES void startPath(const float* __restrict cost, float* __restrict cur, float* __restrict sum, int labels) {
   for (int l = 0; l < labels; ++l) {

@@ -1,6 +1,7 @@
 // The views' brightness offsets from the reference view, measured and removed (depth_stages.hpp).
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/bilinear.hpp"
 #include "core/parallel.hpp"
@@ -15,29 +16,47 @@ namespace {
 constexpr double kOffsetSlopeLimit = 0.5;
 
 // The error of a map by which views were warped onto the reference, per pixel, as the part of
-// each view's difference from the reference that the error explains: `slope(u, v)` (the
-// reference's gradient along the view's baseline, times -1: an error e moves the view's samples by
-// -e (u, v)) times the error, fitted to all views at once by least squares over a box of `radius`,
-// with an offset and a gain per view free in it (a sheen adds to the texture and scales it), so
-// that only texture decides. Clamped to +-kOffsetSlopeLimit. `differences`: each view's, warped,
-// less the reference (none for the reference).
-template <typename Slope, typename IsReference>
+// each view's difference from the reference that the error explains: its slope g (the reference's
+// gradient `dx`, `dy` along the view's baseline, times -1: an error e moves the view's samples by
+// -e (u, v), so g = -(u dx + v dy) for the view steps `steps(u, v)` gives) times the error, fitted
+// to all views at once by least squares over a box of `radius`, with an offset and a gain per view
+// free in it (a sheen adds to the texture and scales it), so that only texture decides. Clamped to
+// +-kOffsetSlopeLimit. `differences`: each view's, warped, less the reference (none for the
+// reference). g being linear in the view steps, its box means (of g, g g, g r, d g) follow from
+// those of the gradient and its products, made once, and of d dx and d dy: three or four box filters
+// per view where six were (the same sums, rounded otherwise).
+template <typename Steps, typename IsReference>
 std::vector<float> mapError(const LightField& grey, const std::vector<float>& reference, int radius,
-                            const std::vector<std::vector<float>>& differences, const Slope& slope,
-                            const IsReference& isReference) {
+                            const std::vector<std::vector<float>>& differences, const std::vector<float>& dx,
+                            const std::vector<float>& dy, const Steps& steps, const IsReference& isReference) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   std::vector<float> meanReference(n), meanSquare(n), square(n);
   boxFilter(reference.data(), meanReference.data(), ns, nt, radius);
   for (std::size_t i = 0; i < n; ++i) square[i] = reference[i] * reference[i];
   boxFilter(square.data(), meanSquare.data(), ns, nt, radius);
+  // Box means of dx, dy, dx dx, dx dy, dy dy, dx r, dy r (a factor of none: the plane itself).
+  enum { kX, kY, kXX, kXY, kYY, kXR, kYR, kGradientMeans };
+  const std::vector<float>* factors[kGradientMeans][2] = {
+      {&dx, nullptr}, {&dy, nullptr}, {&dx, &dx}, {&dx, &dy}, {&dy, &dy}, {&dx, &reference}, {&dy, &reference}};
+  std::vector<float> gradientMean[kGradientMeans];
+  parallelFor(0, kGradientMeans, 1, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> product(n);
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::vector<float>& a = *factors[k][0];
+      if (factors[k][1])
+        for (std::size_t i = 0; i < n; ++i) product[i] = a[i] * (*factors[k][1])[i];
+      gradientMean[k].resize(n);
+      boxFilter(factors[k][1] ? product.data() : a.data(), gradientMean[k].data(), ns, nt, radius);
+    }
+  });
   // Sums over the views in an order that the threads do not change (the same map from every run):
   // views dealt by index to kSumGroups groups, each summed in order, then the groups in order.
   constexpr std::size_t kSumGroups = 8;
   std::vector<double> groupCovariance[kSumGroups], groupVariance[kSumGroups];
   const std::size_t views = grey.shape().views();
   parallelFor(0, kSumGroups, 1, [&](std::size_t begin, std::size_t end) {
-    std::vector<float> g(n), product(n), mean[6];
+    std::vector<float> product(n), mean[4];  // of d, d r, d dx, d dy
     for (auto& m : mean) m.resize(n);
     const auto boxOfProduct = [&](const std::vector<float>& a, const std::vector<float>& b, std::vector<float>& out) {
       for (std::size_t i = 0; i < n; ++i) product[i] = a[i] * b[i];
@@ -49,22 +68,22 @@ std::vector<float> mapError(const LightField& grey, const std::vector<float>& re
       localCovariance.assign(n, 0.0), localVariance.assign(n, 0.0);
       for (std::size_t view = group; view < views; view += kSumGroups) {
         if (isReference(view)) continue;
-        const int u = int(view % grey.nu()), v = int(view / grey.nu());
+        const auto [uc, vc] = steps(int(view % grey.nu()), int(view / grey.nu()));
         const std::vector<float>& difference = differences[view];
-        slope(u, v, g.data());
         boxFilter(difference.data(), mean[0].data(), ns, nt, radius);
-        boxFilter(g.data(), mean[1].data(), ns, nt, radius);
-        boxOfProduct(difference, g, mean[2]);
-        boxOfProduct(g, g, mean[3]);
-        boxOfProduct(difference, reference, mean[4]);
-        boxOfProduct(g, reference, mean[5]);
+        boxOfProduct(difference, reference, mean[1]);
+        if (uc != 0) boxOfProduct(difference, dx, mean[2]);
+        if (vc != 0) boxOfProduct(difference, dy, mean[3]);
         for (std::size_t i = 0; i < n; ++i) {
+          const auto at = [&](int k) { return double(gradientMean[k][i]); };
+          const double d = mean[0][i], g = -(uc * at(kX) + vc * at(kY));
+          const double dgMean = -((uc != 0 ? uc * mean[2][i] : 0.0) + (vc != 0 ? vc * mean[3][i] : 0.0));
+          const double ggMean = uc * uc * at(kXX) + 2 * uc * vc * at(kXY) + vc * vc * at(kYY);
+          const double grMean = -(uc * at(kXR) + vc * at(kYR));
           // Covariances over the box; the reference's part (the gain) projected out where it varies.
           const double r = meanReference[i], rr = double(meanSquare[i]) - r * r;
-          const double dg = double(mean[2][i]) - double(mean[0][i]) * mean[1][i];
-          const double gg = double(mean[3][i]) - double(mean[1][i]) * mean[1][i];
-          const double dr = double(mean[4][i]) - double(mean[0][i]) * r,
-                       gr = double(mean[5][i]) - double(mean[1][i]) * r;
+          const double dg = dgMean - d * g, gg = ggMean - g * g;
+          const double dr = double(mean[1][i]) - d * r, gr = grMean - g * r;
           const bool gain = rr > 1e-12;
           localCovariance[i] += gain ? dg - dr * gr / rr : dg;
           localVariance[i] += gain ? gg - gr * gr / rr : gg;
@@ -134,7 +153,10 @@ void removeViewOffsets(LightField& grey, const Image& disparity, int radius, dou
       for (std::size_t i = 0; i < n; ++i) difference[i] -= reference[i];
     }
   });
-  if (slopeCorrected) error = mapError(grey, reference, radius, differences, slope, isReference);
+  const auto steps = [&](int u, int v) {
+    return std::pair{stepsU(grey, u, fromReference), stepsV(grey, v, fromReference)};
+  };
+  if (slopeCorrected) error = mapError(grey, reference, radius, differences, dx, dy, steps, isReference);
   const edof::GuidedFilter filter(disparity.plane(0), ns, nt, radius, epsilon);
   parallelFor(0, grey.shape().views(), 1, [&](std::size_t begin, std::size_t end) {
     std::vector<float> offset(n), g(dx.size());
