@@ -168,8 +168,8 @@ Result<FocusedCalibration> calibrationFromDocument(const RayCalibDocument& d, co
     return bad(ErrorCode::Format, "lens_type", "two lens types share lenses (their offsets do not tell them apart)");
   if (width < 3 * d.diameter || height < 3 * d.diameter)
     return makeError(ErrorCode::Usage, where + ": the image (" + std::to_string(width) + "x" + std::to_string(height) +
-                                           ") is smaller than three micro-images of " + io::shortestNumber(d.diameter) +
-                                           " pixels across");
+                                           ") is smaller than three micro-images of " +
+                                           io::shortestNumber(std::round(d.diameter * 100) / 100) + " pixels across");
   // Raytrix: the reference lens from the image's centre, y up; the rotation counter-clockwise.
   const std::array<double, 2> centre{0.5 * width + d.offset[0], 0.5 * height - d.offset[1]};
   if (!(centre[0] >= 0 && centre[0] <= width && centre[1] >= 0 && centre[1] <= height))

@@ -3,6 +3,9 @@
 // calibrated by `lfcam calibrate --focused` or on the fly with `--focused`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
@@ -172,6 +175,43 @@ TEST_F(CliFocused, CalibrateRefusesWhatItCannotDoInOneLine) {
   EXPECT_EQ(beside.errLines(), 1) << beside.err;
   EXPECT_NE(beside.err.find("raw.xml"), std::string::npos) << beside.err;
   EXPECT_FALSE(fs::exists(at("bare/again.xml")));
+}
+
+TEST_F(CliFocused, RefusesBadInputInOneLineNamingTheFileAndWritesNothing) {
+  struct Case {
+    const char* what;
+    std::vector<std::string> args;
+    const char* named;  // the file or flag the line names
+  };
+  std::ofstream(at("bare/not-ray.xml")) << "<?xml version=\"1.0\"?><Settings><Width>480</Width></Settings>\n";
+  // A corner of the capture a micro-image and a half across, with the whole capture's calibration.
+  auto raw = readImage(at("capture/raw.png"));
+  ASSERT_TRUE(raw) << raw.error().message;
+  Image tiny(30, 30, raw->channels());
+  for (int c = 0; c < tiny.channels(); ++c)
+    for (int y = 0; y < tiny.height(); ++y) std::copy_n(raw->row(y, c), tiny.width(), tiny.row(y, c));
+  ASSERT_TRUE(writeImage(at("bare/tiny.png"), tiny));
+  const std::vector<Case> cases{
+      {"an XML that is not a RayCalibData",
+       {"edof", at("bare/capture.png").string(), "--focused-calibration", at("bare/not-ray.xml").string(), "-o",
+        at("bare/out.png").string()},
+       "not-ray.xml"},
+      {"patches whose virtual depth leaves holes",
+       {"refocus", at("capture/raw.png").string(), "--virtual-depth", "1", "--patches", "-o",
+        at("bare/out.png").string()},
+       "past the micro-images"},
+      {"an image smaller than a few micro-images",
+       {"edof", at("bare/tiny.png").string(), "--focused-calibration", at("capture/raw.xml").string(), "-o",
+        at("bare/out.png").string()},
+       "raw.xml: the image (30x30) is smaller than three micro-images of 20 pixels"},
+  };
+  for (const Case& c : cases) {
+    const auto result = runLfcam(c.args, dir_->path());
+    EXPECT_NE(result.exitStatus, 0) << c.what;
+    EXPECT_EQ(result.errLines(), 1) << c.what << ": " << result.err;
+    EXPECT_NE(result.err.find(c.named), std::string::npos) << c.what << ": " << result.err;
+    EXPECT_FALSE(fs::exists(at("bare/out.png"))) << c.what;
+  }
 }
 
 }  // namespace
