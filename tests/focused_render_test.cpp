@@ -50,7 +50,11 @@ TEST(FocusedRender, TotalFocusFromEstimatedDepthsHasNoSeamsWhereFixedPatchesDo) 
       test::psnr(*totalFocus, c.truth.allInFocus, margin), seamsTotalFocus,
       test::psnr(*patches, c.truth.allInFocus, margin), seamsPatches);
   EXPECT_GT(test::psnr(*totalFocus, c.truth.allInFocus, margin), 28);
-  EXPECT_LT(seamsTotalFocus, 0.1 * seamsPatches);
+  // No more power at the lattice's frequencies than the ideal's own. The measure also grows with
+  // sharpness (the ideal under a [1 2 1] / 4 blur scores 0.46-0.96 of itself): the ideal itself
+  // would score 1, 0.14 of fixed patches' 7.05, so a tenth holds only a blurred total focus.
+  EXPECT_LT(seamsTotalFocus, 1);
+  EXPECT_LT(seamsTotalFocus, 0.15 * seamsPatches);
 }
 
 }  // namespace

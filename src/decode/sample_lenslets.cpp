@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/cubic.hpp"
 #include "core/parallel.hpp"
 #include "decode/decode_internal.hpp"
 
@@ -19,37 +20,17 @@ namespace lfcam::decode_detail {
 
 namespace {
 
-// Weights of the 4 taps at -1, 0, 1, 2 for a sample at fraction f in [0, 1).
-inline void catmullRom(double f, float w[4]) {
-  const double f2 = f * f, f3 = f2 * f;
-  w[0] = float(-0.5 * f3 + f2 - 0.5 * f);
-  w[1] = float(1.5 * f3 - 2.5 * f2 + 1.0);
-  w[2] = float(-1.5 * f3 + 2.0 * f2 + 0.5 * f);
-  w[3] = float(0.5 * f3 - 0.5 * f2);
-}
-
 inline int clampIndex(int i, int n) { return std::clamp(i, 0, n - 1); }
 
 // Cubic (or bilinear) interpolation of one plane at array coordinates (x, y) (pixel centres at
 // integers), borders clamped.
 float interpolate(const float* plane, int w, int h, double x, double y, bool cubic) {
+  if (cubic) return cubicSample(plane, w, h, x, y, kCatmullRom);
   const int bx = int(std::floor(x)), by = int(std::floor(y));
   const double fx = x - bx, fy = y - by;
   auto at = [&](int xx, int yy) { return plane[std::size_t(clampIndex(yy, h)) * w + clampIndex(xx, w)]; };
-  if (!cubic) {
-    return float((1 - fy) * ((1 - fx) * at(bx, by) + fx * at(bx + 1, by)) +
-                 fy * ((1 - fx) * at(bx, by + 1) + fx * at(bx + 1, by + 1)));
-  }
-  float wx[4], wy[4];
-  catmullRom(fx, wx);
-  catmullRom(fy, wy);
-  float sum = 0;
-  for (int ty = 0; ty < 4; ++ty) {
-    float row = 0;
-    for (int tx = 0; tx < 4; ++tx) row += wx[tx] * at(bx - 1 + tx, by - 1 + ty);
-    sum += wy[ty] * row;
-  }
-  return sum;
+  return float((1 - fy) * ((1 - fx) * at(bx, by) + fx * at(bx + 1, by)) +
+               fy * ((1 - fx) * at(bx, by + 1) + fx * at(bx + 1, by + 1)));
 }
 
 inline float cleanWeight(float w) { return w < 0.02f ? 0.0f : std::min(w, 1.0f); }
@@ -94,8 +75,8 @@ bool sampleMicrolensSeparable(const Image& planes, const Image& weight, const Le
   const int left = bx - 1, top = by - 1;  // first tap column / row (of view 0)
   if (left < 0 || top < 0 || bx + n + 1 >= w || by + n + 1 >= h) return false;
   float wx[4], wy[4];
-  catmullRom(x0 - bx, wx);
-  catmullRom(y0 - by, wy);
+  keysCubicWeights(x0 - bx, kCatmullRom, wx);
+  keysCubicWeights(y0 - by, kCatmullRom, wy);
   auto filter = [&](const float* plane, float* o) {
     // Horizontal pass over the n + 3 rows the vertical taps need: rows[r * n + u].
     for (int r = 0; r < n + 3; ++r) {

@@ -6,13 +6,25 @@
 #include <limits>
 #include <vector>
 
-#include "core/bilinear.hpp"
+#include "core/cubic.hpp"
 #include "core/parallel.hpp"
 #include "focused/micro_image_views.hpp"
 #include "io/io_support.hpp"
 #include "lfcam/focused/focused_depth.hpp"
 
 namespace lfcam {
+
+namespace {
+
+// Keys's a: sharper than Catmull-Rom, it offsets part of the sensor pixel's blur (docs/design.md).
+constexpr double kKeysA = -0.75;
+// A lens type's weight at v: exp(-(blur / kBlurScalePx)^2), its defocus blur D |1/v - 1/v_t| pixels
+// (thin lenses: the microlens's aperture is D pixels, v_t the middle of its sharp range in 1/v).
+constexpr double kBlurScalePx = 0.75;
+// Types weighted less than this share of the sharpest are not sampled.
+constexpr double kLeastTypeWeight = 0.01;
+
+}  // namespace
 
 Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibration,
                             const FocusedRenderRequest& request) {
@@ -21,7 +33,7 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
     return makeError(ErrorCode::Usage, "pixels per lens must be in [1, " +
                                            io::shortestNumber(calibration.diameterPx()) +
                                            "] (the micro-image diameter)");
-  const double usable = 0.5 * calibration.diameterPx() - calibration.borderPx;
+  const double diameter = calibration.diameterPx(), usable = 0.5 * diameter - calibration.borderPx;
   const double shift = std::hypot(request.viewpoint[0], request.viewpoint[1]);
   if (!(request.aperture > 0 && request.aperture + shift <= 1 + 1e-9))
     return makeError(ErrorCode::Usage, "the aperture (" + io::shortestNumber(request.aperture) +
@@ -57,9 +69,15 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
   for (int j = 0; j < grid.rows; ++j)
     for (int i = 0; i < grid.columns; ++i)
       typeOfLens[std::size_t(j) * std::size_t(grid.columns) + std::size_t(i)] = calibration.lensType(i, j);
+  // Each type's 1/v_t, and whether types are weighted by their sharpness at all.
+  std::vector<double> inverseFocus;
+  for (const LensType& type : calibration.lensTypes)
+    inverseFocus.push_back(0.5 * (1 / type.minVirtualDepth + 1 / type.maxVirtualDepth));
+  const bool weighTypes = request.sharpLensTypes && calibration.lensTypes.size() > 1;
 
   parallelFor(0, std::size_t(frame.height), 1, [&](std::size_t begin, std::size_t end) {
     std::vector<double> sum(static_cast<std::size_t>(channels));
+    std::vector<double> typeWeight(calibration.lensTypes.size(), 1.0);
     for (std::size_t py = begin; py < end; ++py)
       for (int px = 0; px < frame.width; ++px) {
         const auto q = frame.imagePoint(px + 0.5, py + 0.5);
@@ -69,24 +87,29 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
         auto add = [&](const focused_detail::MicroImageSample& s, double weight) {
           for (int c = 0; c < channels; ++c)
             sum[std::size_t(c)] +=
-                weight * bilinearSample(image.plane(c), image.width(), image.height(), s.x - 0.5, s.y - 0.5);
+                weight * cubicSample(image.plane(c), image.width(), image.height(), s.x - 0.5, s.y - 0.5, kKeysA);
           total += weight;
         };
         if (v > 0 && std::isfinite(v)) {
-          // On a multi-focus array, the types sharp at v when there are any.
-          bool anySharp = false;
-          if (request.sharpLensTypes && calibration.lensTypes.size() > 1)
-            for (const LensType& type : calibration.lensTypes)
-              anySharp |= v >= type.minVirtualDepth && v <= type.maxVirtualDepth;
+          if (weighTypes) {
+            // exp(-blur^2 / scale^2) over the sharpest type's: the types' weights relative to its.
+            double least = std::numeric_limits<double>::infinity();
+            for (std::size_t t = 0; t < typeWeight.size(); ++t) {
+              typeWeight[t] = std::pow(diameter * (1 / v - inverseFocus[t]) / kBlurScalePx, 2);
+              least = std::min(least, typeWeight[t]);
+            }
+            for (double& w : typeWeight) {
+              w = std::exp(least - w);
+              if (w < kLeastTypeWeight) w = 0;
+            }
+          }
           const auto nearest = views.forEach(q[0], q[1], v, [&](const focused_detail::MicroImageSample& s) {
             if (request.nearestLensOnly) return;
-            if (anySharp) {
-              const LensType& type = calibration.lensTypes[std::size_t(
-                  typeOfLens[std::size_t(s.j) * std::size_t(grid.columns) + std::size_t(s.i)])];
-              if (v < type.minVirtualDepth || v > type.maxVirtualDepth) return;
-            }
+            const double type =
+                typeWeight[std::size_t(typeOfLens[std::size_t(s.j) * std::size_t(grid.columns) + std::size_t(s.i)])];
+            if (type == 0) return;
             const double w = 1 - s.rho * s.rho;  // smoothly to 0 at the disc's rim: no seams
-            add(s, w * w);
+            add(s, type * w * w);
           });
           // Basic rendering, or no disc holds S: the micro-image nearest it.
           if (total == 0 && nearest.i >= 0) add(nearest, 1);

@@ -11,7 +11,10 @@
 //   moved viewpoint (the rays through one part of the main lens), and one v for the whole
 //   photograph refocuses it there while other depths blur as through that aperture.
 // - Depth-based ("total focus"): v from a map on the photograph's frame, so every pixel is in focus;
-//   on a multi-focus array only the lens types sharp at that v take part (when one is).
+//   on a multi-focus array each lens type is weighted by its sharpness at that v (its defocus from
+//   the middle of its range in 1/v), so the sharpest types dominate.
+// Micro-images are sampled with Keys's cubic (a = -3/4): sharper than bilinear, which blurred
+// detail that a photograph pixel about a sensor pixel wide keeps (docs/design.md).
 #pragma once
 
 #include <array>
@@ -30,7 +33,7 @@ struct FocusedRenderRequest {
   bool nearestLensOnly = false;            // Lumsdaine and Georgiev's patches
   double aperture = 1;                     // the sampled disc's radius, share of the usable radius
   std::array<double, 2> viewpoint{0, 0};   // the disc's centre, shares of the usable radius (x right, y down)
-  bool sharpLensTypes = true;              // multi-focus: only the types sharp at v
+  bool sharpLensTypes = true;              // multi-focus: types weighted by their sharpness at v
 };
 
 // `image`: the capture in linear light, any number of channels, calibration.imageWidth x
