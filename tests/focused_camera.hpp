@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "lfcam/focused/seam_energy.hpp"
 #include "lfcam/simulate/camera_model.hpp"
 #include "lfcam/simulate/focused_truth.hpp"
 #include "lfcam/simulate/scene.hpp"
@@ -205,6 +206,18 @@ inline double psnr(const Image& a, const Image& b, int margin) {
       ++count;
     }
   return 10 * std::log10(count / sum);
+}
+
+// Seams as errors: the seam energy (seam_energy.hpp) of `photo` less the ideal photograph, over the
+// ideal's own. Seam energy over the ideal's is 1 for the ideal itself and grows with sharpness, so
+// it cannot tell a sharp rendering from seams; the error's is 0 for the ideal, high for patches.
+inline double seamError(const Image& photo, const Image& ideal, const FocusedCalibration& calibration,
+                        double pixelsPerLens) {
+  Image error = photo.copy();
+  for (int c = 0; c < error.channels(); ++c)
+    for (std::size_t k = 0; k < error.pixels().size() / std::size_t(error.channels()); ++k)
+      error.plane(c)[k] -= ideal.plane(std::min(c, ideal.channels() - 1))[k];
+  return seamEnergy(error, calibration, pixelsPerLens) / seamEnergy(ideal, calibration, pixelsPerLens);
 }
 
 // The Galilean multi-focus camera looking at layers at virtual depths 3.2, 4.6 and 6, simulated once.

@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/bilinear.hpp"
 #include "core/cubic.hpp"
 #include "core/parallel.hpp"
 #include "focused/micro_image_views.hpp"
@@ -18,6 +19,9 @@ namespace {
 
 // Keys's a: sharper than Catmull-Rom, it offsets part of the sensor pixel's blur (docs/design.md).
 constexpr double kKeysA = -0.75;
+// That suits photograph pixels up to about 1.2 sensor pixels of the micro-image; from 1.7 bilinear,
+// whose low pass a wider footprint wants, does better (3-9 dB at 2.2-3.2 px); a blend between.
+constexpr double kSharpUpToPx = 1.3, kBilinearFromPx = 2.0;
 // A lens type's weight at v: exp(-(blur / kBlurScalePx)^2), its defocus blur D |1/v - 1/v_t| pixels
 // (thin lenses: the microlens's aperture is D pixels, v_t the middle of its sharp range in 1/v).
 constexpr double kBlurScalePx = 0.75;
@@ -84,10 +88,20 @@ Result<Image> renderFocused(const Image& image, const FocusedCalibration& calibr
         const double v = request.virtualDepthMap ? request.virtualDepthMap->at(px, int(py), 0) : request.virtualDepth;
         std::fill(sum.begin(), sum.end(), 0.0);
         double total = 0;
+        // A photograph pixel's width in the micro-image's pixels: the pitch over pixelsPerLens, over v.
+        const double footprint = diameter / (request.pixelsPerLens * v);
+        const double bilinearShare =
+            std::clamp((footprint - kSharpUpToPx) / (kBilinearFromPx - kSharpUpToPx), 0.0, 1.0);
         auto add = [&](const focused_detail::MicroImageSample& s, double weight) {
-          for (int c = 0; c < channels; ++c)
-            sum[std::size_t(c)] +=
-                weight * cubicSample(image.plane(c), image.width(), image.height(), s.x - 0.5, s.y - 0.5, kKeysA);
+          for (int c = 0; c < channels; ++c) {
+            const float* plane = image.plane(c);
+            const double x = s.x - 0.5, y = s.y - 0.5;
+            double value = 0;
+            if (bilinearShare < 1)
+              value += (1 - bilinearShare) * cubicSample(plane, image.width(), image.height(), x, y, kKeysA);
+            if (bilinearShare > 0) value += bilinearShare * bilinearSample(plane, image.width(), image.height(), x, y);
+            sum[std::size_t(c)] += weight * value;
+          }
           total += weight;
         };
         if (v > 0 && std::isfinite(v)) {
