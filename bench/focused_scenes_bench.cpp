@@ -37,15 +37,6 @@ struct NamedScene {
   double electronsAtWhite = 0;
 };
 
-Scene oneSurface(const CameraModel& camera, const char* name, const Plane& plane) {
-  Scene scene;
-  scene.name = name;
-  scene.camera = camera;
-  scene.background = {0.5f, 0.5f, 0.5f};
-  scene.planes.push_back(plane);
-  return scene;
-}
-
 double median(std::vector<float> values) {
   std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
   return values[values.size() / 2];
@@ -59,13 +50,14 @@ int main() {
   scenes.push_back({"layers", test::focusedLayers(camera, {3.2, 4.6, 6.0}, kPixelsPerLens)});
   Plane slant = test::focusedPlane(camera, "slant", 4.2, 6, 4, kPixelsPerLens, 4);
   slant.tiltYDeg = 75;
-  scenes.push_back({"slant", oneSurface(camera, "slant", slant)});
-  scenes.push_back({"fine texture",
-                    oneSurface(camera, "fine", test::focusedPlane(camera, "fine", 4.2, 1.6, 1.5, kPixelsPerLens, 5))});
+  scenes.push_back({"slant", test::oneSurface(camera, "slant", slant)});
+  scenes.push_back(
+      {"fine texture",
+       test::oneSurface(camera, "fine", test::focusedPlane(camera, "fine", 4.2, 1.6, 1.5, kPixelsPerLens, 5))});
   Plane weak = test::focusedPlane(camera, "weak", 4.2, 1.6, 4, kPixelsPerLens, 6);
   weak.texture.dark = {0.45f, 0.45f, 0.45f};
   weak.texture.light = {0.55f, 0.55f, 0.55f};
-  scenes.push_back({"weak texture", oneSurface(camera, "weak", weak)});
+  scenes.push_back({"weak texture", test::oneSurface(camera, "weak", weak)});
   scenes.push_back({"layers, noisy", test::focusedLayers(camera, {3.2, 4.6, 6.0}, kPixelsPerLens), 1000});
 
   std::printf(

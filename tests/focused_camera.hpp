@@ -76,6 +76,16 @@ inline Plane focusedPlane(const CameraModel& camera, const std::string& name, do
   return plane;
 }
 
+// `plane` alone before a mid-grey background.
+inline Scene oneSurface(const CameraModel& camera, const std::string& name, const Plane& plane) {
+  Scene scene;
+  scene.name = name;
+  scene.camera = camera;
+  scene.background = {0.5f, 0.5f, 0.5f};
+  scene.planes.push_back(plane);
+  return scene;
+}
+
 // Three planes: the background at v_far, and two cards nearer the camera (larger v on a Galilean
 // camera, smaller on a Keplerian one) over parts of it.
 inline Scene focusedLayers(const CameraModel& camera, const std::array<double, 3>& virtualDepths,

@@ -19,7 +19,7 @@ namespace {
 
 // Keys's a: sharper than Catmull-Rom, it offsets part of the sensor pixel's blur (docs/design.md).
 constexpr double kKeysA = -0.75;
-// That suits photograph pixels up to about 1.2 sensor pixels of the micro-image; from 1.7 bilinear,
+// That suits photograph pixels up to about 1.3 sensor pixels of the micro-image; from 2 bilinear,
 // whose low pass a wider footprint wants, does better (3-9 dB at 2.2-3.2 px); a blend between.
 constexpr double kSharpUpToPx = 1.3, kBilinearFromPx = 2.0;
 // A lens type's weight at v: exp(-(blur / kBlurScalePx)^2), its defocus blur D |1/v - 1/v_t| pixels

@@ -13,8 +13,9 @@
 // - Depth-based ("total focus"): v from a map on the photograph's frame, so every pixel is in focus;
 //   on a multi-focus array each lens type is weighted by its sharpness at that v (its defocus from
 //   the middle of its range in 1/v), so the sharpest types dominate.
-// Micro-images are sampled with Keys's cubic (a = -3/4): sharper than bilinear, which blurred
-// detail that a photograph pixel about a sensor pixel wide keeps (docs/design.md).
+// Micro-images are sampled with Keys's cubic (a = -3/4) where a photograph pixel is about a sensor
+// pixel wide (bilinear blurred detail the ideal keeps there), with bilinear where it is two or more
+// (its low pass suits the wider footprint), and a blend between (docs/design.md).
 #pragma once
 
 #include <array>
