@@ -22,7 +22,8 @@
 //      [--subsets-together] [--no-noise-correction] [--no-defocus-ceiling] [--flat-cleanup] [--high-pass R]
 //      [--gradient A] [--reclaim-first-round-only] [--no-reclaim-cost-check] [--no-first-round-cost-check]
 //      [--no-offset-slope-correction] [--offset-shrink] [--no-offset-residual-check]
-//      [--no-one-dimensional-gate] [--match-at-reference] [--no-coarse-cost] [--scene TEXT] [--stages]
+//      [--no-one-dimensional-gate] [--match-at-reference] [--no-coarse-cost] [--star-ring-step K]
+//      [--half-resolution-rounds N] [--scene TEXT] [--stages]
 //      [--timings] [--scale] [--benchmark_filter=...]
 //   --options           the table with these settings (lfcam depth's options file) instead of the defaults,
 //                       each scene keeping its own range: how candidate defaults are compared. Given
@@ -35,7 +36,8 @@
 //   --stages            under each row, the scores of the map each stage left (the full resolution's
 //                       last pass, DepthExperiment::observeStage); with --write, DIR/<scene>-<stage>.pfm
 //   --timings           instead of the table: each stage's time on antinous, pass by pass (median of 5),
-//                       and the memory floor's bandwidth (design.md, "Depth": the profile)
+//                       and the memory floor's bandwidth (design.md, "Depth": the profile); with the first
+//                       --options file's settings and the experiment's switches
 //   --scale             instead of the table: the time and scores of layered planes of 15 x 15 views of
 //                       625 x 434 pixels (a Lytro Illum's) and of their central 5 x 5 views
 //   --subsets-together  the cost volume's subsets aggregated together (DepthExperiment): what
@@ -52,6 +54,8 @@
 //   --no-one-dimensional-gate  the centre row and column always among the subsets the lowest is taken of
 //   --match-at-reference  views matched at the centre view, not the aperture centre (DepthExperiment)
 //   --no-coarse-cost    noisy views matched without the half-resolution cost (DepthExperiment)
+//   --star-ring-step K  only every K-th ring of views around the centre in the star (DepthExperiment)
+//   --half-resolution-rounds N  refinement and cleanup rounds of the view offsets' half-resolution passes
 //   --high-pass R       the experiment of matching views less their local mean (DepthExperiment)
 //   --gradient A        the experiment of matching gradients too, with weight A (DepthExperiment)
 #include <benchmark/benchmark.h>
@@ -323,7 +327,7 @@ void printScores(const std::vector<Candidate>& candidates, const lfcam::edof::De
 // Where estimateDepth's time goes on antinous (DepthExperiment::stageEnded): each stage's wall
 // seconds per pass (the half-resolution passes, then full resolution), the median of `runs`, and its
 // share; then the memory floor's bandwidth, measured between the runs (memory_floor.hpp).
-void printTimings(int runs) {
+void printTimings(int runs, const lfcam::DepthOptions& options, const lfcam::edof::DepthExperiment& experiment) {
   const LightField& lightField = antinous();
   struct Stage {
     std::string pass, name;
@@ -336,7 +340,7 @@ void printTimings(int runs) {
     std::size_t index = 0;
     int pass = 0;
     auto last = std::chrono::steady_clock::now();
-    lfcam::edof::DepthExperiment timed;
+    lfcam::edof::DepthExperiment timed = experiment;
     timed.stageEnded = [&](const std::string& name) {
       const auto now = std::chrono::steady_clock::now();
       if (name == "views") ++pass;
@@ -344,7 +348,7 @@ void printTimings(int runs) {
       stages[index++].seconds.push_back(std::chrono::duration<double>(now - last).count());
       last = now;
     };
-    if (auto depth = lfcam::edof::estimateDepth(lightField, {}, timed); !depth)
+    if (auto depth = lfcam::edof::estimateDepth(lightField, options, timed); !depth)
       return (void)std::fprintf(stderr, "depth_bench: %s\n", depth.error().message.c_str());
   }
   double total = 0;
@@ -436,6 +440,10 @@ int main(int argc, char** argv) {
       experiment.offsetResidualCheck = false;
     } else if (argument == "--reclaim-first-round-only") {
       experiment.reclaimEveryRound = false;
+    } else if (argument == "--star-ring-step" && i + 1 < argc) {
+      experiment.starRingStep = std::atoi(argv[++i]);
+    } else if (argument == "--half-resolution-rounds" && i + 1 < argc) {
+      experiment.halfResolutionRounds = std::atoi(argv[++i]);
     } else if (argument == "--high-pass" && i + 1 < argc) {
       experiment.highPassRadius = std::atoi(argv[++i]);
     } else if (argument == "--options" && i + 1 < argc) {
@@ -450,7 +458,7 @@ int main(int argc, char** argv) {
   }
   argc = kept;
   if (candidates.empty()) candidates.push_back({"defaults", {}});
-  if (timings) return printTimings(5), 0;
+  if (timings) return printTimings(5, candidates.front().options, experiment), 0;
   if (scale) return printScale(), 0;
   printScores(candidates, experiment, heldOut, folder, size, only, stages);
   benchmark::Initialize(&argc, argv);

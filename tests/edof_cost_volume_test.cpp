@@ -1,8 +1,9 @@
 // Pieces of depth's cost volume (src/edof/cost_volume.cpp) against plain references on random
-// inputs: the lowest subset per pixel, its planes a stride apart.
+// inputs: the lowest subset per pixel, its planes a stride apart; the star of views.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <limits>
 #include <random>
 #include <vector>
@@ -29,6 +30,23 @@ TEST(LowestSubset, IsEachPixelsMinimumOverThePlanesAndZeroWhereAllAreInfinite) {
       for (std::size_t i = 0; i < subsets; ++i) lowest = std::min(lowest, planes[i * stride + p]);
       ASSERT_EQ(out[p], lowest == infinity ? 0.0f : lowest) << "trial " << trial << " pixel " << p;
     }
+  }
+}
+
+TEST(StarViews, TakesTheRowColumnAndDiagonalsAndEveryKthRingWhenAsked) {
+  LightFieldShape shape;
+  shape.nu = shape.nv = 9, shape.ns = shape.nt = 4, shape.channels = 1;
+  const LightField lightField(shape);
+  const std::vector<StarView> all = starViews(lightField, 4, 4, {});
+  EXPECT_EQ(all.size(), 32u);
+  const std::vector<StarView> even = starViews(lightField, 4, 4, {false, 2});
+  ASSERT_EQ(even.size(), 16u);
+  for (const StarView& view : even) {
+    const int du = view.u - 4, dv = view.v - 4;
+    EXPECT_EQ(std::max(std::abs(du), std::abs(dv)) % 2, 0) << view.u << ", " << view.v;
+    EXPECT_TRUE(du == 0 || dv == 0 || std::abs(du) == std::abs(dv)) << view.u << ", " << view.v;
+    EXPECT_EQ(view.uc, du);
+    EXPECT_EQ(view.vc, dv);
   }
 }
 

@@ -19,14 +19,15 @@ double stepsV(const LightField& lightField, int v, bool fromReference) {
   return fromReference ? v - (lightField.nv() - 1) / 2 : lightField.vFromCentre(v);
 }
 
-std::vector<StarView> starViews(const LightField& lightField, int referenceU, int referenceV, bool fromReference) {
+std::vector<StarView> starViews(const LightField& lightField, int referenceU, int referenceV, StarChoice star) {
   std::vector<StarView> views;
   for (int v = 0; v < lightField.nv(); ++v)
     for (int u = 0; u < lightField.nu(); ++u) {
       if (u == referenceU && v == referenceV) continue;
       const int du = u - referenceU, dv = v - referenceV;
       if (du != 0 && dv != 0 && std::abs(du) != std::abs(dv)) continue;
-      StarView view{u, v, stepsU(lightField, u, fromReference), stepsV(lightField, v, fromReference), 0};
+      if (std::max(std::abs(du), std::abs(dv)) % std::max(star.ringStep, 1) != 0) continue;
+      StarView view{u, v, stepsU(lightField, u, star.fromReference), stepsV(lightField, v, star.fromReference), 0};
       if (du < 0) view.halves |= 1;
       if (du > 0) view.halves |= 2;
       if (dv < 0) view.halves |= 4;
@@ -106,13 +107,13 @@ namespace {
 // noise variance that interpolation removes is added back (ViewNoise, interpolation_terms.hpp).
 // Less `weight` times the defocus cue energy[l * n + p] (none without `energy`), in the same pass.
 void correspondenceCost(const LightField& grey, const std::vector<double>& disparities, int labelBegin, int labelEnd,
-                        double locking, const edof::ViewNoise& noise, bool fromReference, const float* energy,
+                        double locking, const edof::ViewNoise& noise, StarChoice star, const float* energy,
                         float weight, float* out) {
   const int ns = grey.ns(), nt = grey.nt();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
-  const std::vector<StarView> views = starViews(grey, referenceU, referenceV, fromReference);
-  const double referenceUc = stepsU(grey, referenceU, fromReference),
-               referenceVc = stepsV(grey, referenceV, fromReference);
+  const std::vector<StarView> views = starViews(grey, referenceU, referenceV, star);
+  const double referenceUc = stepsU(grey, referenceU, star.fromReference),
+               referenceVc = stepsV(grey, referenceV, star.fromReference);
   const std::size_t n = grey.shape().viewPixels();
   // The second differences only feed the interpolation-bias term.
   const SecondDifferences secondDiff =
@@ -335,12 +336,12 @@ edof::CostVolume defocusEnergy(const LightField& grey, const std::vector<double>
 edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double>& disparities,
                                 const edof::GuidedFilter& filter, double defocusWeight, double locking,
                                 const edof::ViewNoise& noise, bool subsetsApart, bool ceiling, bool gateWanted,
-                                bool fromReference) {
+                                StarChoice star) {
   const std::size_t n = grey.shape().viewPixels();
   const int labels = int(disparities.size());
   int viewsIn[kHalves];
   const std::vector<int> subsetList =
-      subsetsWithViews(starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2, fromReference), viewsIn);
+      subsetsWithViews(starViews(grey, (grey.nu() - 1) / 2, (grey.nv() - 1) / 2, star), viewsIn);
   const std::size_t subsets = subsetList.size();
   const bool gate = subsetsApart && gatesOneDimensional(subsetList, gateWanted);
   // The halves first (gatesOneDimensional), then the one-dimensional subsets, each a whole volume.
@@ -358,8 +359,8 @@ edof::CostVolume aggregatedCost(const LightField& grey, const std::vector<double
   for (int first = 0; first < labels; first += kChunk) {
     const int last = std::min(labels, first + kChunk);
     // The defocus cue taken off each subset's slice (the lowest subset less it, when taken first).
-    correspondenceCost(grey, disparities, first, last, locking, noise, fromReference,
-                       energy.empty() ? nullptr : energy.data(), float(defocusWeight), planes.data());
+    correspondenceCost(grey, disparities, first, last, locking, noise, star, energy.empty() ? nullptr : energy.data(),
+                       float(defocusWeight), planes.data());
     if (!subsetsApart)
       for (int l = first; l < last; ++l)
         lowestSubset(planes.data() + std::size_t(l - first) * subsets * n, subsets, n, n,

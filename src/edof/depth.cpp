@@ -105,6 +105,11 @@ void addCoarseCost(const CoarseCost& coarse, const LightField& grey, const edof:
   });
 }
 
+// The star of views the experiment asks for (DepthExperiment::matchAtReference, ::starRingStep).
+edof::StarChoice starOf(const edof::DepthExperiment& experiment) {
+  return {experiment.matchAtReference, experiment.starRingStep};
+}
+
 // Each pixel's mean cost and contrast (mean less lowest) over the labels of a pixel-major volume,
 // and the typical depth of a cost minimum (the contrast's mean, summed in pixel order): the scale
 // of the penalties and of the confidence.
@@ -208,7 +213,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
   // filter per slice, steered by the reference view; the lowest subset.
   edof::CostVolume cost =
       aggregatedCost(grey, disparities, filter, options.defocusWeight, locking, noise, experiment.aggregateSubsetsApart,
-                     experiment.defocusCeiling, experiment.oneDimensionalGate, experiment.matchAtReference);
+                     experiment.defocusCeiling, experiment.oneDimensionalGate, starOf(experiment));
   if (coarseIn && !coarseIn->volume.empty() && noise.variance > 0 && experiment.noisyCoarseCost)
     addCoarseCost(*coarseIn, grey, noise, cost);
   if (experiment.stageEnded) experiment.stageEnded("cost");
@@ -309,7 +314,7 @@ DepthMap depthStages(const Image& colours, const LightField& grey, const Image& 
       // see far smaller differences of blur (measured on antinous: 1 there is worse than none).
       refineDisparity(grey, refineFilter, map, step / options.refineSteps / double(1 << round), options.refineSteps,
                       0.25 * std::max(experiment.lockingCorrection, 0.0), noise, experiment.refineAggregateHalves,
-                      experiment.oneDimensionalGate, experiment.matchAtReference, curvature.data(), residual.data());
+                      experiment.oneDimensionalGate, starOf(experiment), curvature.data(), residual.data());
       keepInRange();
       observe("refined " + std::to_string(round + 1));
       // The first round's residual, the one the automatic prefilter's threshold was chosen on.
@@ -476,6 +481,8 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     const Image smallGuide = small.subApertureImage((small.nu() - 1) / 2, (small.nv() - 1) / 2);
     std::vector<double> halved(disparities);
     for (double& d : halved) d *= 0.5;
+    DepthOptions halfOptions = options;
+    if (experiment.halfResolutionRounds > 0) halfOptions.refineRounds = experiment.halfResolutionRounds;
     Image first;
     Residual withoutOffsets;
     for (int pass = 0; pass < options.offsetPasses; ++pass) {
@@ -484,8 +491,9 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
                           experiment.offsetSlopeCorrection, experiment.offsetShrink, experiment.matchAtReference);
       if (experiment.stageEnded) experiment.stageEnded("views");
       CoarseCost* keep = pass + 1 == options.offsetPasses ? &coarse : nullptr;
-      first = depthStages(smallColours, small, smallGuide, halved, options, experiment, {}, &residual, nullptr, keep)
-                  .disparity;
+      first =
+          depthStages(smallColours, small, smallGuide, halved, halfOptions, experiment, {}, &residual, nullptr, keep)
+              .disparity;
       if (pass == 0) withoutOffsets = std::move(residual);
     }
     const bool checked = experiment.offsetResidualCheck && options.offsetPasses > 1 && !residual.perPixel.empty();
@@ -510,7 +518,7 @@ Result<DepthMap> edof::estimateDepth(const LightField& lightField, const DepthOp
     const bool atReference = experiment.matchAtReference;
     const edof::ViewNoise noise =
         experiment.noiseCorrection
-            ? smoothedNoise(asGiven, kNoisyPrefilterSigma, starViews(grey, referenceU, referenceV, atReference),
+            ? smoothedNoise(asGiven, kNoisyPrefilterSigma, starViews(grey, referenceU, referenceV, starOf(experiment)),
                             meanKept(stepsU(grey, referenceU, atReference), stepsV(grey, referenceV, atReference)))
             : edof::ViewNoise{};
     map = depthStages(colours, grey, guide, disparities, options, experiment, noise, &residual, &coarse);

@@ -64,6 +64,12 @@ struct DepthExperiment {
   // 1.685 -> 1.358 % at 128 px but 1.903 -> 2.291 % at 256 (noisy thin bars 4.43 -> 7.32, glossy
   // weak texture 3.12 -> 6.09), with the defaults chosen for matching at the aperture centre.
   bool matchAtReference = false;
+  // Every ringStep-th ring of views around the reference in the star (cost volume, fine search):
+  // `depth_bench --star-ring-step 2` matches rings 2 and 4 of 9 x 9 views, half the star's 32.
+  int starRingStep = 1;
+  // Rounds of refinement and cleanup in the half-resolution passes of the view offsets (0: as
+  // DepthOptions::refineRounds): `depth_bench --half-resolution-rounds 1`.
+  int halfResolutionRounds = 0;
   // Noisy views: the half-resolution cost added where texture is weak (depth.cpp, addCoarseCost);
   // off: `depth_bench --no-coarse-cost`.
   bool noisyCoarseCost = true;

@@ -36,10 +36,17 @@ struct StarView {
 double stepsU(const LightField& lightField, int u, bool fromReference);
 double stepsV(const LightField& lightField, int v, bool fromReference);
 
+// Which views the star takes and where they are matched: `fromReference` as stepsU's; every
+// `ringStep`-th ring of views around the reference (1: all; DepthExperiment::starRingStep).
+struct StarChoice {
+  bool fromReference = false;
+  int ringStep = 1;
+};
+
 // The views compared with the reference: the star through the reference view (its row, its
 // column, both diagonals). A star sees every edge orientation from both sides with a third of
 // the views of the full aperture.
-std::vector<StarView> starViews(const LightField& lightField, int referenceU, int referenceV, bool fromReference);
+std::vector<StarView> starViews(const LightField& lightField, int referenceU, int referenceV, StarChoice star);
 
 // Bilinear interpolation blurs a view sampled between pixels, by f (1 - f) / 2 times the second
 // difference of the signal at fraction f, and that blur adds its square to the cost of every
@@ -88,7 +95,7 @@ void aggregatePlanes(const GuidedFilter& filter, float* planes, std::size_t coun
 // (gatesOneDimensional). Returns cost[l * n + p].
 CostVolume aggregatedCost(const LightField& grey, const std::vector<double>& disparities, const GuidedFilter& filter,
                           double defocusWeight, double locking, const ViewNoise& noise, bool subsetsApart, bool ceiling,
-                          bool gateWanted, bool fromReference);
+                          bool gateWanted, StarChoice star);
 
 // Step 5: the fine search (fine_search.cpp).
 
@@ -112,7 +119,7 @@ struct Residual {
 // the cost is made a row of one slice at a time by fineCostRow (fine_cost_row.hpp), SIMD across
 // the row, rather than from shifted rows as correspondenceCost's.
 void refineDisparity(const LightField& grey, const GuidedFilter& filter, float* disparity, double delta, int steps,
-                     double locking, const ViewNoise& noise, bool aggregateHalves, bool gateWanted, bool fromReference,
+                     double locking, const ViewNoise& noise, bool aggregateHalves, bool gateWanted, StarChoice star,
                      float* curvatureOut, float* residualOut);
 
 // The half resolution (half_resolution.cpp).

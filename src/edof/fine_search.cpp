@@ -41,11 +41,11 @@ edof::FineCostViews fineCostViews(const LightField& grey, const std::vector<Star
 
 void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, float* disparity, double delta,
                      int steps, double locking, const edof::ViewNoise& noise, bool aggregateHalves, bool gateWanted,
-                     bool fromReference, float* curvatureOut, float* residualOut) {
+                     StarChoice star, float* curvatureOut, float* residualOut) {
   const int ns = grey.ns(), nt = grey.nt();
   const std::size_t n = grey.shape().viewPixels();
   const int referenceU = (grey.nu() - 1) / 2, referenceV = (grey.nv() - 1) / 2;
-  const std::vector<StarView> views = starViews(grey, referenceU, referenceV, fromReference);
+  const std::vector<StarView> views = starViews(grey, referenceU, referenceV, star);
   int viewsIn[kHalves];
   const std::vector<int> subsets = subsetsWithViews(views, viewsIn);
   const int slices = 2 * steps + 1;
@@ -55,7 +55,7 @@ void refineDisparity(const LightField& grey, const edof::GuidedFilter& filter, f
   const SecondDifferences secondDiff =
       locking > 0 ? secondDifferences(grey.plane(referenceU, referenceV, 0), ns, nt) : SecondDifferences{};
   const edof::FineCostViews fineViews =
-      fineCostViews(grey, views, subsets, viewsIn, locking, secondDiff, noise, fromReference);
+      fineCostViews(grey, views, subsets, viewsIn, locking, secondDiff, noise, star.fromReference);
   parallelFor(0, std::size_t(nt), 4, [&](std::size_t begin, std::size_t end) {
     std::vector<float*> out(subsets.size());
     for (std::size_t y = begin; y < end; ++y)
